@@ -1,0 +1,19 @@
+#pragma once
+// The subcommands of the deformcd tool. Each registers its options on the CLI11 app and returns
+// the exit status when run. Errors are thrown (deformcd::Error) and reported by main().
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace deformcd::app {
+
+using Command = std::function<int()>;
+
+/// `deformcd info MODEL [--json] [--merge-edges]` and `deformcd info --gpu [--json]`.
+Command add_info_command(CLI::App& app);
+
+/// `deformcd tetra IN -o PREFIX [--quality Q] [--max-volume V] [--preserve-surface]`.
+Command add_tetra_command(CLI::App& app);
+
+}  // namespace deformcd::app

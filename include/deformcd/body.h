@@ -1,0 +1,59 @@
+#pragma once
+/// \file body.h
+/// A body: the GPU-ready arrays of one deformable object (the paper's Table 1 buffers),
+/// built from a tetrahedral mesh. Plain public arrays, one per buffer.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "deformcd/gpu_layout.h"
+#include "deformcd/mesh.h"
+
+namespace deformcd {
+
+/// How a body is built from a tetrahedral mesh.
+struct BodyOptions {
+  /// Mass density (kg/m^3): node masses are lumped, a quarter of each adjacent tetrahedron's mass.
+  double density = 1000.0;
+  /// false (the paper): one spring per tetrahedron edge, springs = 6 x tetrahedra.
+  /// true: an edge shared by several tetrahedra becomes one spring.
+  bool merge_shared_edges = false;
+};
+
+/// Axis-aligned bounds of a point set.
+struct Bounds {
+  glm::dvec3 min{0.0};
+  glm::dvec3 max{0.0};
+};
+
+/// One deformable body. Indices in springs and faces are local to this body (0-based);
+/// a world concatenates bodies and offsets them.
+struct Body {
+  std::vector<glm::vec4> positions;     ///< SSBO 0: xyz, w = 1
+  std::vector<glm::vec4> velocities;    ///< SSBO 1: xyz, w = 0
+  std::vector<gpu::Spring> springs;     ///< SSBO 2
+  std::vector<gpu::Face> faces;         ///< SSBO 7: outward surface triangles
+  std::vector<glm::vec4> face_normals;  ///< SSBO 6: unit outward normals, w = 0
+  std::vector<float> node_mass;         ///< kg, lumped from the tetrahedra
+  std::vector<Tetrahedron> tetrahedra;  ///< positively oriented
+  double volume = 0.0;                  ///< m^3, sum of the tetrahedra
+};
+
+/// Builds a body from a valid tetrahedral mesh (see validate_tet_mesh).
+/// `source` names the mesh in error messages.
+/// Throws InputError if the tetrahedra do not form a manifold solid (a face shared by more than
+/// two tetrahedra) or a surface face is degenerate.
+[[nodiscard]] Body build_body(const TetMesh& mesh, const BodyOptions& options = {},
+                              const std::string& source = "<mesh>");
+
+/// Recomputes face_normals from positions (unit, outward; zero for a collapsed face).
+void update_face_normals(Body& body);
+
+/// Bounds of a body's current positions.
+[[nodiscard]] Bounds compute_bounds(const Body& body);
+
+}  // namespace deformcd

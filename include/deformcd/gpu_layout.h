@@ -1,0 +1,84 @@
+#pragma once
+/// \file gpu_layout.h
+/// Every struct the GPU sees, byte for byte. Mirrored in shaders/common/layout.glsl (std430);
+/// the static_asserts below and the GL layout test keep the two in step.
+/// Public because applications that render straight from our buffers need the layouts.
+///
+/// The paper's Table 1 numbers the SSBOs; we keep its numbering as binding points.
+
+#include <cstddef>
+#include <cstdint>
+
+#include <glm/vec4.hpp>
+
+namespace deformcd::gpu {
+
+/// SSBO binding points, numbered as in the paper's Table 1.
+enum Binding : std::uint32_t {
+  kNodePosition = 0,        ///< glm::vec4 per node (xyz, w = 1)
+  kNodeVelocity = 1,        ///< glm::vec4 per node (xyz, w = 0)
+  kSpringInfo = 2,          ///< Spring per spring
+  kNodeForce = 3,           ///< glm::vec4 per node
+  kBoxInfo = 4,             ///< Box per leaf box
+  kCollisionResult = 5,     ///< uint per face: nonzero when the face collides
+  kFaceNormal = 6,          ///< glm::vec4 per surface face (unit normal, w = 0)
+  kFaceInfo = 7,            ///< Face per surface face
+  kObjectInfo = 8,          ///< ObjectInfo per body
+  kBoxFaceList = 9,         ///< BoxFace rows, box by box
+  kFacePair = 10,           ///< intersecting face pairs
+  kBoxMask = 11,            ///< int per (box A, box B)
+};
+
+/// 16 bytes. One spring between two nodes (global indices) with its rest length.
+struct Spring {
+  std::uint32_t a;
+  std::uint32_t b;
+  float rest_length;
+  float stiffness_scale;  ///< multiplies the body's stiffness; 1 unless a spring is special
+};
+static_assert(sizeof(Spring) == 16);
+static_assert(offsetof(Spring, rest_length) == 8);
+
+/// 16 bytes. A surface triangle, outward-oriented (counter-clockwise seen from outside).
+struct Face {
+  std::uint32_t a;
+  std::uint32_t b;
+  std::uint32_t c;
+  std::uint32_t body;  ///< index of the body the face belongs to
+};
+static_assert(sizeof(Face) == 16);
+
+/// 32 bytes. An axis-aligned box; w components are padding.
+struct Box {
+  glm::vec4 min;
+  glm::vec4 max;
+};
+static_assert(sizeof(Box) == 32);
+static_assert(offsetof(Box, max) == 16);
+
+/// 8 bytes. One row of the paper's BoundingBox Face List (Fig. 7).
+struct BoxFace {
+  std::uint32_t face;
+  std::uint32_t box;
+};
+static_assert(sizeof(BoxFace) == 8);
+
+/// 48 bytes. Where one body's data lies in the shared arrays (the paper's Object Information).
+struct ObjectInfo {
+  std::uint32_t node_offset;
+  std::uint32_t node_count;
+  std::uint32_t face_offset;
+  std::uint32_t face_count;
+  std::uint32_t spring_offset;
+  std::uint32_t spring_count;
+  std::uint32_t tet_offset;
+  std::uint32_t tet_count;
+  std::uint32_t box_offset;
+  std::uint32_t box_count;
+  std::uint32_t box_face_offset;
+  std::uint32_t box_face_count;
+};
+static_assert(sizeof(ObjectInfo) == 48);
+static_assert(offsetof(ObjectInfo, box_offset) == 32);
+
+}  // namespace deformcd::gpu

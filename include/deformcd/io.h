@@ -1,0 +1,42 @@
+#pragma once
+/// \file io.h
+/// Reading and writing mesh files. Every reader validates what it returns (mesh_validation.h)
+/// and throws InputError naming the file, the line and what is wrong.
+
+#include <filesystem>
+
+#include "deformcd/mesh.h"
+
+namespace deformcd {
+
+/// Reads a TetGen mesh: PREFIX.node and PREFIX.ele, and PREFIX.face when it exists.
+/// `prefix` may also name one of those files (its extension is dropped).
+/// Accepts what TetGen writes and reads: '#' comments, blank lines, attributes and boundary
+/// markers (checked to be numbers, then ignored), 0- or 1-based indices (taken from the first
+/// node's index; every file's record indices must then be consecutive), 4-node tetrahedra.
+/// Second-order (10-node) tetrahedra are rejected: their edge nodes would be free particles.
+[[nodiscard]] TetMesh read_tetgen(const std::filesystem::path& prefix);
+
+/// Writes PREFIX.node, PREFIX.ele and PREFIX.face (`mesh.faces`, each with boundary marker 1;
+/// a .face with no faces when `mesh.faces` is empty), 0-based, with shortest round-trip
+/// doubles, so read_tetgen gives back the same mesh. `prefix` may end in .node/.ele/.face.
+/// Writes to temporary files and renames them only once all are written, so a failure leaves
+/// no partial output. Throws Error when a file cannot be written or the mesh has a non-finite
+/// coordinate or an index out of range.
+void write_tetgen(const TetMesh& mesh, const std::filesystem::path& prefix);
+
+/// True when `file`'s extension names a surface format read_surface knows (.off .obj .stl .ply,
+/// any case).
+[[nodiscard]] bool is_surface_file(const std::filesystem::path& file);
+
+/// Reads a triangulated surface: OFF, OBJ (via tinyobjloader), STL (ASCII or binary) or PLY
+/// (ASCII or binary, either endianness). Polygons are fan-triangulated. Vertices keep the file's
+/// order; STL, which stores corners rather than shared vertices, has its exactly equal corners
+/// welded in order of first appearance.
+[[nodiscard]] SurfaceMesh read_surface(const std::filesystem::path& file);
+
+/// Writes an OFF file of triangles, with shortest round-trip doubles (atomically, and with the
+/// same checks, as write_tetgen).
+void write_off(const SurfaceMesh& mesh, const std::filesystem::path& file);
+
+}  // namespace deformcd

@@ -1,0 +1,78 @@
+#pragma once
+/// \file scene.h
+/// Scenes: which bodies, where, of what material, and the simulation settings. Read from JSON
+/// files (see README, "Scene files"); every key is checked, and an unknown key, a wrong type or
+/// a missing file is an error naming the key and the file.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "deformcd/body.h"
+
+namespace deformcd {
+
+/// Material of a body. Either density or total mass sets the node masses.
+struct MaterialSpec {
+  std::optional<double> density;  ///< kg/m^3; lumped per node from the tetrahedra
+  std::optional<double> mass;     ///< kg, total; spread in proportion to the lumped volumes
+  double stiffness = 2000.0;      ///< N/m, every spring of the body
+  double damping = 2.0;           ///< N s/m, along each spring
+};
+
+/// Nodes held in place: listed by index, and/or every node inside a box (in scene coordinates,
+/// after the body's transform).
+struct FixedSpec {
+  std::vector<std::uint32_t> nodes;
+  std::optional<Bounds> box;
+};
+
+/// One body of a scene.
+struct BodySpec {
+  std::string name;                ///< defaults to the model's file name
+  std::filesystem::path model;     ///< absolute (resolved against the scene file's folder)
+  glm::dvec3 position{0.0};        ///< translation added to the model's coordinates
+  glm::dvec3 rotation{0.0};        ///< degrees about x, then y, then z (applied before position)
+  glm::dvec3 scale{1.0};           ///< applied first; rest shape (springs) uses it
+  glm::dvec3 velocity{0.0};        ///< initial, m/s
+  /// Initial deformation released at frame 0: node offsets from the body's centroid are
+  /// multiplied by this after rest lengths are measured, so the body starts squashed and wobbles.
+  glm::dvec3 squash{1.0};
+  MaterialSpec material;
+  FixedSpec fixed;
+  /// The body is carried linearly from `position` to `*path_to` over the scene's frames, its
+  /// mass-spring dynamics running relative to that motion.
+  std::optional<glm::dvec3> path_to;
+};
+
+/// Time stepping.
+struct SimulationSettings {
+  double dt = 1.0 / 60.0;             ///< seconds per frame
+  int substeps = 1;                   ///< integration steps per frame (step = dt / substeps)
+  glm::dvec3 gravity{0.0, -9.81, 0.0};///< m/s^2
+  double velocity_damping = 0.0;      ///< 1/s: every node's velocity decays by exp(-c t)
+  int frames = 300;                   ///< default run length; paths span exactly this many frames
+};
+
+/// The `collision` section, consumed by the collision pipeline.
+struct CollisionSettings {
+  std::string broadphase = "octree";
+  bool self = false;
+};
+
+struct Scene {
+  std::filesystem::path file;  ///< where it was read from (empty for scenes built in code)
+  SimulationSettings settings;
+  CollisionSettings collision;
+  std::vector<BodySpec> bodies;
+};
+
+/// Reads and checks a scene file. Model paths are resolved against the scene's folder and must
+/// exist (as a file, or as a TetGen prefix with PREFIX.node). Throws InputError.
+[[nodiscard]] Scene read_scene(const std::filesystem::path& file);
+
+}  // namespace deformcd

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Configures and builds one CMake preset (default: release). Usage: scripts/build.sh [PRESET]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+preset="${1:-release}"
+jobs="${DEFORMCD_JOBS:-$(nproc)}"
+if command -v ccache >/dev/null 2>&1; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+else
+  launcher=()
+fi
+cmake --preset "$preset" "${launcher[@]}" >/dev/null
+cmake --build --preset "$preset" -j "$jobs"

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package deformcd needs to build, test and regenerate its assets.
+# Idempotent, and fast when everything is there (one dpkg query, no apt-get).
+set -euo pipefail
+
+packages=(
+  # toolchain
+  g++ cmake ninja-build pkg-config ccache clang-format clang-tidy
+  # core, io, command line
+  libglm-dev libtbb-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
+  # OpenGL 4.3 compute, headless through EGL (Mesa's llvmpipe when there is no GPU), windows
+  libepoxy-dev libegl-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev xvfb xauth
+  # images
+  libpng-dev libstb-dev
+  # TetGen (AGPL-3, optional target)
+  libtet1.5-dev
+  # tests, benchmarks, exact oracle, CGAL's data set for the models
+  libgtest-dev libgmock-dev libbenchmark-dev libcgal-dev libcgal-demo libeigen3-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "installed" ]] || missing+=("$p")
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "install_deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install_deps: installing ${missing[*]}"
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,65 @@
+// Every struct the GPU sees, mirroring include/deformcd/gpu_layout.h byte for byte (std430).
+// Include after #version: #include "common/layout.glsl". tests/gl/layout_agreement_test.cpp
+// writes every field of every struct from shaders/test/layout_probe.comp and reads it back
+// through the C++ structs, so the two cannot drift apart unnoticed.
+//
+// Binding points are macros, not consts: GLSL 4.30 wants integer literals in layout(binding=).
+// Numbered as in the paper's Table 1 (deformcd::gpu::Binding).
+
+#define BINDING_NODE_POSITION 0     // vec4 per node (xyz, w = 1)
+#define BINDING_NODE_VELOCITY 1     // vec4 per node (xyz, w = 0)
+#define BINDING_SPRING_INFO 2       // Spring per spring
+#define BINDING_NODE_FORCE 3        // vec4 per node
+#define BINDING_BOX_INFO 4          // Box per leaf box
+#define BINDING_COLLISION_RESULT 5  // uint per face: nonzero when the face collides
+#define BINDING_FACE_NORMAL 6       // vec4 per surface face (unit normal, w = 0)
+#define BINDING_FACE_INFO 7         // Face per surface face
+#define BINDING_OBJECT_INFO 8       // ObjectInfo per body
+#define BINDING_BOX_FACE_LIST 9     // BoxFace rows, box by box
+#define BINDING_FACE_PAIR 10        // intersecting face pairs
+#define BINDING_BOX_MASK 11         // int per (box A, box B)
+
+// 16 bytes. One spring between two nodes (global indices) with its rest length.
+struct Spring {
+  uint a;
+  uint b;
+  float rest_length;
+  float stiffness_scale;  // multiplies the body's stiffness; 1 unless a spring is special
+};
+
+// 16 bytes. A surface triangle, outward-oriented (counter-clockwise seen from outside).
+struct Face {
+  uint a;
+  uint b;
+  uint c;
+  uint body;  // index of the body the face belongs to
+};
+
+// 32 bytes. An axis-aligned box; w components are padding.
+struct Box {
+  vec4 min;
+  vec4 max;
+};
+
+// 8 bytes. One row of the paper's BoundingBox Face List (Fig. 7). std430 keeps the array
+// stride at 8 (std140 would round it up to 16).
+struct BoxFace {
+  uint face;
+  uint box;
+};
+
+// 48 bytes. Where one body's data lies in the shared arrays (the paper's Object Information).
+struct ObjectInfo {
+  uint node_offset;
+  uint node_count;
+  uint face_offset;
+  uint face_count;
+  uint spring_offset;
+  uint spring_count;
+  uint tet_offset;
+  uint tet_count;
+  uint box_offset;
+  uint box_count;
+  uint box_face_offset;
+  uint box_face_count;
+};

@@ -1,0 +1,72 @@
+#version 430
+// Layout probe: writes a distinct value into every field of element i of each struct array, so
+// that C++ reading the buffers through include/deformcd/gpu_layout.h sees exactly those values
+// only if offsets, sizes and array strides agree. Field k of element i holds probe(i, k);
+// tests/gl/layout_agreement_test.cpp computes the same function.
+#include "common/layout.glsl"
+
+layout(local_size_x = 4) in;
+
+layout(std430, binding = 0) buffer Springs { Spring springs[]; };
+layout(std430, binding = 1) buffer Faces { Face faces[]; };
+layout(std430, binding = 2) buffer Boxes { Box boxes[]; };
+layout(std430, binding = 3) buffer BoxFaces { BoxFace box_faces[]; };
+layout(std430, binding = 4) buffer ObjectInfos { ObjectInfo objects[]; };
+layout(std430, binding = 5) buffer Bindings { uint bindings[]; };
+
+uniform uint u_count;
+
+uint probe(uint i, uint k) { return 1000u * (i + 1u) + k; }
+float probef(uint i, uint k) { return float(probe(i, k)); }
+vec4 probe4(uint i, uint k) {
+  return vec4(probef(i, k), probef(i, k + 1u), probef(i, k + 2u), probef(i, k + 3u));
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= u_count) return;
+
+  springs[i].a = probe(i, 0u);
+  springs[i].b = probe(i, 1u);
+  springs[i].rest_length = probef(i, 2u);
+  springs[i].stiffness_scale = probef(i, 3u);
+
+  faces[i].a = probe(i, 0u);
+  faces[i].b = probe(i, 1u);
+  faces[i].c = probe(i, 2u);
+  faces[i].body = probe(i, 3u);
+
+  boxes[i].min = probe4(i, 0u);
+  boxes[i].max = probe4(i, 4u);
+
+  box_faces[i].face = probe(i, 0u);
+  box_faces[i].box = probe(i, 1u);
+
+  objects[i].node_offset = probe(i, 0u);
+  objects[i].node_count = probe(i, 1u);
+  objects[i].face_offset = probe(i, 2u);
+  objects[i].face_count = probe(i, 3u);
+  objects[i].spring_offset = probe(i, 4u);
+  objects[i].spring_count = probe(i, 5u);
+  objects[i].tet_offset = probe(i, 6u);
+  objects[i].tet_count = probe(i, 7u);
+  objects[i].box_offset = probe(i, 8u);
+  objects[i].box_count = probe(i, 9u);
+  objects[i].box_face_offset = probe(i, 10u);
+  objects[i].box_face_count = probe(i, 11u);
+
+  if (i == 0u) {
+    bindings[0] = BINDING_NODE_POSITION;
+    bindings[1] = BINDING_NODE_VELOCITY;
+    bindings[2] = BINDING_SPRING_INFO;
+    bindings[3] = BINDING_NODE_FORCE;
+    bindings[4] = BINDING_BOX_INFO;
+    bindings[5] = BINDING_COLLISION_RESULT;
+    bindings[6] = BINDING_FACE_NORMAL;
+    bindings[7] = BINDING_FACE_INFO;
+    bindings[8] = BINDING_OBJECT_INFO;
+    bindings[9] = BINDING_BOX_FACE_LIST;
+    bindings[10] = BINDING_FACE_PAIR;
+    bindings[11] = BINDING_BOX_MASK;
+  }
+}

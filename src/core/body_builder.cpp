@@ -1,0 +1,77 @@
+#include <cmath>
+#include <sstream>
+
+#include "deformcd/body.h"
+#include "deformcd/error.h"
+#include "geometry.h"
+#include "spring_topology.h"
+#include "surface_extraction.h"
+
+namespace deformcd {
+
+Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::string& source) {
+  if (!(options.density > 0.0) || !std::isfinite(options.density)) {
+    throw InputError(source, "density must be positive and finite");
+  }
+  Body body;
+  body.tetrahedra = mesh.tetrahedra;
+
+  body.positions.reserve(mesh.nodes.size());
+  for (const glm::dvec3& p : mesh.nodes) body.positions.emplace_back(glm::vec3(p), 1.0f);
+  body.velocities.assign(mesh.nodes.size(), glm::vec4(0.0f));
+
+  // Lumped mass: a quarter of each tetrahedron's mass to each of its nodes.
+  std::vector<double> mass(mesh.nodes.size(), 0.0);
+  for (const Tetrahedron& t : mesh.tetrahedra) {
+    const double v = geom::signed_volume6(mesh.nodes[t[0]], mesh.nodes[t[1]], mesh.nodes[t[2]],
+                                          mesh.nodes[t[3]]) /
+                     6.0;
+    body.volume += v;
+    for (std::uint32_t n : t) mass[n] += 0.25 * v * options.density;
+  }
+  body.node_mass.reserve(mass.size());
+  for (std::size_t i = 0; i < mass.size(); ++i) {
+    if (mass[i] <= 0.0) {
+      std::ostringstream msg;
+      msg << "node " << i << " (0-based) belongs to no tetrahedron; a body needs every node to "
+          << "have mass (remove unused nodes)";
+      throw InputError(source, msg.str());
+    }
+    body.node_mass.push_back(static_cast<float>(mass[i]));
+  }
+
+  for (const Edge& e : tetrahedron_edges(mesh.tetrahedra, options.merge_shared_edges)) {
+    const double rest = glm::length(mesh.nodes[e[0]] - mesh.nodes[e[1]]);
+    body.springs.push_back({e[0], e[1], static_cast<float>(rest), 1.0f});
+  }
+
+  for (const Triangle& f : extract_boundary(mesh.tetrahedra, source)) {
+    body.faces.push_back({f[0], f[1], f[2], 0});
+  }
+  update_face_normals(body);
+  return body;
+}
+
+void update_face_normals(Body& body) {
+  body.face_normals.resize(body.faces.size());
+  for (std::size_t i = 0; i < body.faces.size(); ++i) {
+    const gpu::Face& f = body.faces[i];
+    const glm::vec3 a(body.positions[f.a]), b(body.positions[f.b]), c(body.positions[f.c]);
+    const glm::vec3 n = glm::cross(b - a, c - a);
+    const float len = glm::length(n);
+    body.face_normals[i] = len > 0.0f ? glm::vec4(n / len, 0.0f) : glm::vec4(0.0f);
+  }
+}
+
+Bounds compute_bounds(const Body& body) {
+  Bounds b;
+  if (body.positions.empty()) return b;
+  b.min = b.max = glm::dvec3(body.positions[0]);
+  for (const glm::vec4& p : body.positions) {
+    b.min = glm::min(b.min, glm::dvec3(p));
+    b.max = glm::max(b.max, glm::dvec3(p));
+  }
+  return b;
+}
+
+}  // namespace deformcd

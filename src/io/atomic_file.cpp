@@ -1,0 +1,80 @@
+#include "atomic_file.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "deformcd/error.h"
+
+namespace deformcd::io {
+
+namespace {
+
+[[noreturn]] void fail(const std::filesystem::path& target, const std::string& what) {
+  throw Error("cannot write " + target.string() + ": " + what);
+}
+
+// Unique within this process by the counter and across processes by the pid; "x" mode below
+// refuses to reuse a name that exists anyway.
+std::filesystem::path temporary_name_for(const std::filesystem::path& target) {
+  static std::atomic<unsigned> counter{0};
+  const std::string name = "." + target.filename().string() + ".tmp-" + std::to_string(getpid()) +
+                           "-" + std::to_string(counter++);
+  return target.parent_path() / name;
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_ && !temporary_.empty()) {
+    std::error_code ignored;  // nothing sensible to do if removal fails during unwinding
+    std::filesystem::remove(temporary_, ignored);
+  }
+}
+
+void AtomicFile::write(std::string_view contents) {
+  const std::filesystem::path temporary = temporary_name_for(target_);
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(temporary.c_str(), "wbx"),
+                                                    &std::fclose);
+  if (!f) fail(target_, std::strerror(errno));
+  temporary_ = temporary;  // from here on the destructor removes it
+
+  if (std::fwrite(contents.data(), 1, contents.size(), f.get()) != contents.size()) {
+    fail(target_, std::strerror(errno));
+  }
+  // fclose flushes; a full disk may only show here.
+  if (std::fclose(f.release()) != 0) fail(target_, std::strerror(errno));
+}
+
+void AtomicFile::commit() {
+  if (temporary_.empty()) fail(target_, "nothing was written");
+  std::error_code ec;
+  std::filesystem::rename(temporary_, target_, ec);
+  if (ec) fail(target_, ec.message());
+  committed_ = true;
+}
+
+void write_files_atomically(std::span<const FileContents> files) {
+  std::vector<std::unique_ptr<AtomicFile>> written;
+  written.reserve(files.size());
+  for (const FileContents& file : files) {
+    written.push_back(std::make_unique<AtomicFile>(file.target));
+    written.back()->write(file.contents);
+  }
+  for (const FileContents& file : files) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(file.target, ec)) fail(file.target, "it is a directory");
+  }
+  for (auto& file : written) {
+    file->commit();
+  }
+}
+
+}  // namespace deformcd::io

@@ -1,0 +1,58 @@
+#pragma once
+// The surface-format readers behind read_surface, and the builder they share so that every
+// format triangulates polygons and reports bad indices the same way.
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+
+#include "deformcd/mesh.h"
+#include "deformcd/mesh_validation.h"
+
+namespace deformcd::io {
+
+/// A surface as parsed, not yet validated, with where each vertex and triangle came from.
+struct ParsedSurface {
+  SurfaceMesh mesh;
+  MeshSource source;
+};
+
+/// Collects vertices and polygons while a file is parsed. Line numbers are 1-based, or 0 where
+/// the format has no lines (binary files).
+class SurfaceBuilder {
+ public:
+  /// `index_base` is the file's first vertex index (OBJ: 1), used in messages only.
+  SurfaceBuilder(std::string file, unsigned index_base);
+
+  /// Reserves for up to the given counts, capped so that a corrupt header cannot exhaust memory.
+  void reserve(std::uint64_t vertices, std::uint64_t polygons, std::size_t file_size);
+
+  void add_vertex(const glm::dvec3& position, std::size_t line);
+
+  /// Adds polygon number `polygon` (0-based), with 0-based `corners`, as the fan of triangles
+  /// (c0, ck, ck+1). Throws InputError at `line` when it has fewer than 3 corners or a corner
+  /// is not a vertex added so far. Degenerate triangles are left to validation.
+  void add_polygon(std::span<const std::int64_t> corners, std::size_t polygon, std::size_t line);
+
+  /// Adds one triangle of existing vertices, unchecked (validation checks it).
+  void add_triangle(const Triangle& triangle, std::size_t line);
+
+  [[nodiscard]] std::size_t vertex_count() const { return parsed_.mesh.vertices.size(); }
+  [[nodiscard]] const std::string& file() const { return parsed_.source.vertex_file; }
+
+  [[nodiscard]] ParsedSurface finish() &&;
+
+ private:
+  ParsedSurface parsed_;
+};
+
+// Each reader parses one format strictly, throwing InputError with the file and (for text) the
+// line; none validates geometry, read_surface does.
+ParsedSurface read_off(const std::filesystem::path& file);
+ParsedSurface read_stl(const std::filesystem::path& file);
+ParsedSurface read_ply(const std::filesystem::path& file);
+ParsedSurface read_obj(const std::filesystem::path& file);
+
+}  // namespace deformcd::io

@@ -1,0 +1,165 @@
+// read_scene: JSON -> Scene, strictly (see json_fields.h).
+
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "deformcd/error.h"
+#include "deformcd/scene.h"
+#include "json_fields.h"
+
+namespace deformcd {
+
+namespace fs = std::filesystem;
+using scene_detail::JsonFields;
+
+namespace {
+
+nlohmann::json parse_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string(), "cannot open scene file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // Turn the byte offset into a line number for the message.
+    const std::size_t offset = std::min<std::size_t>(e.byte, text.size());
+    const auto line = static_cast<std::size_t>(
+        std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n') + 1);
+    std::string what = e.what();
+    const auto colon = what.find("parse error");
+    throw InputError(file.string(), line,
+                     "invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
+  }
+}
+
+double positive(JsonFields& f, const std::string& key, double fallback) {
+  const double v = f.number(key).value_or(fallback);
+  if (!(v > 0.0)) f.fail(key, "must be positive, got " + std::to_string(v));
+  return v;
+}
+
+double non_negative(JsonFields& f, const std::string& key, double fallback) {
+  const double v = f.number(key).value_or(fallback);
+  if (v < 0.0) f.fail(key, "must not be negative, got " + std::to_string(v));
+  return v;
+}
+
+SimulationSettings read_settings(JsonFields f) {
+  SimulationSettings s;
+  s.dt = positive(f, "dt", s.dt);
+  s.substeps = f.integer("substeps").value_or(s.substeps);
+  if (s.substeps < 1) f.fail("substeps", "must be at least 1");
+  s.gravity = f.vec3("gravity").value_or(s.gravity);
+  s.velocity_damping = non_negative(f, "velocity_damping", s.velocity_damping);
+  s.frames = f.integer("frames").value_or(s.frames);
+  if (s.frames < 1) f.fail("frames", "must be at least 1");
+  f.reject_unknown({"dt", "substeps", "gravity", "velocity_damping", "frames"});
+  return s;
+}
+
+CollisionSettings read_collision(JsonFields f) {
+  CollisionSettings c;
+  c.broadphase = f.string("broadphase").value_or(c.broadphase);
+  c.self = f.boolean("self").value_or(c.self);
+  f.reject_unknown({"broadphase", "self"});
+  return c;
+}
+
+MaterialSpec read_material(JsonFields f) {
+  MaterialSpec m;
+  if (f.has("density") && f.has("mass")) f.fail("mass", "give either density or mass, not both");
+  if (f.has("density")) m.density = positive(f, "density", 0.0);
+  if (f.has("mass")) m.mass = positive(f, "mass", 0.0);
+  m.stiffness = positive(f, "stiffness", m.stiffness);
+  m.damping = non_negative(f, "damping", m.damping);
+  f.reject_unknown({"density", "mass", "stiffness", "damping"});
+  return m;
+}
+
+FixedSpec read_fixed(JsonFields f) {
+  FixedSpec fixed;
+  if (const nlohmann::json* nodes = f.raw("nodes")) {
+    if (!nodes->is_array()) f.fail("nodes", "expected an array of node indices");
+    for (const auto& n : *nodes) {
+      if (!n.is_number_unsigned()) f.fail("nodes", "expected non-negative integer node indices");
+      fixed.nodes.push_back(n.get<std::uint32_t>());
+    }
+  }
+  if (auto box = f.object("box")) {
+    Bounds b;
+    b.min = box->vec3("min").value_or(glm::dvec3(0.0));
+    b.max = box->vec3("max").value_or(glm::dvec3(0.0));
+    if (!box->has("min") && !box->has("max")) f.fail("box", "needs min and max");
+    box->reject_unknown({"min", "max"});
+    if (b.min.x > b.max.x || b.min.y > b.max.y || b.min.z > b.max.z) {
+      f.fail("box", "min must not exceed max");
+    }
+    fixed.box = b;
+  }
+  f.reject_unknown({"nodes", "box"});
+  return fixed;
+}
+
+bool model_exists(const fs::path& model) {
+  if (fs::is_regular_file(model)) return true;
+  fs::path node = model;
+  node += ".node";
+  return fs::is_regular_file(node);
+}
+
+BodySpec read_body(JsonFields f, const fs::path& folder) {
+  BodySpec b;
+  const std::optional<std::string> model = f.string("model");
+  if (!model) f.fail("model", "missing: every body needs a model (TetGen prefix or surface file)");
+  b.model = fs::path(*model).is_absolute() ? fs::path(*model) : folder / *model;
+  b.model = b.model.lexically_normal();
+  if (!model_exists(b.model)) {
+    f.fail("model", "no such model: '" + b.model.string() + "' (neither a file nor a TetGen prefix)");
+  }
+  b.name = f.string("name").value_or(b.model.filename().string());
+  b.position = f.vec3("position").value_or(b.position);
+  b.rotation = f.vec3("rotation").value_or(b.rotation);
+  b.scale = f.vec3("scale", true).value_or(b.scale);
+  if (b.scale.x <= 0 || b.scale.y <= 0 || b.scale.z <= 0) f.fail("scale", "must be positive");
+  b.velocity = f.vec3("velocity").value_or(b.velocity);
+  b.squash = f.vec3("squash", true).value_or(b.squash);
+  if (b.squash.x <= 0 || b.squash.y <= 0 || b.squash.z <= 0) f.fail("squash", "must be positive");
+  if (auto m = f.object("material")) b.material = read_material(*m);
+  if (auto fixed = f.object("fixed")) b.fixed = read_fixed(*fixed);
+  if (auto path = f.object("path")) {
+    b.path_to = path->vec3("to");
+    if (!b.path_to) path->fail("to", "missing: a path needs its end position 'to'");
+    path->reject_unknown({"to"});
+  }
+  f.reject_unknown({"name", "model", "position", "rotation", "scale", "velocity", "squash",
+                    "material", "fixed", "path"});
+  return b;
+}
+
+}  // namespace
+
+Scene read_scene(const fs::path& file) {
+  const nlohmann::json root = parse_file(file);
+  JsonFields f(root, file.string(), "");
+  Scene scene;
+  scene.file = file;
+  if (auto s = f.object("settings")) scene.settings = read_settings(*s);
+  if (auto c = f.object("collision")) scene.collision = read_collision(*c);
+  const nlohmann::json* bodies = f.raw("bodies");
+  if (!bodies || !bodies->is_array() || bodies->empty()) {
+    f.fail("bodies", "expected a non-empty array of bodies");
+  }
+  const fs::path folder = file.parent_path();
+  for (std::size_t i = 0; i < bodies->size(); ++i) {
+    scene.bodies.push_back(
+        read_body(JsonFields((*bodies)[i], file.string(), "/bodies/" + std::to_string(i)), folder));
+  }
+  f.reject_unknown({"settings", "collision", "bodies"});
+  return scene;
+}
+
+}  // namespace deformcd

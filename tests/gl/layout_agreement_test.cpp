@@ -1,0 +1,103 @@
+// GLSL std430 (shaders/common/layout.glsl) and C++ (deformcd/gpu_layout.h) agree: the probe
+// shader writes probe(i, k) = 1000 (i + 1) + k into field k of element i of every struct array,
+// and we read the buffers back through the C++ structs. A wrong offset, size or array stride
+// moves some value to another field or element.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "deformcd/gl/ssbo.h"
+#include "deformcd/gpu_layout.h"
+#include "gl_test_context.h"
+#include "gpu/gl/compute_program.h"
+
+namespace deformcd::gl {
+namespace {
+
+struct ProbeOutput {
+  std::vector<gpu::Spring> springs;
+  std::vector<gpu::Face> faces;
+  std::vector<gpu::Box> boxes;
+  std::vector<gpu::BoxFace> box_faces;
+  std::vector<gpu::ObjectInfo> objects;
+  std::vector<std::uint32_t> bindings;  // the BINDING_* macros, in gpu::Binding order
+};
+
+// Runs shaders/test/layout_probe.comp over `count` elements of each struct.
+ProbeOutput run_layout_probe(std::uint32_t count) {
+  ComputeProgram program("test/layout_probe.comp");
+  const Ssbo<gpu::Spring> springs(count);
+  const Ssbo<gpu::Face> faces(count);
+  const Ssbo<gpu::Box> boxes(count);
+  const Ssbo<gpu::BoxFace> box_faces(count);
+  const Ssbo<gpu::ObjectInfo> objects(count);
+  const Ssbo<std::uint32_t> bindings(12);
+  springs.bind(0);
+  faces.bind(1);
+  boxes.bind(2);
+  box_faces.bind(3);
+  objects.bind(4);
+  bindings.bind(5);
+  program.set_uniform("u_count", count);
+  program.dispatch_covering(count);
+  return {springs.download(),   faces.download(),   boxes.download(),
+          box_faces.download(), objects.download(), bindings.download()};
+}
+
+std::uint32_t probe(std::uint32_t i, std::uint32_t k) {
+  return 1000 * (i + 1) + k;
+}
+float probef(std::uint32_t i, std::uint32_t k) {
+  return static_cast<float>(probe(i, k));
+}
+glm::vec4 probe4(std::uint32_t i, std::uint32_t k) {
+  return {probef(i, k), probef(i, k + 1), probef(i, k + 2), probef(i, k + 3)};
+}
+
+class LayoutAgreementTest : public test_support::GlTest {};
+
+TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
+  constexpr std::uint32_t kCount = 5;  // several elements, so that strides matter
+  const ProbeOutput out = run_layout_probe(kCount);
+  for (std::uint32_t i = 0; i < kCount; ++i) {
+    SCOPED_TRACE("element " + std::to_string(i));
+    const gpu::Spring& s = out.springs[i];
+    EXPECT_EQ(s.a, probe(i, 0));
+    EXPECT_EQ(s.b, probe(i, 1));
+    EXPECT_EQ(s.rest_length, probef(i, 2));
+    EXPECT_EQ(s.stiffness_scale, probef(i, 3));
+
+    const gpu::Face& f = out.faces[i];
+    EXPECT_EQ(f.a, probe(i, 0));
+    EXPECT_EQ(f.b, probe(i, 1));
+    EXPECT_EQ(f.c, probe(i, 2));
+    EXPECT_EQ(f.body, probe(i, 3));
+
+    EXPECT_EQ(out.boxes[i].min, probe4(i, 0));
+    EXPECT_EQ(out.boxes[i].max, probe4(i, 4));
+
+    EXPECT_EQ(out.box_faces[i].face, probe(i, 0));
+    EXPECT_EQ(out.box_faces[i].box, probe(i, 1));
+
+    const gpu::ObjectInfo& o = out.objects[i];
+    const std::uint32_t fields[] = {o.node_offset, o.node_count,      o.face_offset,
+                                    o.face_count,  o.spring_offset,   o.spring_count,
+                                    o.tet_offset,  o.tet_count,       o.box_offset,
+                                    o.box_count,   o.box_face_offset, o.box_face_count};
+    for (std::uint32_t k = 0; k < 12; ++k)
+      EXPECT_EQ(fields[k], probe(i, k)) << "field " << k;
+  }
+}
+
+TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
+  const std::vector<std::uint32_t> expected = {
+      gpu::kNodePosition, gpu::kNodeVelocity,    gpu::kSpringInfo, gpu::kNodeForce,
+      gpu::kBoxInfo,      gpu::kCollisionResult, gpu::kFaceNormal, gpu::kFaceInfo,
+      gpu::kObjectInfo,   gpu::kBoxFaceList,     gpu::kFacePair,   gpu::kBoxMask};
+  EXPECT_EQ(run_layout_probe(1).bindings, expected);
+}
+
+}  // namespace
+}  // namespace deformcd::gl
