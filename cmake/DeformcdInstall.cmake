@@ -2,7 +2,7 @@
 # deformcd::io, and (when built) deformcd::gl and deformcd::tetgen.
 include(CMakePackageConfigHelpers)
 
-set(_deformcd_targets deformcd_core deformcd_io)
+set(_deformcd_targets deformcd_core deformcd_io deformcd_cpu deformcd_scene deformcd_world)
 if(TARGET deformcd_gl)
   list(APPEND _deformcd_targets deformcd_gl)
 endif()

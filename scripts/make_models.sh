@@ -5,7 +5,8 @@
 #   scripts/make_models.sh                 build the tools, regenerate everything, print the table
 #   scripts/make_models.sh --search NAME   grid-search TetGen settings for one model (slow; prints
 #                                          the best settings, writes nothing to assets/)
-# Options: --build-dir DIR (default build/tools), --out DIR (default assets/models).
+# Options: --build-dir DIR (default build/tools), --out DIR (default assets/models),
+#          --no-build (use the make_models and deformcd already built in the build dir).
 #
 # Pipeline per model: tools/make_models (CGAL) repairs the source surface, fills its holes,
 # decimates it by edge collapse to exactly the paper's surface-face count and normalizes it
@@ -18,6 +19,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir="$root/build/tools"
 out_dir="$root/assets/models"
 search_model=""
+build=1
 
 # name      source file              faces policy quality max_volume  paper: nodes tets
 models=(
@@ -42,7 +44,8 @@ while (($# > 0)); do
     --build-dir) build_dir=$(realpath -m "$2"); shift 2 ;;
     --out) out_dir=$(realpath -m "$2"); shift 2 ;;
     --search) search_model="$2"; shift 2 ;;
-    -h|--help) sed -n '2,15p' "${BASH_SOURCE[0]}"; exit 0 ;;
+    --no-build) build=0; shift ;;
+    -h|--help) sed -n '2,16p' "${BASH_SOURCE[0]}"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
@@ -57,11 +60,14 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # --- build -------------------------------------------------------------------------------------
-cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DDEFORMCD_BUILD_TOOLS=ON \
-  -DDEFORMCD_WITH_GL=OFF -DDEFORMCD_BUILD_TESTS=OFF -DDEFORMCD_WITH_TETGEN=ON >/dev/null
-cmake --build "$build_dir" -j2 --target make_models deformcd >/dev/null
+if ((build)); then
+  cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DDEFORMCD_BUILD_TOOLS=ON \
+    -DDEFORMCD_WITH_GL=OFF -DDEFORMCD_BUILD_TESTS=OFF -DDEFORMCD_WITH_TETGEN=ON >/dev/null
+  cmake --build "$build_dir" -j2 --target make_models deformcd >/dev/null
+fi
 make_models="$build_dir/tools/make_models/make_models"
 deformcd="$build_dir/apps/deformcd/deformcd"
+[[ -x "$make_models" && -x "$deformcd" ]] || die "no make_models or deformcd in $build_dir"
 
 sources=()
 for entry in "${models[@]}"; do
@@ -121,7 +127,7 @@ search() {
                  printf "%6.2f  quality %-5s max-volume %-9s nodes %5d (%+.2f%%) tetrahedra %6d (%+.2f%%)\n",
                         (abs(dn) > abs(dt) ? abs(dn) : abs(dt)), q, v, n, dn, t, dt }'
     done
-  done | sort -n -k1,1 -s | head -10
+  done | sort -n -k1,1 -s | sed -n '1,10p'  # sed, unlike head, reads to the end: no SIGPIPE
 }
 
 if [[ -n "$search_model" ]]; then

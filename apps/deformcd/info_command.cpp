@@ -29,7 +29,8 @@ struct InfoOptions {
 
 std::size_t surface_node_count(const Body& body) {
   std::vector<bool> on_surface(body.positions.size(), false);
-  for (const gpu::Face& f : body.faces) on_surface[f.a] = on_surface[f.b] = on_surface[f.c] = true;
+  for (const gpu::Face& f : body.faces)
+    on_surface[f.a] = on_surface[f.b] = on_surface[f.c] = true;
   return static_cast<std::size_t>(std::count(on_surface.begin(), on_surface.end(), true));
 }
 
@@ -72,8 +73,9 @@ int print_model_info(const InfoOptions& o) {
 Command add_info_command(CLI::App& app) {
   auto o = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "Print a model's statistics (nodes, tetrahedra, surface faces, springs, bounds), "
-              "or the GPU's with --gpu");
+      "info",
+      "Print a model's statistics (nodes, tetrahedra, surface faces, springs, bounds), "
+      "or the GPU's with --gpu");
   cmd->add_option("model", o->model,
                   "TetGen prefix (PREFIX.node/.ele) or surface file (.off .obj .stl .ply)");
   cmd->add_flag("--gpu", o->gpu, "Describe the OpenGL device and its compute limits");

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
 
   const deformcd::app::Command info = deformcd::app::add_info_command(app);
   const deformcd::app::Command tetra = deformcd::app::add_tetra_command(app);
+  const deformcd::app::Command run = deformcd::app::add_run_command(app);
 
   try {
     app.parse(argc, argv);
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("info")) return info();
     if (app.got_subcommand("tetra")) return tetra();
+    if (app.got_subcommand("run")) return run();
   } catch (const deformcd::Error& e) {
     std::cerr << "deformcd: error: " << e.what() << '\n';
     return 1;

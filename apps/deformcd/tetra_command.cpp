@@ -51,7 +51,8 @@ Command add_tetra_command(CLI::App& app) {
     // Check it makes a valid body before writing anything.
     const Body body = build_body(mesh, {}, o->input + " (tetrahedralized)");
     mesh.faces.clear();
-    for (const gpu::Face& f : body.faces) mesh.faces.push_back({f.a, f.b, f.c});
+    for (const gpu::Face& f : body.faces)
+      mesh.faces.push_back({f.a, f.b, f.c});
     write_tetgen(mesh, o->output);
     std::cout << "wrote " << o->output << ".node/.ele/.face: " << mesh.nodes.size() << " nodes, "
               << mesh.tetrahedra.size() << " tetrahedra, " << body.faces.size()

@@ -19,6 +19,10 @@ namespace deformcd {
 struct BodyOptions {
   /// Mass density (kg/m^3): node masses are lumped, a quarter of each adjacent tetrahedron's mass.
   double density = 1000.0;
+  /// Young's-modulus-like stiffness (Pa). Each spring on an edge of tetrahedron t gets
+  /// k = stiffness x volume(t) / rest_length^2 (summed over the tetrahedra when edges are
+  /// merged), so that a body's response does not depend on how finely it is meshed.
+  double stiffness = 1.0e5;
   /// false (the paper): one spring per tetrahedron edge, springs = 6 x tetrahedra.
   /// true: an edge shared by several tetrahedra becomes one spring.
   bool merge_shared_edges = false;

@@ -15,26 +15,33 @@ namespace deformcd::gpu {
 
 /// SSBO binding points, numbered as in the paper's Table 1.
 enum Binding : std::uint32_t {
-  kNodePosition = 0,        ///< glm::vec4 per node (xyz, w = 1)
-  kNodeVelocity = 1,        ///< glm::vec4 per node (xyz, w = 0)
-  kSpringInfo = 2,          ///< Spring per spring
-  kNodeForce = 3,           ///< glm::vec4 per node
-  kBoxInfo = 4,             ///< Box per leaf box
-  kCollisionResult = 5,     ///< uint per face: nonzero when the face collides
-  kFaceNormal = 6,          ///< glm::vec4 per surface face (unit normal, w = 0)
-  kFaceInfo = 7,            ///< Face per surface face
-  kObjectInfo = 8,          ///< ObjectInfo per body
-  kBoxFaceList = 9,         ///< BoxFace rows, box by box
-  kFacePair = 10,           ///< intersecting face pairs
-  kBoxMask = 11,            ///< int per (box A, box B)
+  kNodePosition = 0,     ///< glm::vec4 per node (xyz, w = inverse mass, 0 = fixed)
+  kNodeVelocity = 1,     ///< glm::vec4 per node (xyz, w = 0)
+  kSpringInfo = 2,       ///< Spring per spring
+  kNodeForce = 3,        ///< glm::vec4 per node
+  kBoxInfo = 4,          ///< Box per leaf box
+  kCollisionResult = 5,  ///< uint per face: nonzero when the face collides
+  kFaceNormal = 6,       ///< glm::vec4 per surface face (unit normal, w = 0)
+  kFaceInfo = 7,         ///< Face per surface face
+  kObjectInfo = 8,       ///< ObjectInfo per body
+  kBoxFaceList = 9,      ///< BoxFace rows, box by box
+  kFacePair = 10,        ///< intersecting face pairs
+  kBoxMask = 11,         ///< int per (box A, box B)
+  // Beyond the paper's 12: what the mass-spring shaders need besides them.
+  kBodyParams = 12,        ///< BodyParams per body
+  kNodeBody = 13,          ///< uint per node: its body
+  kSpringForce = 14,       ///< glm::vec4 per spring: force on node a (node b gets -f)
+  kNodeSpringOffset = 15,  ///< uint per node + 1: CSR offsets into kNodeSpringList
+  kNodeSpringList = 16,    ///< int per (node, spring): +(s+1) if node is s.a, -(s+1) if s.b
 };
 
-/// 16 bytes. One spring between two nodes (global indices) with its rest length.
+/// 16 bytes. One spring between two nodes (global indices): rest length and stiffness. Its
+/// damping is stiffness-proportional with its body's coefficient (BodyParams::damping).
 struct Spring {
   std::uint32_t a;
   std::uint32_t b;
-  float rest_length;
-  float stiffness_scale;  ///< multiplies the body's stiffness; 1 unless a spring is special
+  float rest_length;  ///< m
+  float stiffness;    ///< N/m
 };
 static_assert(sizeof(Spring) == 16);
 static_assert(offsetof(Spring, rest_length) == 8);
@@ -80,5 +87,16 @@ struct ObjectInfo {
 };
 static_assert(sizeof(ObjectInfo) == 48);
 static_assert(offsetof(ObjectInfo, box_offset) == 32);
+
+/// 32 bytes. Per-body parameters of the mass-spring step.
+struct BodyParams {
+  glm::vec4 carry_velocity;  ///< xyz: velocity of the body's path (m/s), added to every node
+  float damping;             ///< s: a spring's damping coefficient is damping x its stiffness
+  float pad0;
+  float pad1;
+  float pad2;
+};
+static_assert(sizeof(BodyParams) == 32);
+static_assert(offsetof(BodyParams, damping) == 16);
 
 }  // namespace deformcd::gpu

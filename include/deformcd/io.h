@@ -4,6 +4,7 @@
 /// and throws InputError naming the file, the line and what is wrong.
 
 #include <filesystem>
+#include <string_view>
 
 #include "deformcd/mesh.h"
 
@@ -38,5 +39,9 @@ void write_tetgen(const TetMesh& mesh, const std::filesystem::path& prefix);
 /// Writes an OFF file of triangles, with shortest round-trip doubles (atomically, and with the
 /// same checks, as write_tetgen).
 void write_off(const SurfaceMesh& mesh, const std::filesystem::path& file);
+
+/// Writes `contents` to `file` through a temporary file renamed into place, so a failure leaves
+/// neither a partial file nor a temporary. Throws Error naming the file.
+void write_file_atomically(const std::filesystem::path& file, std::string_view contents);
 
 }  // namespace deformcd

@@ -13,11 +13,11 @@ namespace deformcd {
 /// Where a mesh came from, so that errors can name the file and line of the bad element.
 /// Line vectors may be empty (then errors name the element index only).
 struct MeshSource {
-  std::string vertex_file;                ///< file holding the vertices / nodes
-  std::vector<std::size_t> vertex_lines;  ///< 1-based line of each vertex, if known
-  std::string element_file;               ///< file holding the triangles / tetrahedra
-  std::vector<std::size_t> element_lines; ///< 1-based line of each element, if known
-  unsigned index_base = 0;                ///< first index in the file (0 or 1), for messages
+  std::string vertex_file;                 ///< file holding the vertices / nodes
+  std::vector<std::size_t> vertex_lines;   ///< 1-based line of each vertex, if known
+  std::string element_file;                ///< file holding the triangles / tetrahedra
+  std::vector<std::size_t> element_lines;  ///< 1-based line of each element, if known
+  unsigned index_base = 0;                 ///< first index in the file (0 or 1), for messages
 };
 
 /// Relative size below which an element counts as degenerate: a triangle whose area is below

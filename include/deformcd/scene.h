@@ -12,7 +12,10 @@
 
 #include <glm/vec3.hpp>
 
+#include <functional>
+
 #include "deformcd/body.h"
+#include "deformcd/world_state.h"
 
 namespace deformcd {
 
@@ -20,8 +23,11 @@ namespace deformcd {
 struct MaterialSpec {
   std::optional<double> density;  ///< kg/m^3; lumped per node from the tetrahedra
   std::optional<double> mass;     ///< kg, total; spread in proportion to the lumped volumes
-  double stiffness = 2000.0;      ///< N/m, every spring of the body
-  double damping = 2.0;           ///< N s/m, along each spring
+  /// Pa, Young's-modulus-like: a spring on an edge of tetrahedron t gets k = stiffness x
+  /// volume(t) / rest_length^2, so the body's response does not depend on its meshing.
+  double stiffness = 2.0e4;
+  /// s, along each spring: damping coefficient = damping x the spring's stiffness.
+  double damping = 2.0e-4;
 };
 
 /// Nodes held in place: listed by index, and/or every node inside a box (in scene coordinates,
@@ -33,12 +39,12 @@ struct FixedSpec {
 
 /// One body of a scene.
 struct BodySpec {
-  std::string name;                ///< defaults to the model's file name
-  std::filesystem::path model;     ///< absolute (resolved against the scene file's folder)
-  glm::dvec3 position{0.0};        ///< translation added to the model's coordinates
-  glm::dvec3 rotation{0.0};        ///< degrees about x, then y, then z (applied before position)
-  glm::dvec3 scale{1.0};           ///< applied first; rest shape (springs) uses it
-  glm::dvec3 velocity{0.0};        ///< initial, m/s
+  std::string name;             ///< defaults to the model's file name
+  std::filesystem::path model;  ///< absolute (resolved against the scene file's folder)
+  glm::dvec3 position{0.0};     ///< translation added to the model's coordinates
+  glm::dvec3 rotation{0.0};     ///< degrees about x, then y, then z (applied before position)
+  glm::dvec3 scale{1.0};        ///< applied first; rest shape (springs) uses it
+  glm::dvec3 velocity{0.0};     ///< initial, m/s
   /// Initial deformation released at frame 0: node offsets from the body's centroid are
   /// multiplied by this after rest lengths are measured, so the body starts squashed and wobbles.
   glm::dvec3 squash{1.0};
@@ -51,11 +57,11 @@ struct BodySpec {
 
 /// Time stepping.
 struct SimulationSettings {
-  double dt = 1.0 / 60.0;             ///< seconds per frame
-  int substeps = 1;                   ///< integration steps per frame (step = dt / substeps)
-  glm::dvec3 gravity{0.0, -9.81, 0.0};///< m/s^2
-  double velocity_damping = 0.0;      ///< 1/s: every node's velocity decays by exp(-c t)
-  int frames = 300;                   ///< default run length; paths span exactly this many frames
+  double dt = 1.0 / 60.0;               ///< seconds per frame
+  int substeps = 1;                     ///< integration steps per frame (step = dt / substeps)
+  glm::dvec3 gravity{0.0, -9.81, 0.0};  ///< m/s^2
+  double velocity_damping = 0.0;        ///< 1/s: every node's velocity decays by exp(-c t)
+  int frames = 300;                     ///< default run length; paths span exactly this many frames
 };
 
 /// The `collision` section, consumed by the collision pipeline.
@@ -71,8 +77,22 @@ struct Scene {
   std::vector<BodySpec> bodies;
 };
 
+/// Loads a model file (TetGen prefix, or a surface when a tetrahedralizer is available).
+using ModelLoader = std::function<TetMesh(const std::filesystem::path&)>;
+
 /// Reads and checks a scene file. Model paths are resolved against the scene's folder and must
 /// exist (as a file, or as a TetGen prefix with PREFIX.node). Throws InputError.
 [[nodiscard]] Scene read_scene(const std::filesystem::path& file);
+
+/// The scene's bodies, ready for a world: each model loaded (once per distinct file), scaled,
+/// rotated and translated; masses from density (lumped) or total mass; rest lengths measured in
+/// that pose; then the squash applied about the body's centroid; fixed nodes by index and box;
+/// carry velocity = (path.to - position) / (frames x dt), so that the path spans `frames`.
+/// Throws InputError naming the scene file and the body.
+[[nodiscard]] std::vector<BodyInit> make_scene_bodies(const Scene& scene, const ModelLoader& load,
+                                                      int frames);
+
+/// The scene's time-stepping settings in the form a world uses.
+[[nodiscard]] StepSettings step_settings(const SimulationSettings& settings);
 
 }  // namespace deformcd

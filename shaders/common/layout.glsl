@@ -6,7 +6,7 @@
 // Binding points are macros, not consts: GLSL 4.30 wants integer literals in layout(binding=).
 // Numbered as in the paper's Table 1 (deformcd::gpu::Binding).
 
-#define BINDING_NODE_POSITION 0     // vec4 per node (xyz, w = 1)
+#define BINDING_NODE_POSITION 0     // vec4 per node (xyz, w = inverse mass, 0 = fixed)
 #define BINDING_NODE_VELOCITY 1     // vec4 per node (xyz, w = 0)
 #define BINDING_SPRING_INFO 2       // Spring per spring
 #define BINDING_NODE_FORCE 3        // vec4 per node
@@ -18,13 +18,19 @@
 #define BINDING_BOX_FACE_LIST 9     // BoxFace rows, box by box
 #define BINDING_FACE_PAIR 10        // intersecting face pairs
 #define BINDING_BOX_MASK 11         // int per (box A, box B)
+#define BINDING_BODY_PARAMS 12      // BodyParams per body
+#define BINDING_NODE_BODY 13        // uint per node: its body
+#define BINDING_SPRING_FORCE 14     // vec4 per spring: force on node a (node b gets -f)
+#define BINDING_NODE_SPRING_OFFSET 15  // uint per node + 1: CSR offsets
+#define BINDING_NODE_SPRING_LIST 16    // int per (node, spring): +(s+1) if a, -(s+1) if b
 
-// 16 bytes. One spring between two nodes (global indices) with its rest length.
+// 16 bytes. One spring between two nodes (global indices): rest length and stiffness. Its
+// damping is stiffness-proportional with its body's coefficient (BodyParams.damping).
 struct Spring {
   uint a;
   uint b;
-  float rest_length;
-  float stiffness_scale;  // multiplies the body's stiffness; 1 unless a spring is special
+  float rest_length;  // m
+  float stiffness;    // N/m
 };
 
 // 16 bytes. A surface triangle, outward-oriented (counter-clockwise seen from outside).
@@ -62,4 +68,13 @@ struct ObjectInfo {
   uint box_count;
   uint box_face_offset;
   uint box_face_count;
+};
+
+// 32 bytes. Per-body parameters of the mass-spring step.
+struct BodyParams {
+  vec4 carry_velocity;  // xyz: velocity of the body's path (m/s), added to every node
+  float damping;        // s: a spring's damping coefficient is damping x its stiffness
+  float pad0;
+  float pad1;
+  float pad2;
 };

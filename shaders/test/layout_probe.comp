@@ -13,6 +13,7 @@ layout(std430, binding = 2) buffer Boxes { Box boxes[]; };
 layout(std430, binding = 3) buffer BoxFaces { BoxFace box_faces[]; };
 layout(std430, binding = 4) buffer ObjectInfos { ObjectInfo objects[]; };
 layout(std430, binding = 5) buffer Bindings { uint bindings[]; };
+layout(std430, binding = 6) buffer BodyParamsArray { BodyParams body_params[]; };
 
 uniform uint u_count;
 
@@ -29,7 +30,7 @@ void main() {
   springs[i].a = probe(i, 0u);
   springs[i].b = probe(i, 1u);
   springs[i].rest_length = probef(i, 2u);
-  springs[i].stiffness_scale = probef(i, 3u);
+  springs[i].stiffness = probef(i, 3u);
 
   faces[i].a = probe(i, 0u);
   faces[i].b = probe(i, 1u);
@@ -55,6 +56,12 @@ void main() {
   objects[i].box_face_offset = probe(i, 10u);
   objects[i].box_face_count = probe(i, 11u);
 
+  body_params[i].carry_velocity = probe4(i, 0u);
+  body_params[i].damping = probef(i, 4u);
+  body_params[i].pad0 = probef(i, 5u);
+  body_params[i].pad1 = probef(i, 6u);
+  body_params[i].pad2 = probef(i, 7u);
+
   if (i == 0u) {
     bindings[0] = BINDING_NODE_POSITION;
     bindings[1] = BINDING_NODE_VELOCITY;
@@ -68,5 +75,10 @@ void main() {
     bindings[9] = BINDING_BOX_FACE_LIST;
     bindings[10] = BINDING_FACE_PAIR;
     bindings[11] = BINDING_BOX_MASK;
+    bindings[12] = BINDING_BODY_PARAMS;
+    bindings[13] = BINDING_NODE_BODY;
+    bindings[14] = BINDING_SPRING_FORCE;
+    bindings[15] = BINDING_NODE_SPRING_OFFSET;
+    bindings[16] = BINDING_NODE_SPRING_LIST;
   }
 }

@@ -13,11 +13,15 @@ Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::stri
   if (!(options.density > 0.0) || !std::isfinite(options.density)) {
     throw InputError(source, "density must be positive and finite");
   }
+  if (!(options.stiffness > 0.0) || !std::isfinite(options.stiffness)) {
+    throw InputError(source, "stiffness must be positive and finite");
+  }
   Body body;
   body.tetrahedra = mesh.tetrahedra;
 
   body.positions.reserve(mesh.nodes.size());
-  for (const glm::dvec3& p : mesh.nodes) body.positions.emplace_back(glm::vec3(p), 1.0f);
+  for (const glm::dvec3& p : mesh.nodes)
+    body.positions.emplace_back(glm::vec3(p), 1.0f);
   body.velocities.assign(mesh.nodes.size(), glm::vec4(0.0f));
 
   // Lumped mass: a quarter of each tetrahedron's mass to each of its nodes.
@@ -27,7 +31,8 @@ Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::stri
                                           mesh.nodes[t[3]]) /
                      6.0;
     body.volume += v;
-    for (std::uint32_t n : t) mass[n] += 0.25 * v * options.density;
+    for (std::uint32_t n : t)
+      mass[n] += 0.25 * v * options.density;
   }
   body.node_mass.reserve(mass.size());
   for (std::size_t i = 0; i < mass.size(); ++i) {
@@ -40,9 +45,19 @@ Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::stri
     body.node_mass.push_back(static_cast<float>(mass[i]));
   }
 
-  for (const Edge& e : tetrahedron_edges(mesh.tetrahedra, options.merge_shared_edges)) {
-    const double rest = glm::length(mesh.nodes[e[0]] - mesh.nodes[e[1]]);
-    body.springs.push_back({e[0], e[1], static_cast<float>(rest), 1.0f});
+  const std::vector<TetEdge> edges = tetrahedron_edges(mesh.tetrahedra, options.merge_shared_edges);
+  for (const TetEdge& e : edges) {
+    const double rest = glm::length(mesh.nodes[e.nodes[0]] - mesh.nodes[e.nodes[1]]);
+    double volume = 0.0;  // of the tetrahedra this spring stands for
+    for (std::uint32_t t : e.tetrahedra) {
+      const Tetrahedron& tet = mesh.tetrahedra[t];
+      volume += geom::signed_volume6(mesh.nodes[tet[0]], mesh.nodes[tet[1]], mesh.nodes[tet[2]],
+                                     mesh.nodes[tet[3]]) /
+                6.0;
+    }
+    const double k = options.stiffness * volume / (rest * rest);
+    body.springs.push_back(
+        {e.nodes[0], e.nodes[1], static_cast<float>(rest), static_cast<float>(k)});
   }
 
   for (const Triangle& f : extract_boundary(mesh.tetrahedra, source)) {

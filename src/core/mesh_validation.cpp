@@ -26,7 +26,8 @@ template <class Element>
                                const Element& e, const std::string& what) {
   std::ostringstream msg;
   msg << kind << ' ' << i + src.index_base << " (";
-  for (std::size_t k = 0; k < e.size(); ++k) msg << (k ? " " : "") << e[k] + src.index_base;
+  for (std::size_t k = 0; k < e.size(); ++k)
+    msg << (k ? " " : "") << e[k] + src.index_base;
   msg << ") " << what;
   throw InputError(src.element_file, line_of(src.element_lines, i), msg.str());
 }
@@ -43,8 +44,9 @@ void check_indices(const Element& e, std::size_t i, std::size_t vertex_count, co
   for (std::size_t k = 0; k < e.size(); ++k) {
     if (e[k] >= vertex_count) {
       std::ostringstream msg;
-      msg << "refers to vertex " << e[k] + src.index_base << ", out of range (valid: "
-          << src.index_base << ".." << vertex_count - 1 + src.index_base << ")";
+      msg << "refers to vertex " << e[k] + src.index_base
+          << ", out of range (valid: " << src.index_base << ".."
+          << vertex_count - 1 + src.index_base << ")";
       fail_element(src, kind, i, e, msg.str());
     }
     for (std::size_t j = 0; j < k; ++j) {
@@ -100,7 +102,8 @@ void validate_tet_mesh(TetMesh& mesh, const MeshSource& src) {
     }
   }
   if (!file_positive) {
-    for (Tetrahedron& t : mesh.tetrahedra) std::swap(t[2], t[3]);
+    for (Tetrahedron& t : mesh.tetrahedra)
+      std::swap(t[2], t[3]);
   }
 
   MeshSource face_src = src;

@@ -1,24 +1,30 @@
 #include "spring_topology.h"
 
 #include <algorithm>
-#include <unordered_set>
+#include <unordered_map>
 
 namespace deformcd {
 
-std::vector<Edge> tetrahedron_edges(const std::vector<Tetrahedron>& tets, bool merge_shared) {
+std::vector<TetEdge> tetrahedron_edges(const std::vector<Tetrahedron>& tets, bool merge_shared) {
   constexpr int kLocalEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  std::vector<Edge> edges;
-  edges.reserve(tets.size() * 6);
-  std::unordered_set<std::uint64_t> seen;
-  for (const Tetrahedron& t : tets) {
+  std::vector<TetEdge> edges;
+  edges.reserve(merge_shared ? tets.size() * 2 : tets.size() * 6);
+  std::unordered_map<std::uint64_t, std::size_t> index_of;  // merged: edge key -> position
+  for (std::uint32_t t = 0; t < tets.size(); ++t) {
     for (const auto& e : kLocalEdges) {
-      Edge edge{t[e[0]], t[e[1]]};
-      if (merge_shared) {
-        if (edge[0] > edge[1]) std::swap(edge[0], edge[1]);
-        const std::uint64_t key = (std::uint64_t{edge[0]} << 32) | edge[1];
-        if (!seen.insert(key).second) continue;
+      std::array<std::uint32_t, 2> nodes{tets[t][e[0]], tets[t][e[1]]};
+      if (!merge_shared) {
+        edges.push_back({nodes, {t}});
+        continue;
       }
-      edges.push_back(edge);
+      if (nodes[0] > nodes[1]) std::swap(nodes[0], nodes[1]);
+      const std::uint64_t key = (std::uint64_t{nodes[0]} << 32) | nodes[1];
+      auto [it, inserted] = index_of.emplace(key, edges.size());
+      if (inserted) {
+        edges.push_back({nodes, {t}});
+      } else {
+        edges[it->second].tetrahedra.push_back(t);
+      }
     }
   }
   return edges;

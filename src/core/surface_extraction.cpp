@@ -48,7 +48,8 @@ std::vector<Triangle> extract_boundary(const std::vector<Tetrahedron>& tets,
   std::vector<std::uint8_t> is_boundary(tets.size() * 4, 0);
   for (std::size_t i = 0; i < refs.size();) {
     std::size_t j = i + 1;
-    while (j < refs.size() && refs[j].key == refs[i].key) ++j;
+    while (j < refs.size() && refs[j].key == refs[i].key)
+      ++j;
     const std::size_t copies = j - i;
     if (copies == 1) {
       is_boundary[refs[i].tet * 4 + refs[i].local] = 1;

@@ -1,5 +1,7 @@
 #include "atomic_file.h"
 
+#include "deformcd/io.h"
+
 #include <unistd.h>
 
 #include <atomic>
@@ -78,3 +80,12 @@ void write_files_atomically(std::span<const FileContents> files) {
 }
 
 }  // namespace deformcd::io
+
+namespace deformcd {
+
+void write_file_atomically(const std::filesystem::path& file, std::string_view contents) {
+  const io::FileContents one{file, std::string(contents)};
+  io::write_files_atomically(std::span<const io::FileContents>(&one, 1));
+}
+
+}  // namespace deformcd

@@ -15,7 +15,9 @@ JsonFields::JsonFields(const nlohmann::json& value, std::string file, std::strin
   }
 }
 
-bool JsonFields::has(const std::string& key) const { return value_.contains(key); }
+bool JsonFields::has(const std::string& key) const {
+  return value_.contains(key);
+}
 
 void JsonFields::fail(const std::string& key, const std::string& message) const {
   throw InputError(file_, pointer_of(key) + ": " + message);
@@ -40,7 +42,8 @@ std::optional<double> JsonFields::number(const std::string& key) {
 std::optional<int> JsonFields::integer(const std::string& key) {
   const nlohmann::json* v = raw(key);
   if (!v) return std::nullopt;
-  if (!v->is_number_integer()) fail(key, std::string("expected an integer, found ") + v->type_name());
+  if (!v->is_number_integer())
+    fail(key, std::string("expected an integer, found ") + v->type_name());
   const auto i = v->get<long long>();
   if (i < -2147483647LL || i > 2147483647LL) fail(key, "integer out of range");
   return static_cast<int>(i);
@@ -68,8 +71,8 @@ std::optional<glm::dvec3> JsonFields::vec3(const std::string& key, bool scalar_o
     if (!std::isfinite(s)) fail(key, "expected a finite number");
     return glm::dvec3(s);
   }
-  const char* expected = scalar_ok ? "a number or an array of 3 numbers [x, y, z]"
-                                   : "an array of 3 numbers [x, y, z]";
+  const char* expected =
+      scalar_ok ? "a number or an array of 3 numbers [x, y, z]" : "an array of 3 numbers [x, y, z]";
   if (!v->is_array() || v->size() != 3) fail(key, std::string("expected ") + expected);
   glm::dvec3 out;
   for (int k = 0; k < 3; ++k) {

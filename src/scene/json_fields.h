@@ -33,7 +33,9 @@ class JsonFields {
   /// Throws for the first key that no getter asked for, listing the valid ones.
   void reject_unknown(std::initializer_list<const char*> valid) const;
 
-  [[nodiscard]] std::string pointer_of(const std::string& key) const { return pointer_ + "/" + key; }
+  [[nodiscard]] std::string pointer_of(const std::string& key) const {
+    return pointer_ + "/" + key;
+  }
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
 
  private:

@@ -118,7 +118,8 @@ BodySpec read_body(JsonFields f, const fs::path& folder) {
   b.model = fs::path(*model).is_absolute() ? fs::path(*model) : folder / *model;
   b.model = b.model.lexically_normal();
   if (!model_exists(b.model)) {
-    f.fail("model", "no such model: '" + b.model.string() + "' (neither a file nor a TetGen prefix)");
+    f.fail("model",
+           "no such model: '" + b.model.string() + "' (neither a file nor a TetGen prefix)");
   }
   b.name = f.string("name").value_or(b.model.filename().string());
   b.position = f.vec3("position").value_or(b.position);

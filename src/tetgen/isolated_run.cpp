@@ -1,11 +1,11 @@
 #include "isolated_run.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "deformcd/error.h"
 
@@ -25,7 +25,8 @@ std::string read_all(int fd) {
   if (lseek(fd, 0, SEEK_SET) != 0) return data;
   char buffer[1 << 16];
   ssize_t n = 0;
-  while ((n = read(fd, buffer, sizeof buffer)) > 0) data.append(buffer, static_cast<size_t>(n));
+  while ((n = read(fd, buffer, sizeof buffer)) > 0)
+    data.append(buffer, static_cast<size_t>(n));
   return data;
 }
 

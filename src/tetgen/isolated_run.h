@@ -9,11 +9,11 @@
 namespace deformcd::detail {
 
 struct IsolatedResult {
-  bool ok = false;           ///< the child returned normally with exit status 0
-  int exit_status = -1;      ///< child's exit status when it exited, else -1
-  int signal = 0;            ///< signal that killed the child, else 0
-  std::string output;        ///< bytes the child's function returned
-  std::string log;           ///< what the child printed on stdout / stderr
+  bool ok = false;       ///< the child returned normally with exit status 0
+  int exit_status = -1;  ///< child's exit status when it exited, else -1
+  int signal = 0;        ///< signal that killed the child, else 0
+  std::string output;    ///< bytes the child's function returned
+  std::string log;       ///< what the child printed on stdout / stderr
 };
 
 /// Forks; the child runs `work` (whose returned bytes are passed back) with stdout and stderr

@@ -68,9 +68,9 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& 
                                  log_excerpt(run.log));
   }
   if (!run.ok) {
-    const std::string message = "tetrahedralization failed: " +
-                                detail::explain_tetgen_failure(run.exit_status) +
-                                log_excerpt(run.log);
+    const std::string message =
+        "tetrahedralization failed: " + detail::explain_tetgen_failure(run.exit_status) +
+        log_excerpt(run.log);
     if (run.exit_status == 1) throw Error(source + ": " + message);
     throw InputError(source, message);
   }

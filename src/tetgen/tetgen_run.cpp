@@ -16,7 +16,8 @@ void fill_input(const SurfaceMesh& surface, tetgenio& in) {
   in.numberofpoints = static_cast<int>(surface.vertices.size());
   in.pointlist = new REAL[surface.vertices.size() * 3];
   for (std::size_t i = 0; i < surface.vertices.size(); ++i) {
-    for (int k = 0; k < 3; ++k) in.pointlist[3 * i + k] = surface.vertices[i][k];
+    for (int k = 0; k < 3; ++k)
+      in.pointlist[3 * i + k] = surface.vertices[i][k];
   }
   in.numberoffacets = static_cast<int>(surface.triangles.size());
   in.facetlist = new tetgenio::facet[surface.triangles.size()];
@@ -42,8 +43,8 @@ void append_raw(std::string& out, const T* data, std::size_t count) {
 // Layout: 4 x int64 counts (points, tetrahedra, corners, faces), then the three arrays.
 std::string serialize(const tetgenio& out) {
   std::string bytes;
-  const std::int64_t counts[4] = {out.numberofpoints, out.numberoftetrahedra,
-                                  out.numberofcorners, out.numberoftrifaces};
+  const std::int64_t counts[4] = {out.numberofpoints, out.numberoftetrahedra, out.numberofcorners,
+                                  out.numberoftrifaces};
   append_raw(bytes, counts, 4);
   append_raw(bytes, out.pointlist, static_cast<std::size_t>(counts[0]) * 3);
   append_raw(bytes, out.tetrahedronlist, static_cast<std::size_t>(counts[1] * counts[2]));
@@ -115,7 +116,8 @@ TetMesh deserialize_tetgen_output(const std::string& bytes) {
 
   TetMesh mesh;
   mesh.nodes.resize(points);
-  for (std::size_t i = 0; i < points; ++i) mesh.nodes[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+  for (std::size_t i = 0; i < points; ++i)
+    mesh.nodes[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
   mesh.tetrahedra.resize(tets);
   for (std::size_t i = 0; i < tets; ++i) {
     for (std::size_t k = 0; k < 4; ++k) {
@@ -133,16 +135,26 @@ TetMesh deserialize_tetgen_output(const std::string& bytes) {
 
 std::string explain_tetgen_failure(int code) {
   switch (code) {
-    case 1: return "TetGen ran out of memory";
-    case 2: return "TetGen hit an internal error";
-    case 3: return "the surface intersects itself";
-    case 4: return "the surface has a feature too small for TetGen's tolerance";
-    case 5: return "two input faces are too close to each other";
-    case 10: return "TetGen rejected the input";
-    case kBadSwitches: return "TetGen rejected its switches (internal error)";
-    case 120: return "the TetGen result could not be passed back";
-    case 121: return "an unexpected exception in the TetGen process";
-    default: return "TetGen failed with code " + std::to_string(code);
+    case 1:
+      return "TetGen ran out of memory";
+    case 2:
+      return "TetGen hit an internal error";
+    case 3:
+      return "the surface intersects itself";
+    case 4:
+      return "the surface has a feature too small for TetGen's tolerance";
+    case 5:
+      return "two input faces are too close to each other";
+    case 10:
+      return "TetGen rejected the input";
+    case kBadSwitches:
+      return "TetGen rejected its switches (internal error)";
+    case 120:
+      return "the TetGen result could not be passed back";
+    case 121:
+      return "an unexpected exception in the TetGen process";
+    default:
+      return "TetGen failed with code " + std::to_string(code);
   }
 }
 

@@ -28,7 +28,8 @@ CliRun run_cli(const std::string& args) {
   if (!pipe) return r;
   std::array<char, 4096> buffer{};
   std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.output.append(buffer.data(), n);
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    r.output.append(buffer.data(), n);
   const int status = pclose(pipe);
   r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
@@ -38,7 +39,8 @@ class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("deformcd_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("deformcd_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -85,9 +87,10 @@ TEST_F(CliTest, UnknownOptionIsAUsageError) {
 TEST_F(CliTest, TetraWritesAMeshThatInfoReads) {
   deformcd::write_off(deformcd::test::sphere(2), path("ball.off"));
   CliRun r = run_cli("tetra " + path("ball.off") + " -o " + path("ball") +
-                  " --preserve-surface --quality 1.4");
+                     " --preserve-surface --quality 1.4");
   ASSERT_EQ(r.status, 0) << r.output;
-  for (const char* ext : {".node", ".ele", ".face"}) EXPECT_TRUE(fs::exists(path("ball") + ext));
+  for (const char* ext : {".node", ".ele", ".face"})
+    EXPECT_TRUE(fs::exists(path("ball") + ext));
   r = run_cli("info " + path("ball") + " --json");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("\"faces\": 128"), std::string::npos) << r.output;
@@ -113,8 +116,10 @@ TEST_F(CliTest, TetraOnOpenSurfaceFailsAndWritesNothing) {
 TEST_F(CliTest, TetraOnSelfIntersectingSurfaceFailsCleanly) {
   deformcd::SurfaceMesh both = deformcd::test::octahedron();
   const deformcd::SurfaceMesh second = deformcd::test::octahedron();
-  for (const auto& v : second.vertices) both.vertices.push_back(v + glm::dvec3(0.5, 0.3, 0.2));
-  for (const auto& t : second.triangles) both.triangles.push_back({t[0] + 6, t[1] + 6, t[2] + 6});
+  for (const auto& v : second.vertices)
+    both.vertices.push_back(v + glm::dvec3(0.5, 0.3, 0.2));
+  for (const auto& t : second.triangles)
+    both.triangles.push_back({t[0] + 6, t[1] + 6, t[2] + 6});
   deformcd::write_off(both, path("twice.off"));
   const CliRun r = run_cli("tetra " + path("twice.off") + " -o " + path("out"));
   EXPECT_EQ(r.status, 1) << r.output;

@@ -30,7 +30,8 @@ TEST(BuildBody, MergedSpringsAreTheDistinctEdges) {
   const Body body = build_body(test::unit_cube(), options);
   // 12 cube edges + 6 face diagonals (the central tetrahedron's edges are all face diagonals).
   EXPECT_EQ(body.springs.size(), 18u);
-  for (const gpu::Spring& s : body.springs) EXPECT_LT(s.a, s.b);
+  for (const gpu::Spring& s : body.springs)
+    EXPECT_LT(s.a, s.b);
 }
 
 TEST(BuildBody, LumpedMassSumsToDensityTimesVolume) {
@@ -40,7 +41,8 @@ TEST(BuildBody, LumpedMassSumsToDensityTimesVolume) {
   EXPECT_NEAR(body.volume, 1.0, 1e-12);
   const double total = std::accumulate(body.node_mass.begin(), body.node_mass.end(), 0.0);
   EXPECT_NEAR(total, 250.0, 1e-4);
-  EXPECT_TRUE(std::all_of(body.node_mass.begin(), body.node_mass.end(), [](float m) { return m > 0; }));
+  EXPECT_TRUE(
+      std::all_of(body.node_mass.begin(), body.node_mass.end(), [](float m) { return m > 0; }));
 }
 
 TEST(BuildBody, NormalsAreUnitAndOutward) {

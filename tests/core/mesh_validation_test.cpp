@@ -38,7 +38,8 @@ TEST(ValidateTetMesh, AcceptsValidCube) {
 
 TEST(ValidateTetMesh, ReorientsConsistentlyNegativeMesh) {
   TetMesh cube = test::unit_cube();
-  for (Tetrahedron& t : cube.tetrahedra) std::swap(t[0], t[1]);
+  for (Tetrahedron& t : cube.tetrahedra)
+    std::swap(t[0], t[1]);
   validate_tet_mesh(cube, source_with_lines());
   for (const Tetrahedron& t : cube.tetrahedra) {
     const auto& n = cube.nodes;
@@ -67,13 +68,15 @@ TEST(ValidateTetMesh, ReportsZeroVolumeTetrahedron) {
 TEST(ValidateTetMesh, DegeneracyIsScaleIndependent) {
   for (double scale : {1e-6, 1.0, 1e6}) {
     TetMesh mesh = test::unit_tetrahedron();
-    for (auto& p : mesh.nodes) p *= scale;
+    for (auto& p : mesh.nodes)
+      p *= scale;
     EXPECT_NO_THROW(validate_tet_mesh(mesh, {})) << "scale " << scale;
   }
 }
 
 TEST(ValidateTetMesh, ReportsNonFiniteCoordinate) {
-  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+  for (double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     TetMesh cube = test::unit_cube();
     cube.nodes[2].y = bad;
     const std::string msg = message_of(cube, source_with_lines());

@@ -34,7 +34,8 @@ TEST(ExtractBoundary, CubeSurfaceIsClosedOutwardAndSkipsInteriorFaces) {
   double signed_volume = 0.0;  // divergence theorem: sum over faces of dot(p0, n)/6
   for (const Triangle& f : faces) {
     EXPECT_GT(glm::dot(normal_of(cube, f), cube.nodes[f[0]] - centre), 0.0);
-    for (int k = 0; k < 3; ++k) directed[{f[k], f[(k + 1) % 3]}]++;
+    for (int k = 0; k < 3; ++k)
+      directed[{f[k], f[(k + 1) % 3]}]++;
     signed_volume += glm::dot(cube.nodes[f[0]], normal_of(cube, f)) / 6.0;
   }
   // Closed and consistently oriented: each directed edge once, and its reverse once.
@@ -57,7 +58,8 @@ TEST(ExtractBoundary, RejectsFaceSharedByThreeTetrahedra) {
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("three.ele"), std::string::npos);
-    EXPECT_NE(std::string(e.what()).find("more than two tetrahedra"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than two tetrahedra"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -22,6 +22,7 @@ struct ProbeOutput {
   std::vector<gpu::Box> boxes;
   std::vector<gpu::BoxFace> box_faces;
   std::vector<gpu::ObjectInfo> objects;
+  std::vector<gpu::BodyParams> body_params;
   std::vector<std::uint32_t> bindings;  // the BINDING_* macros, in gpu::Binding order
 };
 
@@ -33,17 +34,19 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   const Ssbo<gpu::Box> boxes(count);
   const Ssbo<gpu::BoxFace> box_faces(count);
   const Ssbo<gpu::ObjectInfo> objects(count);
-  const Ssbo<std::uint32_t> bindings(12);
+  const Ssbo<std::uint32_t> bindings(17);
+  const Ssbo<gpu::BodyParams> body_params(count);
   springs.bind(0);
   faces.bind(1);
   boxes.bind(2);
   box_faces.bind(3);
   objects.bind(4);
   bindings.bind(5);
+  body_params.bind(6);
   program.set_uniform("u_count", count);
   program.dispatch_covering(count);
-  return {springs.download(),   faces.download(),   boxes.download(),
-          box_faces.download(), objects.download(), bindings.download()};
+  return {springs.download(), faces.download(),       boxes.download(),   box_faces.download(),
+          objects.download(), body_params.download(), bindings.download()};
 }
 
 std::uint32_t probe(std::uint32_t i, std::uint32_t k) {
@@ -67,7 +70,7 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
     EXPECT_EQ(s.a, probe(i, 0));
     EXPECT_EQ(s.b, probe(i, 1));
     EXPECT_EQ(s.rest_length, probef(i, 2));
-    EXPECT_EQ(s.stiffness_scale, probef(i, 3));
+    EXPECT_EQ(s.stiffness, probef(i, 3));
 
     const gpu::Face& f = out.faces[i];
     EXPECT_EQ(f.a, probe(i, 0));
@@ -88,14 +91,23 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
                                     o.box_count,   o.box_face_offset, o.box_face_count};
     for (std::uint32_t k = 0; k < 12; ++k)
       EXPECT_EQ(fields[k], probe(i, k)) << "field " << k;
+
+    const gpu::BodyParams& p = out.body_params[i];
+    EXPECT_EQ(p.carry_velocity, probe4(i, 0));
+    EXPECT_EQ(p.damping, probef(i, 4));
+    EXPECT_EQ(p.pad0, probef(i, 5));
+    EXPECT_EQ(p.pad1, probef(i, 6));
+    EXPECT_EQ(p.pad2, probef(i, 7));
   }
 }
 
 TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
   const std::vector<std::uint32_t> expected = {
-      gpu::kNodePosition, gpu::kNodeVelocity,    gpu::kSpringInfo, gpu::kNodeForce,
-      gpu::kBoxInfo,      gpu::kCollisionResult, gpu::kFaceNormal, gpu::kFaceInfo,
-      gpu::kObjectInfo,   gpu::kBoxFaceList,     gpu::kFacePair,   gpu::kBoxMask};
+      gpu::kNodePosition,  gpu::kNodeVelocity,    gpu::kSpringInfo,  gpu::kNodeForce,
+      gpu::kBoxInfo,       gpu::kCollisionResult, gpu::kFaceNormal,  gpu::kFaceInfo,
+      gpu::kObjectInfo,    gpu::kBoxFaceList,     gpu::kFacePair,    gpu::kBoxMask,
+      gpu::kBodyParams,    gpu::kNodeBody,        gpu::kSpringForce, gpu::kNodeSpringOffset,
+      gpu::kNodeSpringList};
   EXPECT_EQ(run_layout_probe(1).bindings, expected);
 }
 

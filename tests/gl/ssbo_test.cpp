@@ -28,8 +28,7 @@ std::vector<gpu::Spring> some_springs(std::size_t n) {
 }
 
 bool same(const gpu::Spring& x, const gpu::Spring& y) {
-  return x.a == y.a && x.b == y.b && x.rest_length == y.rest_length &&
-         x.stiffness_scale == y.stiffness_scale;
+  return x.a == y.a && x.b == y.b && x.rest_length == y.rest_length && x.stiffness == y.stiffness;
 }
 
 TEST_F(SsboTest, RoundTripsStructs) {

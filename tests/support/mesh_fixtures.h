@@ -24,7 +24,8 @@ inline TetMesh unit_tetrahedron() {
 /// triangles, volume 1).
 inline TetMesh unit_cube() {
   TetMesh m;
-  m.nodes = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  m.nodes = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+             {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   // Corner tetrahedra at nodes 0, 2, 5, 7 and the central one (1, 3, 4, 6).
   m.tetrahedra = {{0, 1, 3, 4}, {2, 3, 1, 6}, {5, 4, 6, 1}, {7, 6, 4, 3}, {1, 3, 4, 6}};
   return m;

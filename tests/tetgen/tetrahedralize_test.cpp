@@ -50,7 +50,8 @@ TEST(Tetrahedralize, PreserveSurfaceKeepsVerticesInOrderAndTrianglesExactly) {
   }
   const Body body = build_body(mesh);
   std::vector<Triangle> boundary;
-  for (const gpu::Face& f : body.faces) boundary.push_back({f.a, f.b, f.c});
+  for (const gpu::Face& f : body.faces)
+    boundary.push_back({f.a, f.b, f.c});
   EXPECT_EQ(sorted_triangles(boundary), sorted_triangles(surface.triangles));
 }
 
@@ -80,8 +81,10 @@ TEST(Tetrahedralize, ReportsSelfIntersectionWithoutAborting) {
   // Two octahedra, the second shifted into the first: closed and oriented, but intersecting.
   SurfaceMesh both = test::octahedron();
   const SurfaceMesh second = test::octahedron();
-  for (const auto& v : second.vertices) both.vertices.push_back(v + glm::dvec3(0.5, 0.3, 0.2));
-  for (const auto& t : second.triangles) both.triangles.push_back({t[0] + 6, t[1] + 6, t[2] + 6});
+  for (const auto& v : second.vertices)
+    both.vertices.push_back(v + glm::dvec3(0.5, 0.3, 0.2));
+  for (const auto& t : second.triangles)
+    both.triangles.push_back({t[0] + 6, t[1] + 6, t[2] + 6});
   const std::string msg = error_of(both);
   EXPECT_NE(msg.find("input.off"), std::string::npos) << msg;
   EXPECT_NE(msg.find("intersects itself"), std::string::npos) << msg;

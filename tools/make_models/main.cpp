@@ -26,8 +26,9 @@ struct Options {
 
 void print_repair(const make_models::RepairSummary& s) {
   std::cout << "  repaired:   " << s.components_removed << " stray components removed, "
-            << s.holes_filled << " holes filled (" << s.hole_faces_added << " faces), "
-            << s.degenerate_faces_removed << " degenerate faces removed"
+            << s.holes_filled << " holes filled (" << s.hole_faces_added << " faces"
+            << (s.holes_unfaired != 0 ? ", " + std::to_string(s.holes_unfaired) + " unfaired" : "")
+            << "), " << s.degenerate_faces_removed << " degenerate faces removed"
             << (s.reversed ? ", orientation reversed" : "")
             << (s.self_intersections_repaired ? ", self-intersections repaired" : "") << '\n';
 }
@@ -35,16 +36,18 @@ void print_repair(const make_models::RepairSummary& s) {
 int run(const Options& o) {
   using namespace make_models;
   if (o.faces < 4 || o.faces % 2 != 0) {
-    throw deformcd::Error("--faces must be even and >= 4 (a closed triangle surface has an even "
-                          "face count)");
+    throw deformcd::Error(
+        "--faces must be even and >= 4 (a closed triangle surface has an even "
+        "face count)");
   }
+  const CollapsePolicy policy = parse_collapse_policy(o.policy);
   std::cout << o.input.filename().string() << '\n';
   RepairSummary summary;
   Mesh mesh = load_and_repair(o.input, summary);
   print_repair(summary);
   std::cout << "  source:     " << describe(summary.result) << '\n';
 
-  const std::size_t collapses = decimate(mesh, o.faces, parse_collapse_policy(o.policy));
+  const std::size_t collapses = decimate(mesh, o.faces, policy);
   normalize_to_unit_box(mesh);
   const SurfaceReport report = inspect(mesh);
   std::cout << "  decimated:  " << describe(report) << " (" << collapses << " collapses, policy "
@@ -71,8 +74,9 @@ int main(int argc, char** argv) {
   app.add_option("input", o.input, "Source surface (OFF)")->required()->check(CLI::ExistingFile);
   app.add_option("-o,--output", o.output, "Output OFF file")->required();
   app.add_option("--faces", o.faces, "Target triangle count (even)")->required();
-  app.add_option("--policy", o.policy, "Edge-collapse policy: lt (Lindstrom-Turk) or gh "
-                                       "(Garland-Heckbert)")
+  app.add_option("--policy", o.policy,
+                 "Edge-collapse policy: lt (Lindstrom-Turk) or gh "
+                 "(Garland-Heckbert)")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {

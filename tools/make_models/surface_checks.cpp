@@ -78,7 +78,8 @@ std::string describe(const SurfaceReport& r) {
   s << "V=" << r.vertices << " F=" << r.faces << " genus=" << r.genus
     << " components=" << r.components << " min_angle=" << r.min_angle_degrees << "deg";
   if (r.border_edges != 0) s << " [" << r.border_edges << " border edges]";
-  if (r.non_manifold_vertices != 0) s << " [" << r.non_manifold_vertices << " non-manifold vertices]";
+  if (r.non_manifold_vertices != 0)
+    s << " [" << r.non_manifold_vertices << " non-manifold vertices]";
   if (r.degenerate_faces != 0) s << " [" << r.degenerate_faces << " degenerate faces]";
   if (r.self_intersecting) s << " [self-intersecting]";
   if (r.border_edges == 0 && r.components == 1 && !r.outward) s << " [inward-oriented]";

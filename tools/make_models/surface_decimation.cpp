@@ -26,9 +26,9 @@ std::size_t decimate(Mesh& mesh, std::size_t target_faces, CollapsePolicy policy
   int collapses = 0;
   if (policy == CollapsePolicy::lindstrom_turk) {
     const SMS::Bounded_normal_change_placement<SMS::LindstromTurk_placement<Mesh>> placement;
-    collapses = SMS::edge_collapse(mesh, stop,
-                                   CGAL::parameters::get_cost(SMS::LindstromTurk_cost<Mesh>())
-                                       .get_placement(placement));
+    collapses = SMS::edge_collapse(
+        mesh, stop,
+        CGAL::parameters::get_cost(SMS::LindstromTurk_cost<Mesh>()).get_placement(placement));
   } else {
     using Policies = SMS::GarlandHeckbert_plane_policies<Mesh, Kernel>;
     Policies policies(mesh);

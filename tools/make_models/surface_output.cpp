@@ -25,8 +25,8 @@ void normalize_to_unit_box(Mesh& mesh) {
   const double cx = 0.5 * (box.xmin() + box.xmax());
   const double cy = 0.5 * (box.ymin() + box.ymax());
   const double cz = 0.5 * (box.zmin() + box.zmax());
-  const double extent = std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(),
-                                  box.zmax() - box.zmin()});
+  const double extent =
+      std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
   if (!(extent > 0.0)) throw deformcd::Error("normalize: the surface has an empty bounding box");
   for (Mesh::Vertex_index v : mesh.vertices()) {
     const Point& p = mesh.point(v);

@@ -1,8 +1,9 @@
 #include "surface_repair.h"
 
-#include <array>
+#include <algorithm>
 #include <iterator>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <CGAL/IO/polygon_soup_io.h>
@@ -17,6 +18,7 @@
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/iterator.h>
 
 #include "deformcd/error.h"
 
@@ -43,20 +45,19 @@ Mesh read_as_mesh(const std::filesystem::path& file) {
 }
 
 // Fills every hole. Fairing makes the patch smooth and sampled like its surroundings; when the
-// fairing system cannot be solved the refined (unfaired) patch is kept.
+// fairing system cannot be solved CGAL keeps the refined, unfaired patch (counted in
+// summary.holes_unfaired). A hole that cannot be triangulated at all stays open and is reported
+// by the closedness check of load_and_repair.
 void fill_holes(Mesh& mesh, RepairSummary& summary) {
   std::vector<Mesh::Halfedge_index> borders;
   PMP::extract_boundary_cycles(mesh, std::back_inserter(borders));
   for (Mesh::Halfedge_index h : borders) {
     std::vector<Mesh::Face_index> patch;
-    std::vector<Mesh::Vertex_index> added;
     const bool faired = std::get<0>(PMP::triangulate_refine_and_fair_hole(
-        mesh, h, std::back_inserter(patch), std::back_inserter(added)));
-    if (!faired && patch.empty()) {
-      PMP::triangulate_and_refine_hole(mesh, h, std::back_inserter(patch),
-                                       std::back_inserter(added));
-    }
+        mesh, h, std::back_inserter(patch), CGAL::Emptyset_iterator()));
+    if (patch.empty()) continue;
     ++summary.holes_filled;
+    if (!faired) ++summary.holes_unfaired;
     summary.hole_faces_added += patch.size();
   }
 }
@@ -75,7 +76,9 @@ Mesh load_and_repair(const std::filesystem::path& file, RepairSummary& summary) 
   const std::size_t faces_before = mesh.number_of_faces();
   PMP::remove_degenerate_faces(mesh);
   mesh.collect_garbage();
-  summary.degenerate_faces_removed = faces_before - mesh.number_of_faces();
+  // Removal collapses or flips edges: the count can only shrink.
+  summary.degenerate_faces_removed =
+      faces_before - std::min<std::size_t>(faces_before, mesh.number_of_faces());
 
   if (PMP::does_self_intersect(mesh)) {
     PMP::experimental::remove_self_intersections(mesh);
@@ -84,8 +87,8 @@ Mesh load_and_repair(const std::filesystem::path& file, RepairSummary& summary) 
   }
 
   if (!CGAL::is_closed(mesh)) {
-    throw deformcd::InputError(file.string(), "still has holes after hole filling: " +
-                                                  describe(inspect(mesh)));
+    throw deformcd::InputError(file.string(),
+                               "still has holes after hole filling: " + describe(inspect(mesh)));
   }
   if (!PMP::is_outward_oriented(mesh)) {
     PMP::reverse_face_orientations(mesh);

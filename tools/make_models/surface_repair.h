@@ -12,6 +12,7 @@ namespace make_models {
 struct RepairSummary {
   std::size_t components_removed = 0;  // stray pieces dropped (only the largest is kept)
   std::size_t holes_filled = 0;
+  std::size_t holes_unfaired = 0;  // filled, but the fairing system could not be solved
   std::size_t hole_faces_added = 0;
   std::size_t degenerate_faces_removed = 0;
   bool reversed = false;                     // faces flipped to point outward

@@ -1,0 +1,60 @@
+#pragma once
+/// \file world_state.h
+/// The state of every body of a world, concatenated into the arrays the GPU buffers hold (one
+/// array per buffer, see gpu_layout.h). Both backends start from it; the CPU backend steps it in
+/// place, the GL backend uploads it.
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "deformcd/body.h"
+#include "deformcd/gpu_layout.h"
+
+namespace deformcd {
+
+/// One body as it enters a world: its arrays plus what the world needs to know about it.
+struct BodyInit {
+  Body body;                         ///< positions already transformed into the scene
+  float damping = 0.0f;              ///< s: each spring's damping = damping x its stiffness
+  glm::vec3 carry_velocity{0.0f};    ///< m/s, the body's path
+  std::vector<std::uint32_t> fixed;  ///< local indices of nodes held in place
+  std::string name;
+};
+
+/// Global step settings shared by all bodies.
+struct StepSettings {
+  float dt = 1.0f / 60.0f;  ///< seconds per frame
+  int substeps = 1;
+  glm::vec3 gravity{0.0f, -9.81f, 0.0f};
+  float velocity_damping = 0.0f;  ///< 1/s
+};
+
+/// Every body's data, concatenated; indices are global.
+struct WorldState {
+  std::vector<glm::vec4> positions;               ///< SSBO 0: xyz, w = inverse mass (0 = fixed)
+  std::vector<glm::vec4> velocities;              ///< SSBO 1: xyz, w = 0
+  std::vector<gpu::Spring> springs;               ///< SSBO 2
+  std::vector<glm::vec4> forces;                  ///< SSBO 3: summed spring forces per node
+  std::vector<gpu::Face> faces;                   ///< SSBO 7
+  std::vector<gpu::ObjectInfo> objects;           ///< SSBO 8
+  std::vector<gpu::BodyParams> body_params;       ///< SSBO 12
+  std::vector<std::uint32_t> node_body;           ///< SSBO 13
+  std::vector<glm::vec4> spring_forces;           ///< SSBO 14
+  std::vector<std::uint32_t> node_spring_offset;  ///< SSBO 15, nodes + 1 entries
+  std::vector<std::int32_t> node_spring_list;     ///< SSBO 16, 2 x springs entries
+  std::vector<std::string> body_names;
+
+  [[nodiscard]] std::size_t node_count() const { return positions.size(); }
+  [[nodiscard]] std::size_t body_count() const { return objects.size(); }
+};
+
+/// Concatenates bodies into one world state: offsets indices, sets inverse masses (0 for fixed
+/// nodes), builds the per-node spring lists (CSR, springs in increasing index order, so that
+/// the force sum has one fixed order on every backend). Throws InputError for a fixed node
+/// index out of range or a body without surface faces.
+[[nodiscard]] WorldState assemble_world(const std::vector<BodyInit>& bodies);
+
+}  // namespace deformcd

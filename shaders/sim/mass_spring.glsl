@@ -1,0 +1,42 @@
+// The mass-spring step's per-element functions, mirroring src/core/sim/mass_spring.h line for
+// line: the same float operations in the same order, so that the GL and CPU backends agree to
+// rounding. Change both files together.
+//
+// gather_node_force is not here: GLSL 4.30 cannot pass a buffer to a function, so its loop is
+// written out in sim/node_force.comp, again line for line.
+
+// Per-substep constants (sim::SubstepConstants).
+struct SubstepConstants {
+  float h;               // substep length, s
+  vec3 gravity;          // m/s^2
+  float velocity_decay;  // exp(-velocity_damping * h), applied to every free node
+};
+
+// Force on spring end a (end b gets the opposite): Hooke's law along the spring plus damping
+// of the relative velocity along it, stiffness-proportional: the damping coefficient is
+// `damping` (seconds) x stiffness. A collapsed spring (zero length) exerts no force.
+vec3 spring_force(vec3 xa, vec3 xb, vec3 va, vec3 vb, float rest_length, float stiffness,
+                  float damping) {
+  const vec3 d = xb - xa;
+  const float len = sqrt(dot(d, d));
+  if (!(len > 0.0)) return vec3(0.0);
+  const vec3 u = d / len;
+  const float magnitude = stiffness * ((len - rest_length) + damping * dot(vb - va, u));
+  return magnitude * u;
+}
+
+// Semi-implicit (symplectic) Euler for one node: velocity from force and gravity, decayed,
+// then position from the new velocity plus the body's carry velocity. `position.w` is the
+// inverse mass; 0 marks a fixed node, which keeps zero velocity but is still carried.
+void integrate_node(inout vec4 position, inout vec4 velocity, vec3 force, vec3 carry_velocity,
+                    SubstepConstants c) {
+  const float inverse_mass = position.w;
+  vec3 v = velocity.xyz;
+  if (inverse_mass > 0.0) {
+    v = (v + c.h * (force * inverse_mass + c.gravity)) * c.velocity_decay;
+  } else {
+    v = vec3(0.0);
+  }
+  velocity = vec4(v, 0.0);
+  position = vec4(position.xyz + c.h * (v + carry_velocity), inverse_mass);
+}

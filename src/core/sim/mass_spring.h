@@ -1,0 +1,68 @@
+#pragma once
+// The mass-spring step as pure per-element functions: one spring (the paper's SpringUpdate),
+// one node's force gather (NodeForce) and one node's integration (NodeUpdate). The CPU backend
+// calls these; shaders/sim/*.comp mirror them line for line, so both backends compute the same
+// floating-point operations in the same order.
+
+#include <cmath>
+#include <cstdint>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "deformcd/gpu_layout.h"
+
+namespace deformcd::sim {
+
+/// Per-substep constants.
+struct SubstepConstants {
+  float h;               ///< substep length, s
+  glm::vec3 gravity;     ///< m/s^2
+  float velocity_decay;  ///< exp(-velocity_damping * h), applied to every free node
+};
+
+/// Force on spring end a (end b gets the opposite): Hooke's law along the spring plus damping
+/// of the relative velocity along it, stiffness-proportional: the damping coefficient is
+/// `damping` (seconds) x stiffness. A collapsed spring (zero length) exerts no force.
+inline glm::vec3 spring_force(const glm::vec3& xa, const glm::vec3& xb, const glm::vec3& va,
+                              const glm::vec3& vb, float rest_length, float stiffness,
+                              float damping) {
+  const glm::vec3 d = xb - xa;
+  const float length = std::sqrt(glm::dot(d, d));
+  if (!(length > 0.0f)) return glm::vec3(0.0f);
+  const glm::vec3 u = d / length;
+  const float magnitude = stiffness * ((length - rest_length) + damping * glm::dot(vb - va, u));
+  return magnitude * u;
+}
+
+/// Sum of the spring forces on one node, over its CSR list in order: entry +(s+1) means the
+/// node is end a of spring s (force +f), -(s+1) end b (force -f).
+inline glm::vec3 gather_node_force(const std::int32_t* list, std::uint32_t begin, std::uint32_t end,
+                                   const glm::vec4* spring_forces) {
+  glm::vec3 sum(0.0f);
+  for (std::uint32_t e = begin; e < end; ++e) {
+    const std::int32_t tag = list[e];
+    const glm::vec3 f(spring_forces[(tag > 0 ? tag : -tag) - 1]);
+    sum += tag > 0 ? f : -f;
+  }
+  return sum;
+}
+
+/// Semi-implicit (symplectic) Euler for one node: velocity from force and gravity, decayed,
+/// then position from the new velocity plus the body's carry velocity. `position.w` is the
+/// inverse mass; 0 marks a fixed node, which keeps zero velocity but is still carried.
+inline void integrate_node(glm::vec4& position, glm::vec4& velocity, const glm::vec3& force,
+                           const glm::vec3& carry_velocity, const SubstepConstants& c) {
+  const float inverse_mass = position.w;
+  glm::vec3 v(velocity);
+  if (inverse_mass > 0.0f) {
+    v = (v + c.h * (force * inverse_mass + c.gravity)) * c.velocity_decay;
+  } else {
+    v = glm::vec3(0.0f);
+  }
+  velocity = glm::vec4(v, 0.0f);
+  position = glm::vec4(glm::vec3(position) + c.h * (v + carry_velocity), inverse_mass);
+}
+
+}  // namespace deformcd::sim

@@ -1,0 +1,47 @@
+#pragma once
+// The line between the world and a backend is drawn at the level of a simulation phase: the
+// world hands the backend its state once, asks for substeps, and reads results back. The CPU
+// backend (src/cpu) and the GL backend (src/gpu/gl) implement it.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "deformcd/world_state.h"
+#include "mass_spring.h"
+
+namespace deformcd::sim {
+
+class SimulationBackend {
+ public:
+  virtual ~SimulationBackend() = default;
+  SimulationBackend(const SimulationBackend&) = delete;
+  SimulationBackend& operator=(const SimulationBackend&) = delete;
+
+  /// "cpu" or "gl".
+  [[nodiscard]] virtual std::string_view name() const = 0;
+  /// What runs it: thread count, or the GL renderer and version.
+  [[nodiscard]] virtual std::string device() const = 0;
+
+  /// Takes the world's initial state (sizes are fixed from then on). Throws Error when it
+  /// does not fit (e.g. a buffer larger than the device allows).
+  virtual void upload(const WorldState& state) = 0;
+  /// One substep: spring forces, node forces, integration.
+  virtual void substep(const SubstepConstants& constants) = 0;
+  /// Waits for the work issued so far (for timing).
+  virtual void finish() = 0;
+
+  virtual void download_positions(std::vector<glm::vec4>& out) = 0;
+  virtual void download_velocities(std::vector<glm::vec4>& out) = 0;
+
+  /// GL buffer name of the node positions (SSBO 0), or 0 when the backend is not GL.
+  [[nodiscard]] virtual std::uint32_t gl_position_buffer() const { return 0; }
+
+ protected:
+  SimulationBackend() = default;
+};
+
+}  // namespace deformcd::sim

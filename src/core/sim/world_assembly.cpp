@@ -1,0 +1,82 @@
+#include <string>
+
+#include "deformcd/error.h"
+#include "deformcd/world_state.h"
+
+namespace deformcd {
+
+namespace {
+
+void append_body(WorldState& w, const BodyInit& init, std::uint32_t body_index) {
+  const Body& b = init.body;
+  gpu::ObjectInfo info{};
+  info.node_offset = static_cast<std::uint32_t>(w.positions.size());
+  info.node_count = static_cast<std::uint32_t>(b.positions.size());
+  info.face_offset = static_cast<std::uint32_t>(w.faces.size());
+  info.face_count = static_cast<std::uint32_t>(b.faces.size());
+  info.spring_offset = static_cast<std::uint32_t>(w.springs.size());
+  info.spring_count = static_cast<std::uint32_t>(b.springs.size());
+  info.tet_count = static_cast<std::uint32_t>(b.tetrahedra.size());
+  w.objects.push_back(info);
+
+  const std::string name = init.name.empty() ? "body " + std::to_string(body_index) : init.name;
+  if (b.faces.empty()) throw InputError(name, "body has no surface faces");
+  std::vector<bool> fixed(b.positions.size(), false);
+  for (std::uint32_t n : init.fixed) {
+    if (n >= b.positions.size()) {
+      throw InputError(name, "fixed node " + std::to_string(n) + " is out of range (the body has " +
+                                 std::to_string(b.positions.size()) + " nodes)");
+    }
+    fixed[n] = true;
+  }
+  for (std::size_t i = 0; i < b.positions.size(); ++i) {
+    const float inverse_mass = fixed[i] ? 0.0f : 1.0f / b.node_mass[i];
+    w.positions.emplace_back(glm::vec3(b.positions[i]), inverse_mass);
+    w.velocities.emplace_back(glm::vec3(b.velocities[i]), 0.0f);
+    w.node_body.push_back(body_index);
+  }
+  for (const gpu::Spring& s : b.springs) {
+    w.springs.push_back(
+        {s.a + info.node_offset, s.b + info.node_offset, s.rest_length, s.stiffness});
+  }
+  for (const gpu::Face& f : b.faces) {
+    w.faces.push_back(
+        {f.a + info.node_offset, f.b + info.node_offset, f.c + info.node_offset, body_index});
+  }
+  w.body_params.push_back({glm::vec4(init.carry_velocity, 0.0f), init.damping, 0.0f, 0.0f, 0.0f});
+  w.body_names.push_back(name);
+}
+
+// Per-node incident springs (CSR), each node's list in increasing spring order.
+void build_node_springs(WorldState& w) {
+  std::vector<std::uint32_t> count(w.positions.size() + 1, 0);
+  for (const gpu::Spring& s : w.springs) {
+    ++count[s.a + 1];
+    ++count[s.b + 1];
+  }
+  for (std::size_t i = 1; i < count.size(); ++i)
+    count[i] += count[i - 1];
+  w.node_spring_offset = count;
+  w.node_spring_list.assign(count.back(), 0);
+  std::vector<std::uint32_t> fill(count.begin(), count.end() - 1);
+  for (std::size_t s = 0; s < w.springs.size(); ++s) {
+    const auto tag = static_cast<std::int32_t>(s + 1);
+    w.node_spring_list[fill[w.springs[s].a]++] = tag;
+    w.node_spring_list[fill[w.springs[s].b]++] = -tag;
+  }
+}
+
+}  // namespace
+
+WorldState assemble_world(const std::vector<BodyInit>& bodies) {
+  WorldState w;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    append_body(w, bodies[i], static_cast<std::uint32_t>(i));
+  }
+  w.forces.assign(w.positions.size(), glm::vec4(0.0f));
+  w.spring_forces.assign(w.springs.size(), glm::vec4(0.0f));
+  build_node_springs(w);
+  return w;
+}
+
+}  // namespace deformcd

@@ -1,0 +1,95 @@
+#pragma once
+// The mass-spring step on the GPU: the paper's compute shaders 4 (SpringUpdate), 5 (NodeForce)
+// and 3 (NodeUpdate), in that order each substep, over SSBOs laid out as in gpu_layout.h.
+//
+// Thread-to-data mapping: spring_update.comp runs one invocation per spring and writes that
+// spring's force (SSBO 14); node_force.comp runs one per node and sums its springs' forces over
+// its CSR list (SSBOs 15, 16) into SSBO 3; node_update.comp runs one per node and integrates it.
+// The gather replaces the scatter-with-atomics a GPU code might use: GL 4.3 has no float
+// atomics, and a fixed summation order keeps the result deterministic and equal to the CPU's.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "compute_program.h"
+#include "core/sim/simulation_backend.h"
+#include "deformcd/gl/context.h"
+#include "deformcd/gl/device_info.h"
+#include "deformcd/gl/ssbo.h"
+#include "deformcd/gpu_layout.h"
+
+namespace deformcd::gl {
+
+struct GlSimulationOptions {
+  // Largest buffer upload() accepts, in bytes. 0: the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
+  // A smaller value caps GPU memory per buffer (and lets tests reach the limit cheaply).
+  std::uint64_t max_buffer_bytes = 0;
+};
+
+// The buffers of the mass-spring step, bound at the gpu::Binding points. Each holds at least
+// one element, so that no binding is ever a zero-size buffer.
+struct SimulationBuffers {
+  Ssbo<glm::vec4> positions;               // SSBO 0
+  Ssbo<glm::vec4> velocities;              // SSBO 1
+  Ssbo<gpu::Spring> springs;               // SSBO 2
+  Ssbo<glm::vec4> node_forces;             // SSBO 3
+  Ssbo<gpu::BodyParams> body_params;       // SSBO 12
+  Ssbo<std::uint32_t> node_body;           // SSBO 13
+  Ssbo<glm::vec4> spring_forces;           // SSBO 14
+  Ssbo<std::uint32_t> node_spring_offset;  // SSBO 15
+  Ssbo<std::int32_t> node_spring_list;     // SSBO 16
+  std::uint32_t node_count = 0;
+  std::uint32_t spring_count = 0;
+};
+
+class GlSimulation final : public sim::SimulationBackend {
+ public:
+  // Makes `context` current and compiles the three shaders (GlError if that fails). The
+  // context must outlive this object and be current on the calling thread for every call,
+  // destruction included.
+  explicit GlSimulation(Context& context, const GlSimulationOptions& options = {});
+
+  [[nodiscard]] std::string_view name() const override { return "gl"; }
+  // Renderer, GL version and EGL platform.
+  [[nodiscard]] std::string device() const override { return device_; }
+
+  // Checks the state (array sizes agree, each buffer fits the buffer limit, each element count
+  // fits one dispatch) before allocating anything, then replaces the buffers. Throws Error for
+  // an inconsistent state and GlError naming every buffer that is too large, with its size and
+  // the limit; the previous buffers are kept then.
+  void upload(const WorldState& state) override;
+  // Binds the buffers (other passes may have rebound the points since), dispatches the three
+  // shaders with storage barriers between them, and ends with a barrier so that later shaders
+  // and vertex fetches see the new positions. Throws Error before upload().
+  void substep(const sim::SubstepConstants& constants) override;
+  // glFinish.
+  void finish() override;
+
+  void download_positions(std::vector<glm::vec4>& out) override;
+  void download_velocities(std::vector<glm::vec4>& out) override;
+  // The node forces (SSBO 3) of the last substep.
+  void download_node_forces(std::vector<glm::vec4>& out);
+
+  // SSBO 0's buffer name (0 before upload()).
+  [[nodiscard]] std::uint32_t gl_position_buffer() const override;
+
+ private:
+  GlSimulation(const DeviceInfo& device, const GlSimulationOptions& options);
+  const SimulationBuffers& buffers(const char* operation) const;
+
+  std::string device_;
+  std::uint64_t max_buffer_bytes_ = 0;
+  bool limit_is_device_ = true;  // whether max_buffer_bytes_ is the device's, for messages
+  std::uint32_t max_work_groups_x_ = 0;
+  ComputeProgram spring_update_;
+  ComputeProgram node_force_;
+  ComputeProgram node_update_;
+  std::optional<SimulationBuffers> buffers_;
+};
+
+}  // namespace deformcd::gl

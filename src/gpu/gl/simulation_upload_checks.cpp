@@ -1,0 +1,110 @@
+#include "simulation_upload_checks.h"
+
+#include <string>
+
+#include "deformcd/error.h"
+#include "deformcd/gpu_layout.h"
+
+namespace deformcd::gl {
+
+namespace {
+
+template <class T>
+BufferSize size_of(std::string_view name, gpu::Binding binding, const std::vector<T>& data) {
+  return {name, binding, data.size(), sizeof(T)};
+}
+
+[[noreturn]] void inconsistent(const std::string& what) {
+  throw Error("WorldState is inconsistent: " + what);
+}
+
+void expect_length(std::string_view array, std::size_t length, std::string_view reference,
+                   std::size_t expected) {
+  if (length != expected) {
+    inconsistent(std::string(array) + " has " + std::to_string(length) + " entries, but " +
+                 std::string(reference) + " calls for " + std::to_string(expected));
+  }
+}
+
+void check_springs(const WorldState& w) {
+  for (std::size_t s = 0; s < w.springs.size(); ++s) {
+    const gpu::Spring& spring = w.springs[s];
+    if (spring.a >= w.node_count() || spring.b >= w.node_count()) {
+      inconsistent("spring " + std::to_string(s) + " joins nodes " + std::to_string(spring.a) +
+                   " and " + std::to_string(spring.b) + ", but there are " +
+                   std::to_string(w.node_count()) + " nodes");
+    }
+  }
+}
+
+void check_node_springs(const WorldState& w) {
+  const std::vector<std::uint32_t>& offset = w.node_spring_offset;
+  if (offset.front() != 0) inconsistent("node_spring_offset[0] is not 0");
+  for (std::size_t i = 0; i + 1 < offset.size(); ++i) {
+    if (offset[i + 1] < offset[i]) {
+      inconsistent("node_spring_offset decreases at node " + std::to_string(i));
+    }
+  }
+  expect_length("node_spring_list", w.node_spring_list.size(), "node_spring_offset's last entry",
+                offset.back());
+  for (std::size_t e = 0; e < w.node_spring_list.size(); ++e) {
+    // 64 bits: negating INT32_MIN would overflow.
+    const std::int64_t tag = w.node_spring_list[e];
+    const std::int64_t spring = (tag > 0 ? tag : -tag) - 1;
+    if (spring < 0 || static_cast<std::uint64_t>(spring) >= w.springs.size()) {
+      inconsistent("node_spring_list[" + std::to_string(e) + "] = " + std::to_string(tag) +
+                   " names no spring (there are " + std::to_string(w.springs.size()) + ")");
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<BufferSize> simulation_buffer_sizes(const WorldState& w) {
+  return {
+      size_of("Node Position", gpu::kNodePosition, w.positions),
+      size_of("Node Velocity", gpu::kNodeVelocity, w.velocities),
+      size_of("Spring Information", gpu::kSpringInfo, w.springs),
+      size_of("Node Force", gpu::kNodeForce, w.forces),
+      size_of("Body Parameters", gpu::kBodyParams, w.body_params),
+      size_of("Node Body", gpu::kNodeBody, w.node_body),
+      size_of("Spring Force", gpu::kSpringForce, w.spring_forces),
+      size_of("Node Spring Offset", gpu::kNodeSpringOffset, w.node_spring_offset),
+      size_of("Node Spring List", gpu::kNodeSpringList, w.node_spring_list),
+  };
+}
+
+void check_buffer_sizes(std::span<const BufferSize> buffers, std::uint64_t max_bytes,
+                        std::string_view limit_name) {
+  std::string too_large;
+  for (const BufferSize& b : buffers) {
+    if (b.bytes() <= max_bytes) continue;
+    too_large += "\n  " + std::string(b.name) + " (SSBO " + std::to_string(b.binding) +
+                 "): " + std::to_string(b.bytes()) + " bytes (" + std::to_string(b.count) + " x " +
+                 std::to_string(b.element_bytes) + ")";
+  }
+  if (!too_large.empty()) {
+    throw GlError("GL simulation: buffers larger than " + std::string(limit_name) + " (" +
+                  std::to_string(max_bytes) + " bytes):" + too_large);
+  }
+}
+
+void check_world_consistency(const WorldState& w) {
+  const std::size_t nodes = w.node_count();
+  expect_length("velocities", w.velocities.size(), "positions", nodes);
+  expect_length("forces", w.forces.size(), "positions", nodes);
+  expect_length("node_body", w.node_body.size(), "positions", nodes);
+  expect_length("node_spring_offset", w.node_spring_offset.size(), "positions (+1)", nodes + 1);
+  expect_length("spring_forces", w.spring_forces.size(), "springs", w.springs.size());
+  for (std::size_t i = 0; i < nodes; ++i) {
+    if (w.node_body[i] >= w.body_params.size()) {
+      inconsistent("node " + std::to_string(i) + " belongs to body " +
+                   std::to_string(w.node_body[i]) + ", but there are " +
+                   std::to_string(w.body_params.size()) + " bodies");
+    }
+  }
+  check_springs(w);
+  check_node_springs(w);
+}
+
+}  // namespace deformcd::gl

@@ -1,0 +1,101 @@
+#include "deformcd/world.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "backend_factory.h"
+#include "deformcd/gl/context.h"
+
+namespace deformcd {
+
+World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
+             const WorldOptions& options)
+    : settings_(settings), check_interval_(std::max(1, options.stability_check_interval)) {
+  if (bodies.empty()) throw Error("a world needs at least one body");
+  if (!(settings.dt > 0.0f) || settings.substeps < 1) {
+    throw Error("dt must be positive and substeps at least 1");
+  }
+  const WorldState state = assemble_world(bodies);
+  objects_ = state.objects;
+  names_ = state.body_names;
+  for (const BodyInit& b : bodies) {
+    const Bounds box = compute_bounds(b.body);
+    body_sizes_.push_back(static_cast<float>(glm::length(box.max - box.min)));
+  }
+  CreatedBackend created = create_backend(options);
+  owned_context_ = std::move(created.owned_context);
+  backend_ = std::move(created.backend);
+  notice_ = std::move(created.notice);
+  backend_->upload(state);
+}
+
+World::~World() = default;
+
+void World::step() {
+  const float h = settings_.dt / static_cast<float>(settings_.substeps);
+  const sim::SubstepConstants constants{h, settings_.gravity,
+                                        std::exp(-settings_.velocity_damping * h)};
+  for (int s = 0; s < settings_.substeps; ++s)
+    backend_->substep(constants);
+  ++frame_;
+  if (frame_ % check_interval_ == 0 || frame_ == 1) check_stability();
+}
+
+void World::finish() {
+  backend_->finish();
+}
+
+void World::check_stability() {
+  std::vector<glm::vec4> positions, velocities;
+  backend_->download_positions(positions);
+  backend_->download_velocities(velocities);
+  const float h = settings_.dt / static_cast<float>(settings_.substeps);
+  for (std::size_t b = 0; b < objects_.size(); ++b) {
+    const gpu::ObjectInfo& o = objects_[b];
+    for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
+      const glm::vec3 p(positions[i]), v(velocities[i]);
+      const bool finite = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
+                          std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+      const float travel = glm::length(v) * h;
+      if (finite && travel <= 0.5f * body_sizes_[b]) continue;
+      std::ostringstream msg;
+      msg << "the simulation became unstable: body " << b << " ('" << names_[b] << "') by frame "
+          << frame_ << ": node " << i - o.node_offset;
+      if (!finite) {
+        msg << " has a non-finite position or velocity";
+      } else {
+        msg << " moves " << travel << " per substep, more than half the body's size ("
+            << body_sizes_[b] << ")";
+      }
+      msg << ". Use a smaller dt or more substeps (now dt = " << settings_.dt
+          << " s, substeps = " << settings_.substeps << "), or softer springs";
+      throw SimulationError(msg.str());
+    }
+  }
+}
+
+std::vector<glm::vec3> World::positions(std::size_t body) const {
+  std::vector<glm::vec4> all;
+  backend_->download_positions(all);
+  const gpu::ObjectInfo& o = objects_.at(body);
+  return {all.begin() + o.node_offset, all.begin() + o.node_offset + o.node_count};
+}
+
+std::vector<glm::vec3> World::velocities(std::size_t body) const {
+  std::vector<glm::vec4> all;
+  backend_->download_velocities(all);
+  const gpu::ObjectInfo& o = objects_.at(body);
+  return {all.begin() + o.node_offset, all.begin() + o.node_offset + o.node_count};
+}
+
+std::string_view World::backend_name() const {
+  return backend_->name();
+}
+std::string World::device() const {
+  return backend_->device();
+}
+std::uint32_t World::gl_position_buffer() const {
+  return backend_->gl_position_buffer();
+}
+
+}  // namespace deformcd

@@ -1,0 +1,82 @@
+#include <gtest/gtest.h>
+
+#include "deformcd/error.h"
+#include "deformcd/scene.h"
+#include "support/mesh_fixtures.h"
+
+namespace deformcd {
+namespace {
+
+Scene one_cube(const BodySpec& spec) {
+  Scene s;
+  s.file = "test.json";
+  s.settings.dt = 0.01;
+  s.bodies = {spec};
+  return s;
+}
+
+TetMesh load_cube(const std::filesystem::path&) {
+  return test::unit_cube();
+}
+
+TEST(SceneBodies, PlacesScalesAndRotates) {
+  BodySpec spec;
+  spec.name = "c";
+  spec.position = {10, 0, 0};
+  spec.scale = glm::dvec3(2.0);
+  spec.rotation = {0, 0, 90};  // x -> y
+  const auto bodies = make_scene_bodies(one_cube(spec), load_cube, 100);
+  ASSERT_EQ(bodies.size(), 1u);
+  // Node 1 of the cube is (1, 0, 0): scaled to (2, 0, 0), rotated to (0, 2, 0), moved.
+  const glm::vec4 p = bodies[0].body.positions[1];
+  EXPECT_NEAR(p.x, 10.0f, 1e-5f);
+  EXPECT_NEAR(p.y, 2.0f, 1e-5f);
+  EXPECT_NEAR(p.z, 0.0f, 1e-5f);
+}
+
+TEST(SceneBodies, SquashDeformsThePoseButNotTheRestLengths) {
+  BodySpec spec;
+  spec.squash = {1.0, 0.5, 1.0};
+  const auto plain = make_scene_bodies(one_cube(BodySpec{}), load_cube, 100);
+  const auto squashed = make_scene_bodies(one_cube(spec), load_cube, 100);
+  const Body& a = plain[0].body;
+  const Body& b = squashed[0].body;
+  ASSERT_EQ(a.springs.size(), b.springs.size());
+  for (std::size_t s = 0; s < a.springs.size(); ++s) {
+    EXPECT_EQ(a.springs[s].rest_length, b.springs[s].rest_length);
+  }
+  // The cube's height halves about the centroid (y = 0.5).
+  EXPECT_NEAR(b.positions[3].y, 0.75f, 1e-6f);  // node 3 is (0, 1, 0)
+  EXPECT_NEAR(b.positions[0].y, 0.25f, 1e-6f);
+}
+
+TEST(SceneBodies, PathSpansTheFrames) {
+  BodySpec spec;
+  spec.position = {0, 0, 0};
+  spec.path_to = glm::dvec3(3, 0, 0);
+  const auto bodies = make_scene_bodies(one_cube(spec), load_cube, 150);  // 150 x 0.01 s
+  EXPECT_NEAR(bodies[0].carry_velocity.x, 2.0f, 1e-5f);
+}
+
+TEST(SceneBodies, MassAndFixedBox) {
+  BodySpec spec;
+  spec.material.mass = 8.0;
+  Bounds box;
+  box.min = {-1, 0.9, -1};
+  box.max = {2, 2, 2};
+  spec.fixed.box = box;
+  const auto bodies = make_scene_bodies(one_cube(spec), load_cube, 10);
+  float total = 0.0f;
+  for (float m : bodies[0].body.node_mass)
+    total += m;
+  EXPECT_NEAR(total, 8.0f, 1e-4f);
+  EXPECT_EQ(bodies[0].fixed, (std::vector<std::uint32_t>{2, 3, 6, 7}));  // the y = 1 nodes
+
+  box.min = {5, 5, 5};
+  box.max = {6, 6, 6};
+  spec.fixed.box = box;
+  EXPECT_THROW((void)make_scene_bodies(one_cube(spec), load_cube, 10), InputError);
+}
+
+}  // namespace
+}  // namespace deformcd

@@ -1,0 +1,130 @@
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "deformcd/error.h"
+#include "deformcd/io.h"
+#include "deformcd/scene.h"
+#include "support/mesh_fixtures.h"
+
+namespace fs = std::filesystem;
+
+namespace deformcd {
+namespace {
+
+class SceneReaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("deformcd_scene_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "models");
+    write_tetgen(test::unit_cube(), dir_ / "models" / "cube");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const std::string& text) const {
+    const fs::path file = dir_ / "scene.json";
+    std::ofstream(file) << text;
+    return file;
+  }
+  std::string error_of(const std::string& text) const {
+    try {
+      (void)read_scene(write(text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path dir_;
+};
+
+TEST_F(SceneReaderTest, ReadsEveryKey) {
+  const Scene s = read_scene(write(R"({
+    "settings": {"dt": 0.01, "substeps": 4, "gravity": [0, 0, -9.8], "velocity_damping": 0.5,
+                 "frames": 120},
+    "collision": {"broadphase": "brute", "self": true},
+    "bodies": [{"name": "a", "model": "models/cube", "position": [1, 2, 3],
+                "rotation": [0, 90, 0], "scale": 2, "velocity": [0, 1, 0], "squash": [1, 0.5, 1],
+                "material": {"mass": 3, "stiffness": 1e4, "damping": 0.001},
+                "fixed": {"nodes": [0, 1], "box": {"min": [0, 0, 0], "max": [1, 1, 0.1]}},
+                "path": {"to": [4, 5, 6]}}]
+  })"));
+  EXPECT_DOUBLE_EQ(s.settings.dt, 0.01);
+  EXPECT_EQ(s.settings.substeps, 4);
+  EXPECT_EQ(s.settings.gravity, glm::dvec3(0, 0, -9.8));
+  EXPECT_EQ(s.settings.frames, 120);
+  EXPECT_EQ(s.collision.broadphase, "brute");
+  EXPECT_TRUE(s.collision.self);
+  ASSERT_EQ(s.bodies.size(), 1u);
+  const BodySpec& b = s.bodies[0];
+  EXPECT_EQ(b.name, "a");
+  EXPECT_EQ(b.model, (dir_ / "models" / "cube").lexically_normal());
+  EXPECT_EQ(b.position, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(b.scale, glm::dvec3(2.0));
+  EXPECT_EQ(b.squash, glm::dvec3(1, 0.5, 1));
+  EXPECT_EQ(*b.material.mass, 3.0);
+  EXPECT_FALSE(b.material.density.has_value());
+  EXPECT_EQ(b.fixed.nodes, (std::vector<std::uint32_t>{0, 1}));
+  ASSERT_TRUE(b.fixed.box.has_value());
+  EXPECT_EQ(*b.path_to, glm::dvec3(4, 5, 6));
+}
+
+TEST_F(SceneReaderTest, UnknownKeyIsNamedWithItsPathAndTheValidOnes) {
+  const std::string msg = error_of(R"({"bodies": [{"model": "models/cube",
+      "material": {"stifness": 10}}]})");
+  EXPECT_NE(msg.find("scene.json"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("/bodies/0/material/stifness"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("valid keys here: density, mass, stiffness, damping"), std::string::npos)
+      << msg;
+}
+
+TEST_F(SceneReaderTest, WrongTypesAreNamed) {
+  std::string msg =
+      error_of(R"({"settings": {"dt": "fast"}, "bodies": [{"model": "models/cube"}]})");
+  EXPECT_NE(msg.find("/settings/dt: expected a number, found string"), std::string::npos) << msg;
+  msg = error_of(R"({"bodies": [{"model": "models/cube", "position": [1, 2]}]})");
+  EXPECT_NE(msg.find("/bodies/0/position: expected an array of 3 numbers"), std::string::npos)
+      << msg;
+  msg = error_of(R"({"settings": {"substeps": 2.5}, "bodies": [{"model": "models/cube"}]})");
+  EXPECT_NE(msg.find("/settings/substeps: expected an integer"), std::string::npos) << msg;
+}
+
+TEST_F(SceneReaderTest, MissingModelFileIsNamed) {
+  const std::string msg = error_of(R"({"bodies": [{"model": "models/sphere"}]})");
+  EXPECT_NE(msg.find("/bodies/0/model: no such model"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("sphere"), std::string::npos) << msg;
+}
+
+TEST_F(SceneReaderTest, InvalidValuesAreRejected) {
+  EXPECT_NE(error_of(R"({"settings": {"dt": -1}, "bodies": [{"model": "models/cube"}]})")
+                .find("must be positive"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"bodies": [{"model": "models/cube",
+                "material": {"density": 1, "mass": 2}}]})")
+                .find("either density or mass"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"bodies": []})").find("non-empty array of bodies"), std::string::npos);
+  EXPECT_NE(error_of(R"({"bodies": [{"model": "models/cube", "path": {}}]})").find("'to'"),
+            std::string::npos);
+}
+
+TEST_F(SceneReaderTest, JsonSyntaxErrorGivesTheLine) {
+  const std::string msg =
+      error_of("{\n  \"bodies\": [\n    {\"model\": \"models/cube\",}\n  ]\n}\n");
+  EXPECT_NE(msg.find("scene.json:3:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("invalid JSON"), std::string::npos) << msg;
+}
+
+TEST(ShippedScenes, AllReadAndTheirModelsExist) {
+  for (const char* name : {"hanging", "phase1", "phase2"}) {
+    const fs::path file = fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (std::string(name) + ".json");
+    const Scene s = read_scene(file);
+    EXPECT_FALSE(s.bodies.empty()) << name;
+  }
+}
+
+}  // namespace
+}  // namespace deformcd

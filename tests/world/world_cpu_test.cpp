@@ -1,0 +1,94 @@
+// Worlds on the CPU backend: shipped scenes behave, blow-ups are caught.
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "deformcd/io.h"
+#include "deformcd/scene.h"
+#include "deformcd/world.h"
+#include "support/world_fixtures.h"
+
+namespace fs = std::filesystem;
+
+namespace deformcd {
+namespace {
+
+fs::path scene_path(const char* name) {
+  return fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (std::string(name) + ".json");
+}
+
+double kinetic_energy(const World& world, const std::vector<BodyInit>& bodies) {
+  double e = 0.0;
+  for (std::size_t b = 0; b < world.body_count(); ++b) {
+    const std::vector<glm::vec3> v = world.velocities(b);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      e += 0.5 * bodies[b].body.node_mass[i] * glm::dot(glm::dvec3(v[i]), glm::dvec3(v[i]));
+    }
+  }
+  return e;
+}
+
+TEST(WorldCpu, HangingBodySagsAndComesToRest) {
+  const Scene scene = read_scene(scene_path("hanging"));
+  const int frames = scene.settings.frames;
+  const std::vector<BodyInit> bodies = make_scene_bodies(scene, read_tetgen, frames);
+  WorldOptions options;
+  options.backend = BackendKind::kCpu;
+  World world(bodies, step_settings(scene.settings), options);
+  const float top_before = [&] {
+    float lowest = 1e9f;
+    for (const glm::vec3& p : world.positions(0))
+      lowest = std::min(lowest, p.y);
+    return lowest;
+  }();
+  double peak = 0.0;
+  for (int f = 0; f < frames; ++f) {
+    world.step();
+    if (f % 5 == 0) peak = std::max(peak, kinetic_energy(world, bodies));
+  }
+  const double final_energy = kinetic_energy(world, bodies);
+  EXPECT_GT(peak, 0.0);
+  EXPECT_LT(final_energy, 1e-6 * peak) << "peak " << peak << ", final " << final_energy;
+  float lowest_after = 1e9f;
+  for (const glm::vec3& p : world.positions(0))
+    lowest_after = std::min(lowest_after, p.y);
+  EXPECT_LT(lowest_after, top_before - 0.05f) << "the body should sag under gravity";
+}
+
+TEST(WorldCpu, BlowUpStopsWithTheBodyFrameAndAdvice) {
+  BodyInit init;
+  init.name = "jelly";
+  BodyOptions options;
+  options.stiffness = 1.0e9;  // far too stiff for the step below
+  init.body = build_body(test::cube_grid(3, 3, 3), options);
+  init.body.positions[5].y += 0.03f;
+  StepSettings settings;
+  settings.dt = 0.05f;
+  WorldOptions world_options;
+  world_options.backend = BackendKind::kCpu;
+  world_options.stability_check_interval = 1;
+  World world({init}, settings, world_options);
+  try {
+    for (int f = 0; f < 50; ++f)
+      world.step();
+    FAIL() << "expected SimulationError";
+  } catch (const SimulationError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("'jelly'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("by frame"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("smaller dt or more substeps"), std::string::npos) << msg;
+  }
+}
+
+TEST(WorldCpu, RejectsUnknownBackendNamesListingTheValidOnes) {
+  try {
+    (void)parse_backend("cuda");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("valid: auto, gl, cpu"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace deformcd
