@@ -44,6 +44,8 @@ struct Body {
   std::vector<glm::vec4> face_normals;  ///< SSBO 6: unit outward normals, w = 0
   std::vector<float> node_mass;         ///< kg, lumped from the tetrahedra
   std::vector<Tetrahedron> tetrahedra;  ///< positively oriented
+  std::vector<float> tet_rest_volume;   ///< m^3, per tetrahedron, at build time
+  std::vector<float> tet_rest_edge;     ///< m, mean edge length per tetrahedron, at build time
   double volume = 0.0;                  ///< m^3, sum of the tetrahedra
 };
 

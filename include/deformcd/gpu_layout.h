@@ -33,6 +33,10 @@ enum Binding : std::uint32_t {
   kSpringForce = 14,       ///< glm::vec4 per spring: force on node a (node b gets -f)
   kNodeSpringOffset = 15,  ///< uint per node + 1: CSR offsets into kNodeSpringList
   kNodeSpringList = 16,    ///< int per (node, spring): +(s+1) if node is s.a, -(s+1) if s.b
+  kTetInfo = 17,           ///< Tetra per tetrahedron
+  kTetForce = 18,          ///< glm::vec4 per tetrahedron corner (4 t + k): volume force
+  kNodeTetOffset = 19,     ///< uint per node + 1: CSR offsets into kNodeTetList
+  kNodeTetList = 20,       ///< uint per (node, tetrahedron corner): the slot 4 t + k
 };
 
 /// 16 bytes. One spring between two nodes (global indices): rest length and stiffness. Its
@@ -87,6 +91,25 @@ struct ObjectInfo {
 };
 static_assert(sizeof(ObjectInfo) == 48);
 static_assert(offsetof(ObjectInfo, box_offset) == 32);
+
+/// 32 bytes. A tetrahedron (global node indices, positively oriented) with its rest volume and
+/// volume stiffness: the volume force that keeps it from collapsing or inverting, which edge
+/// springs alone cannot (a flat tetrahedron's apex can snap through its base).
+struct Tetra {
+  std::uint32_t a;
+  std::uint32_t b;
+  std::uint32_t c;
+  std::uint32_t d;
+  float rest_volume;  ///< m^3
+  /// Pa / m^3: the body's volume stiffness over the tetrahedron's mean rest edge length cubed;
+  /// the force on corner i is -stiffness (V - rest_volume) dV/dx_i. 0 disables it (the
+  /// paper's springs-only model).
+  float stiffness;
+  float pad0;
+  float pad1;
+};
+static_assert(sizeof(Tetra) == 32);
+static_assert(offsetof(Tetra, rest_volume) == 16);
 
 /// 32 bytes. Per-body parameters of the mass-spring step.
 struct BodyParams {

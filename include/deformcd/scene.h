@@ -28,6 +28,9 @@ struct MaterialSpec {
   double stiffness = 2.0e4;
   /// s, along each spring: damping coefficient = damping x the spring's stiffness.
   double damping = 2.0e-4;
+  /// Pa: each tetrahedron resists volume change (and inversion) with this stiffness; unset
+  /// means equal to `stiffness`; 0 is the paper's springs-only model.
+  std::optional<double> volume_stiffness;
 };
 
 /// Nodes held in place: listed by index, and/or every node inside a box (in scene coordinates,

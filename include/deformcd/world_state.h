@@ -17,8 +17,11 @@ namespace deformcd {
 
 /// One body as it enters a world: its arrays plus what the world needs to know about it.
 struct BodyInit {
-  Body body;                         ///< positions already transformed into the scene
-  float damping = 0.0f;              ///< s: each spring's damping = damping x its stiffness
+  Body body;             ///< positions already transformed into the scene
+  float damping = 0.0f;  ///< s: each spring's damping = damping x its stiffness
+  /// Pa: resistance of each tetrahedron to volume change, force from the energy
+  /// k (V - V0)^2 / (2 V0) (Teschner et al. 2004); 0 keeps the paper's springs-only model.
+  float volume_stiffness = 0.0f;
   glm::vec3 carry_velocity{0.0f};    ///< m/s, the body's path
   std::vector<std::uint32_t> fixed;  ///< local indices of nodes held in place
   std::string name;
@@ -44,6 +47,10 @@ struct WorldState {
   std::vector<std::uint32_t> node_body;           ///< SSBO 13
   std::vector<glm::vec4> spring_forces;           ///< SSBO 14
   std::vector<std::uint32_t> node_spring_offset;  ///< SSBO 15, nodes + 1 entries
+  std::vector<gpu::Tetra> tets;                   ///< SSBO 17
+  std::vector<glm::vec4> tet_forces;              ///< SSBO 18, 4 per tetrahedron
+  std::vector<std::uint32_t> node_tet_offset;     ///< SSBO 19, nodes + 1 entries
+  std::vector<std::uint32_t> node_tet_list;       ///< SSBO 20, 4 x tetrahedra entries
   std::vector<std::int32_t> node_spring_list;     ///< SSBO 16, 2 x springs entries
   std::vector<std::string> body_names;
 

@@ -23,6 +23,10 @@
 #define BINDING_SPRING_FORCE 14     // vec4 per spring: force on node a (node b gets -f)
 #define BINDING_NODE_SPRING_OFFSET 15  // uint per node + 1: CSR offsets
 #define BINDING_NODE_SPRING_LIST 16    // int per (node, spring): +(s+1) if a, -(s+1) if b
+#define BINDING_TET_INFO 17            // Tetra per tetrahedron
+#define BINDING_TET_FORCE 18           // vec4 per tetrahedron corner (4 t + k): volume force
+#define BINDING_NODE_TET_OFFSET 19     // uint per node + 1: CSR offsets
+#define BINDING_NODE_TET_LIST 20       // uint per (node, tetrahedron corner): the slot 4 t + k
 
 // 16 bytes. One spring between two nodes (global indices): rest length and stiffness. Its
 // damping is stiffness-proportional with its body's coefficient (BodyParams.damping).
@@ -77,4 +81,17 @@ struct BodyParams {
   float pad0;
   float pad1;
   float pad2;
+};
+
+// 32 bytes. A tetrahedron (global node indices, positively oriented) with its rest volume and
+// volume stiffness (0 disables the volume force: the paper's springs-only model).
+struct Tetra {
+  uint a;
+  uint b;
+  uint c;
+  uint d;
+  float rest_volume;  // m^3
+  float stiffness;    // Pa / m^3: force on corner i = -stiffness (V - rest_volume) dV/dx_i
+  float pad0;
+  float pad1;
 };

@@ -25,6 +25,22 @@ vec3 spring_force(vec3 xa, vec3 xb, vec3 va, vec3 vb, float rest_length, float s
   return magnitude * u;
 }
 
+// Volume forces on the four corners of tetrahedron (a, b, c, d), from the energy
+// c (V - V0)^2 / 2: f_i = -c (V - V0) dV/dx_i, with c = Tetra.stiffness. They sum to zero.
+void tet_volume_forces(vec3 a, vec3 b, vec3 c, vec3 d, float rest_volume, float stiffness,
+                       out vec3 out0, out vec3 out1, out vec3 out2, out vec3 out3) {
+  const vec3 ab = b - a, ac = c - a, ad = d - a;
+  const vec3 grad_b = cross(ac, ad) / 6.0;
+  const vec3 grad_c = cross(ad, ab) / 6.0;
+  const vec3 grad_d = cross(ab, ac) / 6.0;
+  const float volume = dot(ab, grad_b);
+  const float scale = -stiffness * (volume - rest_volume);
+  out1 = scale * grad_b;
+  out2 = scale * grad_c;
+  out3 = scale * grad_d;
+  out0 = -(out1 + out2 + out3);
+}
+
 // Semi-implicit (symplectic) Euler for one node: velocity from force and gravity, decayed,
 // then position from the new velocity plus the body's carry velocity. `position.w` is the
 // inverse mass; 0 marks a fixed node, which keeps zero velocity but is still carried.

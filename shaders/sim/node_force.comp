@@ -1,6 +1,7 @@
 #version 430
 // NodeForce (the paper's compute shader 5): one invocation per node sums the forces of its
-// springs, written by sim/spring_update.comp, over the node's CSR list in list order. A fixed
+// springs, written by sim/spring_update.comp, over the node's CSR list in list order, then the
+// volume forces of its tetrahedron corners (sim/tet_update.comp), likewise. A fixed
 // order per node makes the sum deterministic and equal to the CPU backend's.
 #include "common/layout.glsl"
 // Not sim/mass_spring.glsl: GLSL cannot pass buffers to functions, so the gather is inline.
@@ -15,6 +16,15 @@ layout(std430, binding = BINDING_NODE_SPRING_OFFSET) readonly buffer NodeSpringO
 };
 layout(std430, binding = BINDING_NODE_SPRING_LIST) readonly buffer NodeSpringList {
   int node_spring_list[];
+};
+layout(std430, binding = BINDING_TET_FORCE) readonly buffer TetForces {
+  vec4 tet_forces[];
+};
+layout(std430, binding = BINDING_NODE_TET_OFFSET) readonly buffer NodeTetOffsets {
+  uint node_tet_offset[];
+};
+layout(std430, binding = BINDING_NODE_TET_LIST) readonly buffer NodeTetList {
+  uint node_tet_list[];
 };
 layout(std430, binding = BINDING_NODE_FORCE) writeonly buffer NodeForces {
   vec4 node_forces[];
@@ -35,5 +45,10 @@ void main() {
     const vec3 f = spring_forces[(tag > 0 ? tag : -tag) - 1].xyz;
     sum += tag > 0 ? f : -f;
   }
-  node_forces[i] = vec4(sum, 0.0);
+  // gather_tet_force, line for line: the node's tetrahedron corner slots, in list order.
+  const uint tet_begin = node_tet_offset[i];
+  const uint tet_end = node_tet_offset[i + 1u];
+  vec3 tet_sum = vec3(0.0);
+  for (uint e = tet_begin; e < tet_end; ++e) tet_sum += tet_forces[node_tet_list[e]].xyz;
+  node_forces[i] = vec4(sum + tet_sum, 0.0);
 }

@@ -31,6 +31,13 @@ Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::stri
                                           mesh.nodes[t[3]]) /
                      6.0;
     body.volume += v;
+    body.tet_rest_volume.push_back(static_cast<float>(v));
+    double edges = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      for (int j = i + 1; j < 4; ++j)
+        edges += glm::length(mesh.nodes[t[i]] - mesh.nodes[t[j]]);
+    }
+    body.tet_rest_edge.push_back(static_cast<float>(edges / 6.0));
     for (std::uint32_t n : t)
       mass[n] += 0.25 * v * options.density;
   }

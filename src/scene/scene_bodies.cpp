@@ -53,6 +53,8 @@ BodyInit make_body(const TetMesh& model, const BodySpec& spec, const Scene& scen
       m = static_cast<float>(m * factor);
   }
   init.damping = static_cast<float>(spec.material.damping);
+  init.volume_stiffness =
+      static_cast<float>(spec.material.volume_stiffness.value_or(spec.material.stiffness));
   if (spec.path_to) {
     const double duration = frames * scene.settings.dt;
     init.carry_velocity = glm::vec3((*spec.path_to - spec.position) / duration);

@@ -76,7 +76,8 @@ MaterialSpec read_material(JsonFields f) {
   if (f.has("mass")) m.mass = positive(f, "mass", 0.0);
   m.stiffness = positive(f, "stiffness", m.stiffness);
   m.damping = non_negative(f, "damping", m.damping);
-  f.reject_unknown({"density", "mass", "stiffness", "damping"});
+  if (f.has("volume_stiffness")) m.volume_stiffness = non_negative(f, "volume_stiffness", 0.0);
+  f.reject_unknown({"density", "mass", "stiffness", "damping", "volume_stiffness"});
   return m;
 }
 

@@ -28,8 +28,8 @@ WorldState two_cube_world() {
 TEST(SimulationBufferSizes, ListsEveryBufferWithItsBindingAndSize) {
   const WorldState w = two_cube_world();
   const std::vector<BufferSize> sizes = simulation_buffer_sizes(w);
-  ASSERT_EQ(sizes.size(), 9u);
-  const std::vector<std::uint32_t> bindings = {0, 1, 2, 3, 12, 13, 14, 15, 16};
+  ASSERT_EQ(sizes.size(), 13u);
+  const std::vector<std::uint32_t> bindings = {0, 1, 2, 3, 12, 13, 14, 15, 16, 17, 18, 19, 20};
   const std::vector<std::uint64_t> bytes = {16 * w.node_count(),
                                             16 * w.node_count(),
                                             16 * w.springs.size(),
@@ -38,7 +38,11 @@ TEST(SimulationBufferSizes, ListsEveryBufferWithItsBindingAndSize) {
                                             4 * w.node_count(),
                                             16 * w.springs.size(),
                                             4 * (w.node_count() + 1),
-                                            4 * 2 * w.springs.size()};
+                                            4 * 2 * w.springs.size(),
+                                            32 * w.tets.size(),
+                                            16 * 4 * w.tets.size(),
+                                            4 * (w.node_count() + 1),
+                                            4 * 4 * w.tets.size()};
   for (std::size_t i = 0; i < sizes.size(); ++i) {
     EXPECT_EQ(sizes[i].binding, bindings[i]) << sizes[i].name;
     EXPECT_EQ(sizes[i].bytes(), bytes[i]) << sizes[i].name;

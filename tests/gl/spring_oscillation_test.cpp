@@ -38,6 +38,7 @@ WorldState one_spring_world() {
   w.node_body = {0, 0};
   w.node_spring_offset = {0, 1, 2};
   w.node_spring_list = {1, -1};
+  w.node_tet_offset = {0, 0, 0};
   return w;
 }
 

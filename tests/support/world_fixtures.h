@@ -54,6 +54,7 @@ inline WorldState two_mass_spring(float m1, float m2, float rest, float length, 
   w.node_body = {0, 0};
   w.node_spring_offset = {0, 1, 2};
   w.node_spring_list = {1, -1};
+  w.node_tet_offset = {0, 0, 0};
   w.body_names = {"spring"};
   return w;
 }

@@ -36,6 +36,34 @@ inline glm::vec3 spring_force(const glm::vec3& xa, const glm::vec3& xb, const gl
   return magnitude * u;
 }
 
+/// Volume forces on the four corners of tetrahedron (a, b, c, d), from the energy
+/// c (V - V0)^2 / 2: f_i = -c (V - V0) dV/dx_i, with c = gpu::Tetra::stiffness. They sum to
+/// zero (no net force) and push an inverted tetrahedron back through its base, which edge
+/// springs alone never do.
+inline void tet_volume_forces(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                              const glm::vec3& d, float rest_volume, float stiffness,
+                              glm::vec3 out[4]) {
+  const glm::vec3 ab = b - a, ac = c - a, ad = d - a;
+  const glm::vec3 grad_b = glm::cross(ac, ad) / 6.0f;
+  const glm::vec3 grad_c = glm::cross(ad, ab) / 6.0f;
+  const glm::vec3 grad_d = glm::cross(ab, ac) / 6.0f;
+  const float volume = glm::dot(ab, grad_b);
+  const float scale = -stiffness * (volume - rest_volume);
+  out[1] = scale * grad_b;
+  out[2] = scale * grad_c;
+  out[3] = scale * grad_d;
+  out[0] = -(out[1] + out[2] + out[3]);
+}
+
+/// Sum of the tetrahedron volume forces on one node, over its CSR list of corner slots.
+inline glm::vec3 gather_tet_force(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
+                                  const glm::vec4* tet_forces) {
+  glm::vec3 sum(0.0f);
+  for (std::uint32_t e = begin; e < end; ++e)
+    sum += glm::vec3(tet_forces[list[e]]);
+  return sum;
+}
+
 /// Sum of the spring forces on one node, over its CSR list in order: entry +(s+1) means the
 /// node is end a of spring s (force +f), -(s+1) end b (force -f).
 inline glm::vec3 gather_node_force(const std::int32_t* list, std::uint32_t begin, std::uint32_t end,

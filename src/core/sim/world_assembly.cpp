@@ -7,6 +7,14 @@ namespace deformcd {
 
 namespace {
 
+// The volume energy is k (V - V0)^2 / (2 L^3), L the tetrahedron's mean rest edge length. For a
+// regular tetrahedron L^3 ~ 8.5 V0, as in Teschner et al.'s k (V - V0)^2 / (2 V0); for a sliver
+// (V0 -> 0) dividing by V0 would make it arbitrarily stiff and the explicit step unstable,
+// dividing by L^3 keeps its stiffness in line with its springs'.
+float volume_force_coefficient(float volume_stiffness, float mean_edge) {
+  return volume_stiffness / (mean_edge * mean_edge * mean_edge);
+}
+
 void append_body(WorldState& w, const BodyInit& init, std::uint32_t body_index) {
   const Body& b = init.body;
   gpu::ObjectInfo info{};
@@ -39,6 +47,14 @@ void append_body(WorldState& w, const BodyInit& init, std::uint32_t body_index) 
     w.springs.push_back(
         {s.a + info.node_offset, s.b + info.node_offset, s.rest_length, s.stiffness});
   }
+  w.objects.back().tet_offset = static_cast<std::uint32_t>(w.tets.size());
+  for (std::size_t t = 0; t < b.tetrahedra.size(); ++t) {
+    const Tetrahedron& tet = b.tetrahedra[t];
+    w.tets.push_back({tet[0] + info.node_offset, tet[1] + info.node_offset,
+                      tet[2] + info.node_offset, tet[3] + info.node_offset, b.tet_rest_volume[t],
+                      volume_force_coefficient(init.volume_stiffness, b.tet_rest_edge[t]), 0.0f,
+                      0.0f});
+  }
   for (const gpu::Face& f : b.faces) {
     w.faces.push_back(
         {f.a + info.node_offset, f.b + info.node_offset, f.c + info.node_offset, body_index});
@@ -66,6 +82,27 @@ void build_node_springs(WorldState& w) {
   }
 }
 
+// Per-node tetrahedron corners (CSR): slot 4 t + k for corner k of tetrahedron t, in slot order.
+void build_node_tets(WorldState& w) {
+  std::vector<std::uint32_t> count(w.positions.size() + 1, 0);
+  for (const gpu::Tetra& t : w.tets) {
+    for (std::uint32_t n : {t.a, t.b, t.c, t.d})
+      ++count[n + 1];
+  }
+  for (std::size_t i = 1; i < count.size(); ++i)
+    count[i] += count[i - 1];
+  w.node_tet_offset = count;
+  w.node_tet_list.assign(count.back(), 0);
+  std::vector<std::uint32_t> fill(count.begin(), count.end() - 1);
+  for (std::size_t t = 0; t < w.tets.size(); ++t) {
+    const gpu::Tetra& tet = w.tets[t];
+    const std::uint32_t corners[4] = {tet.a, tet.b, tet.c, tet.d};
+    for (std::uint32_t k = 0; k < 4; ++k) {
+      w.node_tet_list[fill[corners[k]]++] = static_cast<std::uint32_t>(4 * t + k);
+    }
+  }
+}
+
 }  // namespace
 
 WorldState assemble_world(const std::vector<BodyInit>& bodies) {
@@ -75,7 +112,9 @@ WorldState assemble_world(const std::vector<BodyInit>& bodies) {
   }
   w.forces.assign(w.positions.size(), glm::vec4(0.0f));
   w.spring_forces.assign(w.springs.size(), glm::vec4(0.0f));
+  w.tet_forces.assign(4 * w.tets.size(), glm::vec4(0.0f));
   build_node_springs(w);
+  build_node_tets(w);
   return w;
 }
 

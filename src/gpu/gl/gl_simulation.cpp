@@ -53,6 +53,7 @@ GlSimulation::GlSimulation(const DeviceInfo& device, const GlSimulationOptions& 
                        options.max_buffer_bytes >= device.max_ssbo_block_bytes),
       max_work_groups_x_(device.max_work_group_count[0]),
       spring_update_("sim/spring_update.comp"),
+      tet_update_("sim/tet_update.comp"),
       node_force_("sim/node_force.comp"),
       node_update_("sim/node_update.comp") {}
 
@@ -63,6 +64,7 @@ void GlSimulation::upload(const WorldState& state) {
                      limit_is_device_ ? "the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE"
                                       : "GlSimulationOptions::max_buffer_bytes");
   check_fits_one_dispatch(spring_update_, state.springs.size(), max_work_groups_x_);
+  check_fits_one_dispatch(tet_update_, state.tets.size(), max_work_groups_x_);
   check_fits_one_dispatch(node_force_, state.node_count(), max_work_groups_x_);
   check_fits_one_dispatch(node_update_, state.node_count(), max_work_groups_x_);
 
@@ -72,8 +74,12 @@ void GlSimulation::upload(const WorldState& state) {
       make_buffer(state.positions), make_buffer(state.velocities), make_buffer(state.springs),
       make_buffer(state.forces), make_buffer(state.body_params), make_buffer(state.node_body),
       make_buffer(state.spring_forces), make_buffer(state.node_spring_offset),
-      make_buffer(state.node_spring_list), static_cast<std::uint32_t>(state.node_count()),
-      static_cast<std::uint32_t>(state.springs.size())});
+      make_buffer(state.node_spring_list), make_buffer(state.tets), make_buffer(state.tet_forces),
+      make_buffer(state.node_tet_offset), make_buffer(state.node_tet_list),
+      static_cast<std::uint32_t>(state.node_count()),
+      static_cast<std::uint32_t>(state.springs.size()),
+      static_cast<std::uint32_t>(state.tets.size())});
+  tet_update_.set_uniform("u_tet_count", buffers_->tet_count);
   spring_update_.set_uniform("u_spring_count", buffers_->spring_count);
   node_force_.set_uniform("u_node_count", buffers_->node_count);
   node_update_.set_uniform("u_node_count", buffers_->node_count);
@@ -90,9 +96,14 @@ void GlSimulation::substep(const sim::SubstepConstants& constants) {
   b.spring_forces.bind(gpu::kSpringForce);
   b.node_spring_offset.bind(gpu::kNodeSpringOffset);
   b.node_spring_list.bind(gpu::kNodeSpringList);
+  b.tets.bind(gpu::kTetInfo);
+  b.tet_forces.bind(gpu::kTetForce);
+  b.node_tet_offset.bind(gpu::kNodeTetOffset);
+  b.node_tet_list.bind(gpu::kNodeTetList);
 
   spring_update_.dispatch_covering(b.spring_count);
-  storage_barrier();  // node_force reads the spring forces
+  tet_update_.dispatch_covering(b.tet_count);
+  storage_barrier();  // node_force reads the spring and tetrahedron forces
   node_force_.dispatch_covering(b.node_count);
   storage_barrier();  // node_update reads the node forces
   node_update_.set_uniform("u_h", constants.h);

@@ -43,8 +43,13 @@ struct SimulationBuffers {
   Ssbo<glm::vec4> spring_forces;           // SSBO 14
   Ssbo<std::uint32_t> node_spring_offset;  // SSBO 15
   Ssbo<std::int32_t> node_spring_list;     // SSBO 16
+  Ssbo<gpu::Tetra> tets;                   // SSBO 17
+  Ssbo<glm::vec4> tet_forces;              // SSBO 18
+  Ssbo<std::uint32_t> node_tet_offset;     // SSBO 19
+  Ssbo<std::uint32_t> node_tet_list;       // SSBO 20
   std::uint32_t node_count = 0;
   std::uint32_t spring_count = 0;
+  std::uint32_t tet_count = 0;
 };
 
 class GlSimulation final : public sim::SimulationBackend {
@@ -87,6 +92,7 @@ class GlSimulation final : public sim::SimulationBackend {
   bool limit_is_device_ = true;  // whether max_buffer_bytes_ is the device's, for messages
   std::uint32_t max_work_groups_x_ = 0;
   ComputeProgram spring_update_;
+  ComputeProgram tet_update_;
   ComputeProgram node_force_;
   ComputeProgram node_update_;
   std::optional<SimulationBuffers> buffers_;

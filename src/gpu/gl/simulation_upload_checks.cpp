@@ -58,6 +58,32 @@ void check_node_springs(const WorldState& w) {
   }
 }
 
+void check_tets(const WorldState& w) {
+  for (std::size_t t = 0; t < w.tets.size(); ++t) {
+    const gpu::Tetra& tet = w.tets[t];
+    for (std::uint32_t n : {tet.a, tet.b, tet.c, tet.d}) {
+      if (n >= w.node_count()) {
+        inconsistent("tetrahedron " + std::to_string(t) + " has node " + std::to_string(n) +
+                     ", but there are " + std::to_string(w.node_count()) + " nodes");
+      }
+    }
+  }
+  const std::vector<std::uint32_t>& offset = w.node_tet_offset;
+  if (offset.front() != 0) inconsistent("node_tet_offset[0] is not 0");
+  for (std::size_t i = 0; i + 1 < offset.size(); ++i) {
+    if (offset[i + 1] < offset[i])
+      inconsistent("node_tet_offset decreases at node " + std::to_string(i));
+  }
+  expect_length("node_tet_list", w.node_tet_list.size(), "node_tet_offset's last entry",
+                offset.back());
+  for (std::size_t e = 0; e < w.node_tet_list.size(); ++e) {
+    if (w.node_tet_list[e] >= w.tet_forces.size()) {
+      inconsistent("node_tet_list[" + std::to_string(e) +
+                   "] = " + std::to_string(w.node_tet_list[e]) + " names no tetrahedron corner");
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<BufferSize> simulation_buffer_sizes(const WorldState& w) {
@@ -71,6 +97,10 @@ std::vector<BufferSize> simulation_buffer_sizes(const WorldState& w) {
       size_of("Spring Force", gpu::kSpringForce, w.spring_forces),
       size_of("Node Spring Offset", gpu::kNodeSpringOffset, w.node_spring_offset),
       size_of("Node Spring List", gpu::kNodeSpringList, w.node_spring_list),
+      size_of("Tetrahedron Information", gpu::kTetInfo, w.tets),
+      size_of("Tetrahedron Force", gpu::kTetForce, w.tet_forces),
+      size_of("Node Tetrahedron Offset", gpu::kNodeTetOffset, w.node_tet_offset),
+      size_of("Node Tetrahedron List", gpu::kNodeTetList, w.node_tet_list),
   };
 }
 
@@ -103,8 +133,11 @@ void check_world_consistency(const WorldState& w) {
                    std::to_string(w.body_params.size()) + " bodies");
     }
   }
+  expect_length("node_tet_offset", w.node_tet_offset.size(), "positions (+1)", nodes + 1);
+  expect_length("tet_forces", w.tet_forces.size(), "tets (x4)", 4 * w.tets.size());
   check_springs(w);
   check_node_springs(w);
+  check_tets(w);
 }
 
 }  // namespace deformcd::gl
