@@ -5,6 +5,9 @@ cd "$(dirname "$0")/.."
 preset="${1:-release}"
 jobs="${DEFORMCD_JOBS:-$(nproc)}"
 if command -v ccache >/dev/null 2>&1; then
+  # Paths relative to the checkout, so that another clone (CI) hits the same cache entries.
+  export CCACHE_BASEDIR="$PWD"
+  export CCACHE_NOHASHDIR=1  # debug builds too: do not key the cache on the checkout path
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 else
   launcher=()

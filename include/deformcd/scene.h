@@ -22,7 +22,7 @@ namespace deformcd {
 /// Material of a body. Either density or total mass sets the node masses.
 struct MaterialSpec {
   std::optional<double> density;  ///< kg/m^3; lumped per node from the tetrahedra
-  std::optional<double> mass;     ///< kg, total; spread in proportion to the lumped volumes
+  std::optional<double> mass;     ///< kg, total; spread uniformly over the nodes
   /// Pa, Young's-modulus-like: a spring on an edge of tetrahedron t gets k = stiffness x
   /// volume(t) / rest_length^2, so the body's response does not depend on its meshing.
   double stiffness = 2.0e4;
@@ -83,14 +83,17 @@ struct Scene {
 /// Loads a model file (TetGen prefix, or a surface when a tetrahedralizer is available).
 using ModelLoader = std::function<TetMesh(const std::filesystem::path&)>;
 
+/// The broad-phase names a scene's `collision.broadphase` may take.
+[[nodiscard]] const std::vector<std::string>& known_broadphases();
+
 /// Reads and checks a scene file. Model paths are resolved against the scene's folder and must
 /// exist (as a file, or as a TetGen prefix with PREFIX.node). Throws InputError.
 [[nodiscard]] Scene read_scene(const std::filesystem::path& file);
 
 /// The scene's bodies, ready for a world: each model loaded (once per distinct file), scaled,
-/// rotated and translated; masses from density (lumped) or total mass; rest lengths measured in
-/// that pose; then the squash applied about the body's centroid; fixed nodes by index and box;
-/// carry velocity = (path.to - position) / (frames x dt), so that the path spans `frames`.
+/// rotated and translated; masses from density (lumped) or total mass (uniform); rest lengths
+/// measured in that pose; then the squash applied about the body's centroid; fixed nodes by index
+/// and box; carry velocity = (path.to - position) / (frames x dt), so that the path spans `frames`.
 /// Throws InputError naming the scene file and the body.
 [[nodiscard]] std::vector<BodyInit> make_scene_bodies(const Scene& scene, const ModelLoader& load,
                                                       int frames);

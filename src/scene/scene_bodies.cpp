@@ -44,13 +44,10 @@ BodyInit make_body(const TetMesh& model, const BodySpec& spec, const Scene& scen
   init.name = spec.name;
   init.body = build_body(mesh, options, where);
   Body& body = init.body;
-  if (spec.material.mass) {
-    double total = 0.0;
-    for (float m : body.node_mass)
-      total += m;
-    const double factor = *spec.material.mass / total;
+  if (spec.material.mass) {  // uniform: every node gets an equal share of the total
+    const double share = *spec.material.mass / static_cast<double>(body.node_mass.size());
     for (float& m : body.node_mass)
-      m = static_cast<float>(m * factor);
+      m = static_cast<float>(share);
   }
   init.damping = static_cast<float>(spec.material.damping);
   init.volume_stiffness =

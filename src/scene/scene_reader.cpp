@@ -1,5 +1,6 @@
 // read_scene: JSON -> Scene, strictly (see json_fields.h).
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -64,6 +65,13 @@ SimulationSettings read_settings(JsonFields f) {
 CollisionSettings read_collision(JsonFields f) {
   CollisionSettings c;
   c.broadphase = f.string("broadphase").value_or(c.broadphase);
+  const auto& valid = known_broadphases();
+  if (std::find(valid.begin(), valid.end(), c.broadphase) == valid.end()) {
+    std::string list;
+    for (const std::string& name : valid)
+      list += (list.empty() ? "" : ", ") + name;
+    f.fail("broadphase", "unknown broad phase '" + c.broadphase + "' (valid: " + list + ")");
+  }
   c.self = f.boolean("self").value_or(c.self);
   f.reject_unknown({"broadphase", "self"});
   return c;
@@ -143,6 +151,11 @@ BodySpec read_body(JsonFields f, const fs::path& folder) {
 }
 
 }  // namespace
+
+const std::vector<std::string>& known_broadphases() {
+  static const std::vector<std::string> names = {"brute", "octree"};
+  return names;
+}
 
 Scene read_scene(const fs::path& file) {
   const nlohmann::json root = parse_file(file);

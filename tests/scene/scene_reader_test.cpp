@@ -93,6 +93,14 @@ TEST_F(SceneReaderTest, WrongTypesAreNamed) {
   EXPECT_NE(msg.find("/settings/substeps: expected an integer"), std::string::npos) << msg;
 }
 
+TEST_F(SceneReaderTest, UnknownBroadPhaseListsTheValidOnes) {
+  const std::string msg = error_of(R"({"collision": {"broadphase": "kdtree"},
+      "bodies": [{"model": "models/cube"}]})");
+  EXPECT_NE(msg.find("/collision/broadphase: unknown broad phase 'kdtree' (valid: brute, octree)"),
+            std::string::npos)
+      << msg;
+}
+
 TEST_F(SceneReaderTest, MissingModelFileIsNamed) {
   const std::string msg = error_of(R"({"bodies": [{"model": "models/sphere"}]})");
   EXPECT_NE(msg.find("/bodies/0/model: no such model"), std::string::npos) << msg;
