@@ -63,44 +63,48 @@ void append_body(WorldState& w, const BodyInit& init, std::uint32_t body_index) 
   w.body_names.push_back(name);
 }
 
-// Per-node incident springs (CSR), each node's list in increasing spring order.
-void build_node_springs(WorldState& w) {
-  std::vector<std::uint32_t> count(w.positions.size() + 1, 0);
-  for (const gpu::Spring& s : w.springs) {
-    ++count[s.a + 1];
-    ++count[s.b + 1];
-  }
-  for (std::size_t i = 1; i < count.size(); ++i)
-    count[i] += count[i - 1];
-  w.node_spring_offset = count;
-  w.node_spring_list.assign(count.back(), 0);
-  std::vector<std::uint32_t> fill(count.begin(), count.end() - 1);
-  for (std::size_t s = 0; s < w.springs.size(); ++s) {
-    const auto tag = static_cast<std::int32_t>(s + 1);
-    w.node_spring_list[fill[w.springs[s].a]++] = tag;
-    w.node_spring_list[fill[w.springs[s].b]++] = -tag;
-  }
+// Compressed per-node lists: `for_each_entry(emit)` calls emit(node, value) for every entry in
+// the order the lists must keep; the result holds offsets (nodes + 1) and the values.
+template <class Value, class ForEachEntry>
+void build_csr(std::size_t nodes, const ForEachEntry& for_each_entry,
+               std::vector<std::uint32_t>& offset, std::vector<Value>& list) {
+  offset.assign(nodes + 1, 0);
+  for_each_entry([&](std::uint32_t node, Value) { ++offset[node + 1]; });
+  for (std::size_t i = 1; i < offset.size(); ++i)
+    offset[i] += offset[i - 1];
+  list.assign(offset.back(), Value{});
+  std::vector<std::uint32_t> fill(offset.begin(), offset.end() - 1);
+  for_each_entry([&](std::uint32_t node, Value value) { list[fill[node]++] = value; });
 }
 
-// Per-node tetrahedron corners (CSR): slot 4 t + k for corner k of tetrahedron t, in slot order.
+// Per-node incident springs, in increasing spring order: +(s+1) at end a, -(s+1) at end b.
+void build_node_springs(WorldState& w) {
+  build_csr<std::int32_t>(
+      w.positions.size(),
+      [&](auto emit) {
+        for (std::size_t s = 0; s < w.springs.size(); ++s) {
+          const auto tag = static_cast<std::int32_t>(s + 1);
+          emit(w.springs[s].a, tag);
+          emit(w.springs[s].b, -tag);
+        }
+      },
+      w.node_spring_offset, w.node_spring_list);
+}
+
+// Per-node tetrahedron corners: slot 4 t + k for corner k of tetrahedron t, in slot order.
 void build_node_tets(WorldState& w) {
-  std::vector<std::uint32_t> count(w.positions.size() + 1, 0);
-  for (const gpu::Tetra& t : w.tets) {
-    for (std::uint32_t n : {t.a, t.b, t.c, t.d})
-      ++count[n + 1];
-  }
-  for (std::size_t i = 1; i < count.size(); ++i)
-    count[i] += count[i - 1];
-  w.node_tet_offset = count;
-  w.node_tet_list.assign(count.back(), 0);
-  std::vector<std::uint32_t> fill(count.begin(), count.end() - 1);
-  for (std::size_t t = 0; t < w.tets.size(); ++t) {
-    const gpu::Tetra& tet = w.tets[t];
-    const std::uint32_t corners[4] = {tet.a, tet.b, tet.c, tet.d};
-    for (std::uint32_t k = 0; k < 4; ++k) {
-      w.node_tet_list[fill[corners[k]]++] = static_cast<std::uint32_t>(4 * t + k);
-    }
-  }
+  build_csr<std::uint32_t>(
+      w.positions.size(),
+      [&](auto emit) {
+        for (std::size_t t = 0; t < w.tets.size(); ++t) {
+          const gpu::Tetra& tet = w.tets[t];
+          const std::uint32_t corners[4] = {tet.a, tet.b, tet.c, tet.d};
+          for (std::uint32_t k = 0; k < 4; ++k) {
+            emit(corners[k], static_cast<std::uint32_t>(4 * t + k));
+          }
+        }
+      },
+      w.node_tet_offset, w.node_tet_list);
 }
 
 }  // namespace
