@@ -52,16 +52,23 @@ void run(benchmark::State& state, sim::SimulationBackend& backend, const WorldSt
 void register_all() {
   for (const char* model : {"armadillo", "bunny", "dragon", "lion"}) {
     const std::string name(model);
-    benchmark::RegisterBenchmark(("substep/cpu/" + name).c_str(), [name](benchmark::State& s) {
-      cpu::CpuSimulation backend;
-      run(s, backend, model_world(name));
-    })->Unit(benchmark::kMillisecond)->UseRealTime();
+    benchmark::RegisterBenchmark(("substep/cpu/" + name).c_str(),
+                                 [name](benchmark::State& s) {
+                                   cpu::CpuSimulation backend;
+                                   run(s, backend, model_world(name));
+                                 })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
 #ifdef DEFORMCD_HAS_GL
-    benchmark::RegisterBenchmark(("substep/gl/" + name).c_str(), [name](benchmark::State& s) {
-      static std::unique_ptr<gl::Context> context = gl::create_headless_context();
-      gl::GlSimulation backend(*context);
-      run(s, backend, model_world(name));
-    })->Unit(benchmark::kMillisecond)->UseRealTime();
+    benchmark::RegisterBenchmark(("substep/gl/" + name).c_str(),
+                                 [name](benchmark::State& s) {
+                                   static std::unique_ptr<gl::Context> context =
+                                       gl::create_headless_context();
+                                   gl::GlSimulation backend(*context);
+                                   run(s, backend, model_world(name));
+                                 })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
 #endif
   }
 }
