@@ -81,6 +81,38 @@ TEST(WorldCpu, BlowUpStopsWithTheBodyFrameAndAdvice) {
   }
 }
 
+TEST(WorldCpu, RejectsABodyWithoutSurfaceFaces) {
+  BodyInit init;
+  init.name = "hollow";
+  init.body = build_body(test::cube_grid(1, 1, 1));
+  init.body.faces.clear();
+  WorldOptions options;
+  options.backend = BackendKind::kCpu;
+  try {
+    World world({init}, StepSettings{}, options);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("hollow: body has no surface faces"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(WorldCpu, OneBodySceneRuns) {
+  BodyOptions soft;
+  soft.stiffness = 1.0e3;
+  BodyInit init;
+  init.body = build_body(test::cube_grid(2, 2, 2), soft);
+  StepSettings settings;
+  settings.substeps = 10;
+  WorldOptions options;
+  options.backend = BackendKind::kCpu;
+  World world({init}, settings, options);
+  for (int f = 0; f < 10; ++f)
+    world.step();
+  EXPECT_EQ(world.frame(), 10);
+  EXPECT_EQ(world.body_count(), 1u);
+}
+
 TEST(WorldCpu, RejectsUnknownBackendNamesListingTheValidOnes) {
   try {
     (void)parse_backend("cuda");
