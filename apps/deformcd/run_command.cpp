@@ -72,7 +72,8 @@ int run(const RunOptions& o) {
             << " nodes)\n"
             << "backend    " << world.backend_name() << " (" << world.device() << ")\n"
             << "frames     " << frames << " x " << scene.settings.substeps << " substeps, dt "
-            << scene.settings.dt << " s\n"
+            << scene.settings.dt << " s (substep " << scene.settings.dt / scene.settings.substeps
+            << " s; estimated stable up to " << world.estimated_max_substep() << " s)\n"
             << std::fixed << std::setprecision(3) << "time       " << seconds << " s, "
             << 1000.0 * seconds / frames << " ms per frame\n";
   if (!o.positions_out.empty()) std::cout << "positions  " << o.positions_out << '\n';

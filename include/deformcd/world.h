@@ -87,14 +87,18 @@ class World {
   [[nodiscard]] std::string_view backend_name() const;
   /// The device: GL renderer and version, or the CPU thread count.
   [[nodiscard]] std::string device() const;
-  /// Set when kAuto fell back to the CPU: why GL was not used.
+  /// Things a user should know, one per line: why kAuto fell back to the CPU; a substep longer
+  /// than the estimated stable one. Empty when there is nothing to say.
   [[nodiscard]] const std::string& notice() const { return notice_; }
+  /// Estimated largest stable substep (s), a conservative bound (see stability_estimate.h).
+  [[nodiscard]] double estimated_max_substep() const { return max_stable_substep_; }
   /// GL buffer name of all node positions (vec4, xyz + inverse mass; body i's nodes start at
   /// object(i).node_offset), for rendering without a CPU copy. 0 on the CPU backend.
   [[nodiscard]] std::uint32_t gl_position_buffer() const;
 
  private:
   void check_stability();
+  [[nodiscard]] int suggested_substeps() const;
 
   std::unique_ptr<gl::Context> owned_context_;
   std::unique_ptr<sim::SimulationBackend> backend_;
@@ -104,6 +108,7 @@ class World {
   std::vector<gpu::ObjectInfo> objects_;
   std::vector<std::string> names_;
   std::vector<float> body_sizes_;  // bounding-box diagonal at the start, for the blow-up test
+  double max_stable_substep_ = 0.0;
   std::string notice_;
 };
 

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "backend_factory.h"
+#include "core/sim/stability_estimate.h"
 #include "deformcd/gl/context.h"
 
 namespace deformcd {
@@ -26,6 +27,15 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   owned_context_ = std::move(created.owned_context);
   backend_ = std::move(created.backend);
   notice_ = std::move(created.notice);
+  max_stable_substep_ = sim::estimate_max_stable_substep(state);
+  const double h = static_cast<double>(settings.dt) / settings.substeps;
+  if (h > max_stable_substep_) {
+    std::ostringstream msg;
+    msg << "the substep (" << h << " s) is longer than the estimated stable one ("
+        << max_stable_substep_ << " s, a conservative bound); if the simulation blows up, use "
+        << "substeps >= " << suggested_substeps() << " or softer materials";
+    notice_ += (notice_.empty() ? "" : "\n") + msg.str();
+  }
   backend_->upload(state);
 }
 
@@ -43,6 +53,11 @@ void World::step() {
 
 void World::finish() {
   backend_->finish();
+}
+
+int World::suggested_substeps() const {
+  if (!std::isfinite(max_stable_substep_)) return 1;
+  return static_cast<int>(std::ceil(settings_.dt / max_stable_substep_));
 }
 
 void World::check_stability() {
@@ -68,7 +83,9 @@ void World::check_stability() {
             << body_sizes_[b] << ")";
       }
       msg << ". Use a smaller dt or more substeps (now dt = " << settings_.dt
-          << " s, substeps = " << settings_.substeps << "), or softer springs";
+          << " s, substeps = " << settings_.substeps << "; the estimated stable substep is "
+          << max_stable_substep_ << " s, i.e. substeps >= " << suggested_substeps()
+          << "), or softer springs";
       throw SimulationError(msg.str());
     }
   }

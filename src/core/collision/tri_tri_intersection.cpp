@@ -1,0 +1,213 @@
+#include "core/collision/tri_tri_intersection.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+// Tolerances and the uncertain zone. A float plane test dot(n, x - a0) with n = cross(e1, e2)
+// has a rounding error of a few ulps of |e1| |e2| |x - a0|, i.e. of (longest edge)^2 x (pair
+// size) for the pairs the broad phase lets through; it does not shrink with |n|, so a tolerance
+// on the unnormalised distance of kTriTriTolerance x edge^2 x size (about 100 ulps) covers it
+// for slivers as well as for well-shaped triangles, and is dimensionless: scaling or moving the
+// pair scales it with the pair. Every test snaps values inside its tolerance to zero, so a pair
+// within ~1e-5 relative of touching is decided as touching, and touching counts as intersecting
+// (a contact is better reported than missed; the response sees a zero-length segment). Distances
+// are taken along unit normals so that the float range is used as L, not L^5 (mm to km scales
+// stay far from underflow and overflow, also on GPUs that flush denormals).
+
+namespace deformcd::collision {
+namespace {
+
+float longest_edge2(const glm::vec3 t[3]) {
+  const glm::vec3 e0 = t[1] - t[0];
+  const glm::vec3 e1 = t[2] - t[1];
+  const glm::vec3 e2 = t[0] - t[2];
+  return std::max(glm::dot(e0, e0), std::max(glm::dot(e1, e1), glm::dot(e2, e2)));
+}
+
+float snap_to_zero(float v, float tolerance) { return std::abs(v) <= tolerance ? 0.0f : v; }
+
+// True when all three values are strictly on one side (a triangle wholly off the plane).
+bool same_strict_side(const float d[3]) {
+  return (d[0] > 0.0f && d[1] > 0.0f && d[2] > 0.0f) || (d[0] < 0.0f && d[1] < 0.0f && d[2] < 0.0f);
+}
+
+// Sign comparison rather than a product, which underflows at small scales.
+bool opposite_signs(float a, float b) { return (a < 0.0f && b > 0.0f) || (a > 0.0f && b < 0.0f); }
+
+// The part of triangle t on the other triangle's plane, as an interval of the parameter
+// dot(dir, x - origin) along the planes' intersection line, with the points at its ends. The
+// points are its vertices on the plane (d == 0) and its edges' crossings of the plane.
+struct LineInterval {
+  float t_min;
+  float t_max;
+  glm::vec3 x_min;
+  glm::vec3 x_max;
+};
+
+LineInterval line_interval(const glm::vec3 t[3], const float d[3], const glm::vec3& dir,
+                           const glm::vec3& origin) {
+  LineInterval r{3.4e38f, -3.4e38f, glm::vec3(0.0f), glm::vec3(0.0f)};
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    bool found = false;
+    glm::vec3 x(0.0f);
+    if (d[i] == 0.0f) {
+      x = t[i];
+      found = true;
+    } else if (opposite_signs(d[i], d[j])) {
+      x = t[i] + (t[j] - t[i]) * (d[i] / (d[i] - d[j]));  // d[i] != d[j]: no division by zero
+      found = true;
+    }
+    const float s = glm::dot(dir, x - origin);
+    if (found && s < r.t_min) {
+      r.t_min = s;
+      r.x_min = x;
+    }
+    if (found && s > r.t_max) {
+      r.t_max = s;
+      r.x_max = x;
+    }
+  }
+  return r;
+}
+
+float orient2d(const glm::vec2& a, const glm::vec2& b, const glm::vec2& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+// Closed segments ab and cd meet (within tolerance) in the projection plane.
+bool segments_meet_2d(const glm::vec2& a, const glm::vec2& b, const glm::vec2& c,
+                      const glm::vec2& d, float area_tol, float length_tol) {
+  const float o1 = snap_to_zero(orient2d(a, b, c), area_tol);
+  const float o2 = snap_to_zero(orient2d(a, b, d), area_tol);
+  const float o3 = snap_to_zero(orient2d(c, d, a), area_tol);
+  const float o4 = snap_to_zero(orient2d(c, d, b), area_tol);
+  if (o1 == 0.0f && o2 == 0.0f) {  // collinear: overlap of the 1D intervals on ab's main axis
+    const int k = std::abs(b.x - a.x) >= std::abs(b.y - a.y) ? 0 : 1;
+    return std::max(std::min(a[k], b[k]), std::min(c[k], d[k])) <=
+           std::min(std::max(a[k], b[k]), std::max(c[k], d[k])) + length_tol;
+  }
+  return !opposite_signs(o1, o2) && !opposite_signs(o3, o4);
+}
+
+// Point x inside or on the boundary of triangle t (either winding).
+bool point_in_triangle_2d(const glm::vec2& x, const glm::vec2 t[3], float area_tol) {
+  const float s0 = snap_to_zero(orient2d(t[0], t[1], x), area_tol);
+  const float s1 = snap_to_zero(orient2d(t[1], t[2], x), area_tol);
+  const float s2 = snap_to_zero(orient2d(t[2], t[0], x), area_tol);
+  const bool has_negative = s0 < 0.0f || s1 < 0.0f || s2 < 0.0f;
+  const bool has_positive = s0 > 0.0f || s1 > 0.0f || s2 > 0.0f;
+  return !(has_negative && has_positive);
+}
+
+// Coplanar triangles: project onto the coordinate plane where the normal n is largest (the
+// projection with the least shrinkage), then edge-edge crossings, then containment.
+bool coplanar_overlap(const glm::vec3 a[3], const glm::vec3 b[3], const glm::vec3& n,
+                      float size) {
+  const glm::vec3 m = glm::abs(n);
+  int u = 1;  // drop x
+  int v = 2;
+  if (m.y >= m.x && m.y >= m.z) {  // drop y
+    u = 0;
+    v = 2;
+  } else if (m.z >= m.x && m.z >= m.y) {  // drop z
+    u = 0;
+    v = 1;
+  }
+  glm::vec2 a2[3];
+  glm::vec2 b2[3];
+  for (int i = 0; i < 3; ++i) {  // relative to a[0]: keeps the projected values small
+    a2[i] = glm::vec2(a[i][u] - a[0][u], a[i][v] - a[0][v]);
+    b2[i] = glm::vec2(b[i][u] - a[0][u], b[i][v] - a[0][v]);
+  }
+  const float area_tol = kTriTriTolerance * size * size;
+  const float length_tol = kTriTriTolerance * size;
+  bool meet = false;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      meet = meet || segments_meet_2d(a2[i], a2[(i + 1) % 3], b2[j], b2[(j + 1) % 3], area_tol,
+                                      length_tol);
+    }
+  }
+  return meet || point_in_triangle_2d(a2[0], b2, area_tol) ||
+         point_in_triangle_2d(b2[0], a2, area_tol);
+}
+
+}  // namespace
+
+TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]) {
+  TriTriResult result;
+  // Symmetry: process the pair in a canonical order (lexicographic on the 9 coordinates), so
+  // that f(p, q) and f(q, p) run the same float operations and return the same result.
+  bool swap = false;
+  bool decided = false;
+  for (int k = 0; k < 3; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      if (!decided && p[k][c] != q[k][c]) {
+        swap = q[k][c] < p[k][c];
+        decided = true;
+      }
+    }
+  }
+  glm::vec3 a[3];
+  glm::vec3 b[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = swap ? q[i] : p[i];
+    b[i] = swap ? p[i] : q[i];
+  }
+
+  // Degenerate triangles have no plane: no intersection (this also covers zero-length edges,
+  // where both sides are 0, so nothing below divides by zero).
+  const float la2 = longest_edge2(a);
+  const float lb2 = longest_edge2(b);
+  const glm::vec3 na = glm::cross(a[1] - a[0], a[2] - a[0]);
+  const glm::vec3 nb = glm::cross(b[1] - b[0], b[2] - b[0]);
+  const float na_len = glm::length(na);
+  const float nb_len = glm::length(nb);
+  if (!(na_len > kTriTriDegenerateTolerance * la2) || !(nb_len > kTriTriDegenerateTolerance * lb2))
+    return result;
+  const float size = std::sqrt(std::max(la2, lb2));
+  const glm::vec3 ua = na / na_len;
+  const glm::vec3 ub = nb / nb_len;
+
+  // Signed distances of each triangle's vertices to the other's plane, snapped to the plane
+  // within edge^2 x size of the unnormalised distance (here divided by |n|: unit normals).
+  const float tol_a = kTriTriTolerance * la2 * size / na_len;
+  const float tol_b = kTriTriTolerance * lb2 * size / nb_len;
+  float db[3];
+  float da[3];
+  for (int i = 0; i < 3; ++i) {
+    db[i] = snap_to_zero(glm::dot(ua, b[i] - a[0]), tol_a);
+    da[i] = snap_to_zero(glm::dot(ub, a[i] - b[0]), tol_b);
+  }
+  const bool b_on_plane_a = db[0] == 0.0f && db[1] == 0.0f && db[2] == 0.0f;
+  const bool a_on_plane_b = da[0] == 0.0f && da[1] == 0.0f && da[2] == 0.0f;
+  if (b_on_plane_a || a_on_plane_b) {
+    result.coplanar = true;
+    result.intersect = coplanar_overlap(a, b, na, size);
+    return result;
+  }
+  if (same_strict_side(db) || same_strict_side(da)) return result;
+
+  // Both triangles cross the line of the planes' intersection: overlap of their intervals.
+  const glm::vec3 dir = glm::cross(ua, ub);
+  const LineInterval ia = line_interval(a, da, dir, a[0]);
+  const LineInterval ib = line_interval(b, db, dir, a[0]);
+  const bool lo_from_a = ia.t_min >= ib.t_min;
+  const bool hi_from_a = ia.t_max <= ib.t_max;
+  const float t_lo = lo_from_a ? ia.t_min : ib.t_min;
+  const float t_hi = hi_from_a ? ia.t_max : ib.t_max;
+  const glm::vec3 x_lo = lo_from_a ? ia.x_min : ib.x_min;
+  const glm::vec3 x_hi = hi_from_a ? ia.x_max : ib.x_max;
+  if (t_lo > t_hi + kTriTriTolerance * size * glm::length(dir)) return result;
+  result.intersect = true;
+  const bool touching = t_lo > t_hi;  // a gap inside the tolerance: one contact point
+  result.segment[0] = touching ? 0.5f * (x_lo + x_hi) : x_lo;
+  result.segment[1] = touching ? 0.5f * (x_lo + x_hi) : x_hi;
+  return result;
+}
+
+}  // namespace deformcd::collision
