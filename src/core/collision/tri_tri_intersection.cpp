@@ -1,4 +1,4 @@
-#include "core/collision/tri_tri_intersection.h"
+#include "collision/tri_tri_intersection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,16 +6,21 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-// Tolerances and the uncertain zone. A float plane test dot(n, x - a0) with n = cross(e1, e2)
-// has a rounding error of a few ulps of |e1| |e2| |x - a0|, i.e. of (longest edge)^2 x (pair
-// size) for the pairs the broad phase lets through; it does not shrink with |n|, so a tolerance
-// on the unnormalised distance of kTriTriTolerance x edge^2 x size (about 100 ulps) covers it
-// for slivers as well as for well-shaped triangles, and is dimensionless: scaling or moving the
-// pair scales it with the pair. Every test snaps values inside its tolerance to zero, so a pair
-// within ~1e-5 relative of touching is decided as touching, and touching counts as intersecting
-// (a contact is better reported than missed; the response sees a zero-length segment). Distances
-// are taken along unit normals so that the float range is used as L, not L^5 (mm to km scales
-// stay far from underflow and overflow, also on GPUs that flush denormals).
+// Tolerances and the uncertain zone. Nothing is compared with an absolute epsilon: every
+// tolerance is a dimensionless constant times the pair's own lengths, so scaling the pair scales
+// the decision with it (the reference code's 1e-6 on plane distances fails at mm and km scales).
+// The plane test |dot(n, x - a0)| with n = cross(e1, e2) snaps to zero within
+// kTriTriTolerance |n| S + kTriTriRoundoff L^2 S (L the triangle's longest edge, S the pair's):
+// the first term is the 1e-5 relative band asked of touching, the second the float error of the
+// test itself, a few ulps of |e1| |e2| |x - a0|, which does not shrink with |n| and so dominates
+// for slivers (below a height of ~1e-4 of the length the triangle counts as degenerate, since
+// then the band would swallow everything near it). Every test snaps values inside its
+// tolerance to zero, so a pair within ~1e-5 relative of touching is decided as touching, and
+// touching counts as intersecting (a contact is better reported than missed; the response sees
+// a zero-length segment). Distances are taken along unit normals so that values scale as L, not
+// L^5 (mm to km scales stay far from float underflow and overflow, also on GPUs that flush
+// denormals). Positions far from the origin relative to S (|x| / S > ~100) add input rounding
+// the tolerance does not cover; callers should keep coordinates body- or scene-local.
 
 namespace deformcd::collision {
 namespace {
@@ -27,15 +32,23 @@ float longest_edge2(const glm::vec3 t[3]) {
   return std::max(glm::dot(e0, e0), std::max(glm::dot(e1, e1), glm::dot(e2, e2)));
 }
 
-float snap_to_zero(float v, float tolerance) { return std::abs(v) <= tolerance ? 0.0f : v; }
+float snap_to_zero(float v, float tolerance) {
+  return std::abs(v) <= tolerance ? 0.0f : v;
+}
 
 // True when all three values are strictly on one side (a triangle wholly off the plane).
 bool same_strict_side(const float d[3]) {
   return (d[0] > 0.0f && d[1] > 0.0f && d[2] > 0.0f) || (d[0] < 0.0f && d[1] < 0.0f && d[2] < 0.0f);
 }
 
+bool same_strict_sign(float a, float b) {
+  return (a < 0.0f && b < 0.0f) || (a > 0.0f && b > 0.0f);
+}
+
 // Sign comparison rather than a product, which underflows at small scales.
-bool opposite_signs(float a, float b) { return (a < 0.0f && b > 0.0f) || (a > 0.0f && b < 0.0f); }
+bool opposite_signs(float a, float b) {
+  return (a < 0.0f && b > 0.0f) || (a > 0.0f && b < 0.0f);
+}
 
 // The part of triangle t on the other triangle's plane, as an interval of the parameter
 // dot(dir, x - origin) along the planes' intersection line, with the points at its ends. The
@@ -90,7 +103,7 @@ bool segments_meet_2d(const glm::vec2& a, const glm::vec2& b, const glm::vec2& c
     return std::max(std::min(a[k], b[k]), std::min(c[k], d[k])) <=
            std::min(std::max(a[k], b[k]), std::max(c[k], d[k])) + length_tol;
   }
-  return !opposite_signs(o1, o2) && !opposite_signs(o3, o4);
+  return !same_strict_sign(o1, o2) && !same_strict_sign(o3, o4);
 }
 
 // Point x inside or on the boundary of triangle t (either winding).
@@ -105,8 +118,7 @@ bool point_in_triangle_2d(const glm::vec2& x, const glm::vec2 t[3], float area_t
 
 // Coplanar triangles: project onto the coordinate plane where the normal n is largest (the
 // projection with the least shrinkage), then edge-edge crossings, then containment.
-bool coplanar_overlap(const glm::vec3 a[3], const glm::vec3 b[3], const glm::vec3& n,
-                      float size) {
+bool coplanar_overlap(const glm::vec3 a[3], const glm::vec3 b[3], const glm::vec3& n, float size) {
   const glm::vec3 m = glm::abs(n);
   int u = 1;  // drop x
   int v = 2;
@@ -128,8 +140,8 @@ bool coplanar_overlap(const glm::vec3 a[3], const glm::vec3 b[3], const glm::vec
   bool meet = false;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      meet = meet || segments_meet_2d(a2[i], a2[(i + 1) % 3], b2[j], b2[(j + 1) % 3], area_tol,
-                                      length_tol);
+      meet = meet ||
+             segments_meet_2d(a2[i], a2[(i + 1) % 3], b2[j], b2[(j + 1) % 3], area_tol, length_tol);
     }
   }
   return meet || point_in_triangle_2d(a2[0], b2, area_tol) ||
@@ -174,9 +186,9 @@ TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]) {
   const glm::vec3 ub = nb / nb_len;
 
   // Signed distances of each triangle's vertices to the other's plane, snapped to the plane
-  // within edge^2 x size of the unnormalised distance (here divided by |n|: unit normals).
-  const float tol_a = kTriTriTolerance * la2 * size / na_len;
-  const float tol_b = kTriTriTolerance * lb2 * size / nb_len;
+  // within the tolerance above (divided by |n|, since the normals here are unit).
+  const float tol_a = (kTriTriTolerance + kTriTriRoundoff * la2 / na_len) * size;
+  const float tol_b = (kTriTriTolerance + kTriTriRoundoff * lb2 / nb_len) * size;
   float db[3];
   float da[3];
   for (int i = 0; i < 3; ++i) {

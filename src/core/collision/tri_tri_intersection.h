@@ -9,17 +9,22 @@
 
 namespace deformcd::collision {
 
-/// Relative tolerance of the "uncertain zone": a vertex whose signed distance to the other
-/// triangle's plane is below kTriTriTolerance x (own longest edge)^2 x (pair's longest edge),
-/// as the unnormalised dot(cross(e1, e2), q - p0), is taken to lie on that plane; the same
-/// tolerance (x longest edge^2) snaps 2D orientations in the coplanar case and (x |line
-/// direction| x longest edge) closes gaps between the two intervals on the line. Touching
-/// therefore counts as intersecting.
+/// Relative tolerance of the "uncertain zone" (see the .cpp for the why). A vertex x of one
+/// triangle whose distance to the other triangle's plane (normal n, longest edge L, vertex a0)
+/// is below (kTriTriTolerance + kTriTriRoundoff x L^2 / |n|) x S, S the pair's longest edge, is
+/// taken to lie on that plane: |dot(n, x - a0)| <= kTriTriTolerance |n| S + kTriTriRoundoff L^2 S.
+/// The same kTriTriTolerance x S^2 snaps 2D orientations in the coplanar case, and x S closes
+/// gaps between the two intervals on the planes' line. Touching counts as intersecting.
 inline constexpr float kTriTriTolerance = 1e-5f;
 
-/// A triangle whose area is below kTriTriDegenerateTolerance x (longest edge)^2 / 2 has no
-/// usable plane: it is reported as not intersecting anything (never NaN).
-inline constexpr float kTriTriDegenerateTolerance = 1e-6f;
+/// Rounding term of the plane tolerance, about 8 float ulps of L^2 S: the error of the float
+/// plane distance, which does not shrink with |n| and so dominates for slivers.
+inline constexpr float kTriTriRoundoff = 1e-6f;
+
+/// A triangle with |cross(e1, e2)| <= kTriTriDegenerateTolerance x L^2 (height below ~1e-4 of
+/// its longest edge) has no plane that float can pin down: it is reported as not intersecting
+/// anything, never NaN. Its neighbours in a closed surface still report the contact.
+inline constexpr float kTriTriDegenerateTolerance = 1e-4f;
 
 /// Result of tri_tri_intersect. segment is set only when intersect && !coplanar (both ends
 /// equal when the triangles touch at a point); otherwise it is zero.
