@@ -1,0 +1,242 @@
+// Narrow phase: triangle-triangle intersection after Moller 1997, mirroring
+// src/core/collision/tri_tri_intersection.{h,cpp} line for line: the same constants, the same
+// float operations in the same order, so that the GL and CPU backends take the same decisions.
+// Change both files together. The why of every tolerance is in the .cpp.
+//
+// Every float that feeds a decision is `precise`: without it the driver may fuse a * b + c into
+// one fma (one rounding instead of two) or reorder sums, and the answers near the uncertain zone
+// would no longer match the C++ ones. dot, cross and length are written out for the same reason
+// (and to fix glm's order of the sums: (x + y) + z).
+
+// kTriTriTolerance, kTriTriRoundoff, kTriTriDegenerateTolerance (tri_tri_intersection.h).
+const float kTriTriTolerance = 1e-5;
+const float kTriTriRoundoff = 1e-6;
+const float kTriTriDegenerateTolerance = 1e-4;
+
+// TriTriResult: segment0/segment1 are set only when intersect && !coplanar, else zero.
+struct TriTriResult {
+  bool intersect;
+  bool coplanar;
+  vec3 segment0;
+  vec3 segment1;
+};
+
+// glm::dot: the products, then (x + y) + z.
+float tri_tri_dot(vec3 a, vec3 b) {
+  precise vec3 t = a * b;
+  precise float r = (t.x + t.y) + t.z;
+  return r;
+}
+
+// glm::cross.
+vec3 tri_tri_cross(vec3 x, vec3 y) {
+  precise vec3 r = vec3(x.y * y.z - y.y * x.z, x.z * y.x - y.z * x.x, x.x * y.y - y.x * x.y);
+  return r;
+}
+
+// glm::length.
+float tri_tri_length(vec3 v) {
+  precise float r = sqrt(tri_tri_dot(v, v));
+  return r;
+}
+
+// longest_edge2.
+float tri_tri_longest_edge2(vec3 t[3]) {
+  precise vec3 e0 = t[1] - t[0];
+  precise vec3 e1 = t[2] - t[1];
+  precise vec3 e2 = t[0] - t[2];
+  return max(tri_tri_dot(e0, e0), max(tri_tri_dot(e1, e1), tri_tri_dot(e2, e2)));
+}
+
+// snap_to_zero.
+float tri_tri_snap_to_zero(float v, float tolerance) {
+  return abs(v) <= tolerance ? 0.0 : v;
+}
+
+// same_strict_side.
+bool tri_tri_same_strict_side(float d[3]) {
+  return (d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0) || (d[0] < 0.0 && d[1] < 0.0 && d[2] < 0.0);
+}
+
+// same_strict_sign.
+bool tri_tri_same_strict_sign(float a, float b) {
+  return (a < 0.0 && b < 0.0) || (a > 0.0 && b > 0.0);
+}
+
+// opposite_signs.
+bool tri_tri_opposite_signs(float a, float b) {
+  return (a < 0.0 && b > 0.0) || (a > 0.0 && b < 0.0);
+}
+
+// LineInterval.
+struct TriTriLineInterval {
+  float t_min;
+  float t_max;
+  vec3 x_min;
+  vec3 x_max;
+};
+
+// line_interval.
+TriTriLineInterval tri_tri_line_interval(vec3 t[3], float d[3], vec3 dir, vec3 origin) {
+  TriTriLineInterval r = TriTriLineInterval(3.4e38, -3.4e38, vec3(0.0), vec3(0.0));
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    bool found = false;
+    precise vec3 x = vec3(0.0);
+    if (d[i] == 0.0) {
+      x = t[i];
+      found = true;
+    } else if (tri_tri_opposite_signs(d[i], d[j])) {
+      precise float f = d[i] / (d[i] - d[j]);  // d[i] != d[j]: no division by zero
+      x = t[i] + (t[j] - t[i]) * f;
+      found = true;
+    }
+    const float s = tri_tri_dot(dir, x - origin);
+    if (found && s < r.t_min) {
+      r.t_min = s;
+      r.x_min = x;
+    }
+    if (found && s > r.t_max) {
+      r.t_max = s;
+      r.x_max = x;
+    }
+  }
+  return r;
+}
+
+// orient2d.
+float tri_tri_orient2d(vec2 a, vec2 b, vec2 c) {
+  precise float r = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  return r;
+}
+
+// segments_meet_2d.
+bool tri_tri_segments_meet_2d(vec2 a, vec2 b, vec2 c, vec2 d, float area_tol, float length_tol) {
+  const float o1 = tri_tri_snap_to_zero(tri_tri_orient2d(a, b, c), area_tol);
+  const float o2 = tri_tri_snap_to_zero(tri_tri_orient2d(a, b, d), area_tol);
+  const float o3 = tri_tri_snap_to_zero(tri_tri_orient2d(c, d, a), area_tol);
+  const float o4 = tri_tri_snap_to_zero(tri_tri_orient2d(c, d, b), area_tol);
+  if (o1 == 0.0 && o2 == 0.0) {  // collinear: overlap of the 1D intervals on ab's main axis
+    precise float ab_x = b.x - a.x;
+    precise float ab_y = b.y - a.y;
+    const int k = abs(ab_x) >= abs(ab_y) ? 0 : 1;
+    precise float hi = min(max(a[k], b[k]), max(c[k], d[k])) + length_tol;
+    return max(min(a[k], b[k]), min(c[k], d[k])) <= hi;
+  }
+  return !tri_tri_same_strict_sign(o1, o2) && !tri_tri_same_strict_sign(o3, o4);
+}
+
+// point_in_triangle_2d.
+bool tri_tri_point_in_triangle_2d(vec2 x, vec2 t[3], float area_tol) {
+  const float s0 = tri_tri_snap_to_zero(tri_tri_orient2d(t[0], t[1], x), area_tol);
+  const float s1 = tri_tri_snap_to_zero(tri_tri_orient2d(t[1], t[2], x), area_tol);
+  const float s2 = tri_tri_snap_to_zero(tri_tri_orient2d(t[2], t[0], x), area_tol);
+  const bool has_negative = s0 < 0.0 || s1 < 0.0 || s2 < 0.0;
+  const bool has_positive = s0 > 0.0 || s1 > 0.0 || s2 > 0.0;
+  return !(has_negative && has_positive);
+}
+
+// coplanar_overlap.
+bool tri_tri_coplanar_overlap(vec3 a[3], vec3 b[3], vec3 n, float size) {
+  const vec3 m = abs(n);
+  int u = 1;  // drop x
+  int v = 2;
+  if (m.y >= m.x && m.y >= m.z) {  // drop y
+    u = 0;
+    v = 2;
+  } else if (m.z >= m.x && m.z >= m.y) {  // drop z
+    u = 0;
+    v = 1;
+  }
+  precise vec2 a2[3];
+  precise vec2 b2[3];
+  for (int i = 0; i < 3; ++i) {  // relative to a[0]: keeps the projected values small
+    a2[i] = vec2(a[i][u] - a[0][u], a[i][v] - a[0][v]);
+    b2[i] = vec2(b[i][u] - a[0][u], b[i][v] - a[0][v]);
+  }
+  precise float area_tol = kTriTriTolerance * size * size;
+  precise float length_tol = kTriTriTolerance * size;
+  bool meet = false;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      meet = meet || tri_tri_segments_meet_2d(a2[i], a2[(i + 1) % 3], b2[j], b2[(j + 1) % 3],
+                                              area_tol, length_tol);
+    }
+  }
+  return meet || tri_tri_point_in_triangle_2d(a2[0], b2, area_tol) ||
+         tri_tri_point_in_triangle_2d(b2[0], a2, area_tol);
+}
+
+// tri_tri_intersect: intersection of triangles p and q, symmetric in p and q.
+TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
+  TriTriResult result = TriTriResult(false, false, vec3(0.0), vec3(0.0));
+  // Symmetry: process the pair in a canonical order (lexicographic on the 9 coordinates).
+  bool swap = false;
+  bool decided = false;
+  for (int k = 0; k < 3; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      if (!decided && p[k][c] != q[k][c]) {
+        swap = q[k][c] < p[k][c];
+        decided = true;
+      }
+    }
+  }
+  vec3 a[3];
+  vec3 b[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = swap ? q[i] : p[i];
+    b[i] = swap ? p[i] : q[i];
+  }
+
+  // Degenerate triangles have no plane: no intersection.
+  const float la2 = tri_tri_longest_edge2(a);
+  const float lb2 = tri_tri_longest_edge2(b);
+  const vec3 na = tri_tri_cross(a[1] - a[0], a[2] - a[0]);
+  const vec3 nb = tri_tri_cross(b[1] - b[0], b[2] - b[0]);
+  const float na_len = tri_tri_length(na);
+  const float nb_len = tri_tri_length(nb);
+  precise float degenerate_a = kTriTriDegenerateTolerance * la2;
+  precise float degenerate_b = kTriTriDegenerateTolerance * lb2;
+  if (!(na_len > degenerate_a) || !(nb_len > degenerate_b)) return result;
+  precise float size = sqrt(max(la2, lb2));
+  precise vec3 ua = na / na_len;
+  precise vec3 ub = nb / nb_len;
+
+  // Signed distances of each triangle's vertices to the other's plane, snapped to the plane.
+  precise float tol_a = (kTriTriTolerance + kTriTriRoundoff * la2 / na_len) * size;
+  precise float tol_b = (kTriTriTolerance + kTriTriRoundoff * lb2 / nb_len) * size;
+  float db[3];
+  float da[3];
+  for (int i = 0; i < 3; ++i) {
+    db[i] = tri_tri_snap_to_zero(tri_tri_dot(ua, b[i] - a[0]), tol_a);
+    da[i] = tri_tri_snap_to_zero(tri_tri_dot(ub, a[i] - b[0]), tol_b);
+  }
+  const bool b_on_plane_a = db[0] == 0.0 && db[1] == 0.0 && db[2] == 0.0;
+  const bool a_on_plane_b = da[0] == 0.0 && da[1] == 0.0 && da[2] == 0.0;
+  if (b_on_plane_a || a_on_plane_b) {
+    result.coplanar = true;
+    result.intersect = tri_tri_coplanar_overlap(a, b, na, size);
+    return result;
+  }
+  if (tri_tri_same_strict_side(db) || tri_tri_same_strict_side(da)) return result;
+
+  // Both triangles cross the line of the planes' intersection: overlap of their intervals.
+  const vec3 dir = tri_tri_cross(ua, ub);
+  const TriTriLineInterval ia = tri_tri_line_interval(a, da, dir, a[0]);
+  const TriTriLineInterval ib = tri_tri_line_interval(b, db, dir, a[0]);
+  const bool lo_from_a = ia.t_min >= ib.t_min;
+  const bool hi_from_a = ia.t_max <= ib.t_max;
+  const float t_lo = lo_from_a ? ia.t_min : ib.t_min;
+  const float t_hi = hi_from_a ? ia.t_max : ib.t_max;
+  const vec3 x_lo = lo_from_a ? ia.x_min : ib.x_min;
+  const vec3 x_hi = hi_from_a ? ia.x_max : ib.x_max;
+  precise float gap_tol = kTriTriTolerance * size * tri_tri_length(dir);
+  precise float t_hi_closed = t_hi + gap_tol;
+  if (t_lo > t_hi_closed) return result;
+  result.intersect = true;
+  const bool touching = t_lo > t_hi;  // a gap inside the tolerance: one contact point
+  precise vec3 mid = 0.5 * (x_lo + x_hi);
+  result.segment0 = touching ? mid : x_lo;
+  result.segment1 = touching ? mid : x_hi;
+  return result;
+}
