@@ -24,12 +24,20 @@ Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::stri
     body.positions.emplace_back(glm::vec3(p), 1.0f);
   body.velocities.assign(mesh.nodes.size(), glm::vec4(0.0f));
 
+  // Each tetrahedron's volume, once: masses, volume forces and spring stiffnesses use it.
+  std::vector<double> tet_volume;
+  tet_volume.reserve(mesh.tetrahedra.size());
+  for (const Tetrahedron& t : mesh.tetrahedra) {
+    tet_volume.push_back(geom::signed_volume6(mesh.nodes[t[0]], mesh.nodes[t[1]], mesh.nodes[t[2]],
+                                              mesh.nodes[t[3]]) /
+                         6.0);
+  }
+
   // Lumped mass: a quarter of each tetrahedron's mass to each of its nodes.
   std::vector<double> mass(mesh.nodes.size(), 0.0);
-  for (const Tetrahedron& t : mesh.tetrahedra) {
-    const double v = geom::signed_volume6(mesh.nodes[t[0]], mesh.nodes[t[1]], mesh.nodes[t[2]],
-                                          mesh.nodes[t[3]]) /
-                     6.0;
+  for (std::size_t ti = 0; ti < mesh.tetrahedra.size(); ++ti) {
+    const Tetrahedron& t = mesh.tetrahedra[ti];
+    const double v = tet_volume[ti];
     body.volume += v;
     body.tet_rest_volume.push_back(static_cast<float>(v));
     double edges = 0.0;
@@ -56,12 +64,8 @@ Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::stri
   for (const TetEdge& e : edges) {
     const double rest = glm::length(mesh.nodes[e.nodes[0]] - mesh.nodes[e.nodes[1]]);
     double volume = 0.0;  // of the tetrahedra this spring stands for
-    for (std::uint32_t t : e.tetrahedra) {
-      const Tetrahedron& tet = mesh.tetrahedra[t];
-      volume += geom::signed_volume6(mesh.nodes[tet[0]], mesh.nodes[tet[1]], mesh.nodes[tet[2]],
-                                     mesh.nodes[tet[3]]) /
-                6.0;
-    }
+    for (std::uint32_t t : e.tetrahedra)
+      volume += tet_volume[t];
     const double k = options.stiffness * volume / (rest * rest);
     body.springs.push_back(
         {e.nodes[0], e.nodes[1], static_cast<float>(rest), static_cast<float>(k)});
