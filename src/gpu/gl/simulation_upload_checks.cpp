@@ -37,16 +37,20 @@ void check_springs(const WorldState& w) {
   }
 }
 
-void check_node_springs(const WorldState& w) {
-  const std::vector<std::uint32_t>& offset = w.node_spring_offset;
-  if (offset.front() != 0) inconsistent("node_spring_offset[0] is not 0");
+// A per-node CSR list: offsets start at 0, never decrease, and end at the list's length.
+void check_csr_offsets(const std::string& name, const std::vector<std::uint32_t>& offset,
+                       std::size_t list_length) {
+  if (offset.front() != 0) inconsistent(name + "_offset[0] is not 0");
   for (std::size_t i = 0; i + 1 < offset.size(); ++i) {
     if (offset[i + 1] < offset[i]) {
-      inconsistent("node_spring_offset decreases at node " + std::to_string(i));
+      inconsistent(name + "_offset decreases at node " + std::to_string(i));
     }
   }
-  expect_length("node_spring_list", w.node_spring_list.size(), "node_spring_offset's last entry",
-                offset.back());
+  expect_length(name + "_list", list_length, name + "_offset's last entry", offset.back());
+}
+
+void check_node_springs(const WorldState& w) {
+  check_csr_offsets("node_spring", w.node_spring_offset, w.node_spring_list.size());
   for (std::size_t e = 0; e < w.node_spring_list.size(); ++e) {
     // 64 bits: negating INT32_MIN would overflow.
     const std::int64_t tag = w.node_spring_list[e];
@@ -68,14 +72,7 @@ void check_tets(const WorldState& w) {
       }
     }
   }
-  const std::vector<std::uint32_t>& offset = w.node_tet_offset;
-  if (offset.front() != 0) inconsistent("node_tet_offset[0] is not 0");
-  for (std::size_t i = 0; i + 1 < offset.size(); ++i) {
-    if (offset[i + 1] < offset[i])
-      inconsistent("node_tet_offset decreases at node " + std::to_string(i));
-  }
-  expect_length("node_tet_list", w.node_tet_list.size(), "node_tet_offset's last entry",
-                offset.back());
+  check_csr_offsets("node_tet", w.node_tet_offset, w.node_tet_list.size());
   for (std::size_t e = 0; e < w.node_tet_list.size(); ++e) {
     if (w.node_tet_list[e] >= w.tet_forces.size()) {
       inconsistent("node_tet_list[" + std::to_string(e) +
