@@ -50,7 +50,7 @@ WorldState shaken_grid(unsigned seed) {
   BodyOptions options;
   options.stiffness = 5.0e4;
   BodyInit init;
-  init.body = build_body(test::cube_grid(4, 3, 3), options);
+  init.body = build_body(test::tet_grid(4, 3, 3, 0.1), options);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> jitter(-0.02f, 0.02f), speed(-0.5f, 0.5f);
   for (auto& p : init.body.positions)
@@ -87,7 +87,7 @@ TEST(CpuMassSpring, MomentumIsConservedWithoutGravityAndDamping) {
 TEST(CpuMassSpring, OneAndTwoThreadsGiveBitIdenticalStates) {
   // Large enough to be split across threads (parallel_for's grain is 2048 elements).
   BodyInit big;
-  big.body = build_body(test::cube_grid(12, 10, 10));
+  big.body = build_body(test::tet_grid(12, 10, 10, 0.1));
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> jitter(-0.01f, 0.01f);
   for (auto& p : big.body.positions)
@@ -112,7 +112,7 @@ TEST(CpuMassSpring, OneAndTwoThreadsGiveBitIdenticalStates) {
 
 TEST(CpuMassSpring, FixedNodesStayAndCarryVelocityMovesTheBody) {
   BodyInit init;
-  init.body = build_body(test::cube_grid(2, 2, 2));
+  init.body = build_body(test::tet_grid(2, 2, 2, 0.1));
   init.fixed = {0};
   init.carry_velocity = glm::vec3(1.0f, 0.0f, 0.0f);
   cpu::CpuSimulation sim;

@@ -1,6 +1,6 @@
 #pragma once
-// Small worlds for the simulation tests, built in code: a tetrahedral grid (there is no
-// tetrahedralizer in the GL tests), worlds assembled from it, and helpers to step a backend.
+// Helpers for the GL simulation tests: deterministic noise, substep constants, stepping a
+// backend, comparing states. The worlds themselves come from tests/support/world_fixtures.h.
 
 #include <array>
 #include <cmath>
@@ -16,43 +16,9 @@
 #include "deformcd/body.h"
 #include "deformcd/mesh.h"
 #include "deformcd/world_state.h"
+#include "support/world_fixtures.h"
 
 namespace deformcd::test {
-
-/// A box of nx x ny x nz cubes of side `spacing` from `origin`, each cube split into the 6
-/// tetrahedra of its Kuhn (Freudenthal) triangulation along the (1,1,1) diagonal, which is
-/// conforming across cubes. Node (i, j, k) has index i + (nx+1) (j + (ny+1) k).
-inline TetMesh tet_grid(int nx, int ny, int nz, double spacing, glm::dvec3 origin = {}) {
-  TetMesh m;
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i)
-        m.nodes.push_back(origin + spacing * glm::dvec3(i, j, k));
-  auto index = [&](int i, int j, int k) {
-    return static_cast<std::uint32_t>(i + (nx + 1) * (j + (ny + 1) * k));
-  };
-  constexpr std::array<std::array<int, 3>, 6> kAxisOrders = {
-      {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        for (const std::array<int, 3>& order : kAxisOrders) {
-          // A monotone path from corner (0,0,0) to (1,1,1), one axis at a time.
-          std::array<int, 3> c = {i, j, k};
-          Tetrahedron t{};
-          t[0] = index(c[0], c[1], c[2]);
-          for (int step = 0; step < 3; ++step) {
-            ++c[order[step]];
-            t[step + 1] = index(c[0], c[1], c[2]);
-          }
-          const glm::dvec3 a = m.nodes[t[0]];
-          if (glm::dot(m.nodes[t[1]] - a, glm::cross(m.nodes[t[2]] - a, m.nodes[t[3]] - a)) < 0) {
-            std::swap(t[2], t[3]);
-          }
-          m.tetrahedra.push_back(t);
-        }
-  return m;
-}
 
 /// Deterministic pseudo-random value in [-1, 1] for (i, salt): the same on every platform,
 /// unlike std:: distributions.

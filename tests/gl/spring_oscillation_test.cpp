@@ -23,23 +23,11 @@ constexpr float kMass2 = 3.0f;        // kg
 constexpr float kRestLength = 0.5f;   // m
 constexpr float kStretch = 0.1f;      // initial elongation, m
 
-// The two-node world, written out by hand: assemble_world wants tetrahedral bodies.
+// The two-node world, along an axis that is not a coordinate axis.
 WorldState one_spring_world() {
-  const glm::vec3 axis = glm::normalize(glm::vec3(1.0f, 2.0f, 2.0f));  // not along an axis
-  const glm::vec3 start(0.3f, -0.2f, 0.1f);
-  WorldState w;
-  w.positions = {glm::vec4(start, 1.0f / kMass1),
-                 glm::vec4(start + (kRestLength + kStretch) * axis, 1.0f / kMass2)};
-  w.velocities.assign(2, glm::vec4(0.0f));
-  w.forces.assign(2, glm::vec4(0.0f));
-  w.springs = {{0, 1, kRestLength, kStiffness}};
-  w.spring_forces.assign(1, glm::vec4(0.0f));
-  w.body_params = {{glm::vec4(0.0f), 0.0f, 0.0f, 0.0f, 0.0f}};  // undamped
-  w.node_body = {0, 0};
-  w.node_spring_offset = {0, 1, 2};
-  w.node_spring_list = {1, -1};
-  w.node_tet_offset = {0, 0, 0};
-  return w;
+  return test::two_mass_spring(kMass1, kMass2, kRestLength, kRestLength + kStretch, kStiffness,
+                               glm::vec3(0.3f, -0.2f, 0.1f),
+                               glm::normalize(glm::vec3(1.0f, 2.0f, 2.0f)));
 }
 
 class SpringOscillationTest : public test_support::GlTest {};

@@ -1,8 +1,12 @@
 #pragma once
 // Worlds built in code for simulation tests.
 
+#include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "deformcd/body.h"
 #include "deformcd/world_state.h"
@@ -10,41 +14,49 @@
 
 namespace deformcd::test {
 
-/// A grid of nx x ny x nz unit cubes (spacing `h`), each split into 5 tetrahedra with
-/// alternating orientation so that neighbouring cubes share their face diagonals.
-inline TetMesh cube_grid(int nx, int ny, int nz, double h = 0.1) {
+/// A box of nx x ny x nz cubes of side `spacing` from `origin`, each cube split into the 6
+/// tetrahedra of its Kuhn (Freudenthal) triangulation along the (1,1,1) diagonal, which is
+/// conforming across cubes. Node (i, j, k) has index i + (nx+1) (j + (ny+1) k).
+inline TetMesh tet_grid(int nx, int ny, int nz, double spacing, glm::dvec3 origin = {}) {
   TetMesh m;
-  auto id = [&](int i, int j, int k) {
-    return static_cast<std::uint32_t>((k * (ny + 1) + j) * (nx + 1) + i);
-  };
   for (int k = 0; k <= nz; ++k)
     for (int j = 0; j <= ny; ++j)
       for (int i = 0; i <= nx; ++i)
-        m.nodes.push_back({i * h, j * h, k * h});
-  const TetMesh unit = unit_cube();
+        m.nodes.push_back(origin + spacing * glm::dvec3(i, j, k));
+  auto index = [&](int i, int j, int k) {
+    return static_cast<std::uint32_t>(i + (nx + 1) * (j + (ny + 1) * k));
+  };
+  constexpr std::array<std::array<int, 3>, 6> kAxisOrders = {
+      {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const bool flip = (i + j + k) % 2 == 1;  // mirror in x so diagonals match neighbours
-        for (const Tetrahedron& t : unit.tetrahedra) {
-          Tetrahedron g{};
-          for (int c = 0; c < 4; ++c) {
-            const glm::dvec3 p = unit.nodes[t[c]];
-            const int px = flip ? 1 - static_cast<int>(p.x) : static_cast<int>(p.x);
-            g[c] = id(i + px, j + static_cast<int>(p.y), k + static_cast<int>(p.z));
+      for (int i = 0; i < nx; ++i)
+        for (const std::array<int, 3>& order : kAxisOrders) {
+          // A monotone path from corner (0,0,0) to (1,1,1), one axis at a time.
+          std::array<int, 3> c = {i, j, k};
+          Tetrahedron t{};
+          t[0] = index(c[0], c[1], c[2]);
+          for (int step = 0; step < 3; ++step) {
+            ++c[order[step]];
+            t[step + 1] = index(c[0], c[1], c[2]);
           }
-          if (flip) std::swap(g[2], g[3]);  // mirroring flips orientation; restore it
-          m.tetrahedra.push_back(g);
+          const glm::dvec3 a = m.nodes[t[0]];
+          if (glm::dot(m.nodes[t[1]] - a, glm::cross(m.nodes[t[2]] - a, m.nodes[t[3]] - a)) < 0) {
+            std::swap(t[2], t[3]);
+          }
+          m.tetrahedra.push_back(t);
         }
-      }
   return m;
 }
 
-/// Two nodes joined by one spring, on the x axis: masses m1, m2 at distance `length`, rest
-/// length `rest`, stiffness k (N/m). No faces: fine for a backend, not for a World.
-inline WorldState two_mass_spring(float m1, float m2, float rest, float length, float k) {
+/// Two nodes joined by one spring: masses m1 at `start` and m2 at `start + length x axis`
+/// (axis a unit vector), rest length `rest`, stiffness k (N/m), undamped. No faces and no
+/// tetrahedra: fine for a backend, not for a World.
+inline WorldState two_mass_spring(float m1, float m2, float rest, float length, float k,
+                                  glm::vec3 start = glm::vec3(0.0f),
+                                  glm::vec3 axis = glm::vec3(1.0f, 0.0f, 0.0f)) {
   WorldState w;
-  w.positions = {{0, 0, 0, 1.0f / m1}, {length, 0, 0, 1.0f / m2}};
+  w.positions = {glm::vec4(start, 1.0f / m1), glm::vec4(start + length * axis, 1.0f / m2)};
   w.velocities = {glm::vec4(0.0f), glm::vec4(0.0f)};
   w.springs = {{0, 1, rest, k}};
   w.forces.assign(2, glm::vec4(0.0f));

@@ -61,7 +61,7 @@ TEST(WorldCpu, BlowUpStopsWithTheBodyFrameAndAdvice) {
   init.name = "jelly";
   BodyOptions options;
   options.stiffness = 1.0e9;  // far too stiff for the step below
-  init.body = build_body(test::cube_grid(3, 3, 3), options);
+  init.body = build_body(test::tet_grid(3, 3, 3, 0.1), options);
   init.body.positions[5].y += 0.03f;
   StepSettings settings;
   settings.dt = 0.05f;
@@ -84,7 +84,7 @@ TEST(WorldCpu, BlowUpStopsWithTheBodyFrameAndAdvice) {
 TEST(WorldCpu, RejectsABodyWithoutSurfaceFaces) {
   BodyInit init;
   init.name = "hollow";
-  init.body = build_body(test::cube_grid(1, 1, 1));
+  init.body = build_body(test::tet_grid(1, 1, 1, 0.1));
   init.body.faces.clear();
   WorldOptions options;
   options.backend = BackendKind::kCpu;
@@ -101,7 +101,7 @@ TEST(WorldCpu, OneBodySceneRuns) {
   BodyOptions soft;
   soft.stiffness = 1.0e3;
   BodyInit init;
-  init.body = build_body(test::cube_grid(2, 2, 2), soft);
+  init.body = build_body(test::tet_grid(2, 2, 2, 0.1), soft);
   StepSettings settings;
   settings.substeps = 10;
   WorldOptions options;
