@@ -16,7 +16,8 @@ Command add_info_command(CLI::App& app);
 /// `deformcd tetra IN -o PREFIX [--quality Q] [--max-volume V] [--preserve-surface]`.
 Command add_tetra_command(CLI::App& app);
 
-/// `deformcd run SCENE [--frames N] [--backend gl|cpu|auto] [--positions-out FILE]`.
+/// `deformcd run SCENE [--frames N] [--backend gl|cpu|auto] [--broadphase none|brute|octree]
+/// [--contacts FILE] [--positions-out FILE]`.
 Command add_run_command(CLI::App& app);
 
 }  // namespace deformcd::app

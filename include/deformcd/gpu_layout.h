@@ -37,7 +37,15 @@ enum Binding : std::uint32_t {
   kTetForce = 18,          ///< glm::vec4 per tetrahedron corner (4 t + k): volume force
   kNodeTetOffset = 19,     ///< uint per node + 1: CSR offsets into kNodeTetList
   kNodeTetList = 20,       ///< uint per (node, tetrahedron corner): the slot 4 t + k
+  // Beyond the paper's 12: what the collision shaders need besides them.
+  kFaceBoxes = 21,          ///< glm::uvec2 per face: bit set of the leaf boxes listing it
+  kBodyPair = 22,           ///< BodyPair per pair of different bodies
+  kCollisionCounters = 23,  ///< one CollisionCounters
+  kBoxRows = 24,            ///< glm::uvec2 per leaf box: its first row in SSBO 9, row count
 };
+
+/// Leaf boxes per body: a 3-level octree over the body's rest pose, 4 x 4 x 4 leaves (paper).
+inline constexpr std::uint32_t kLeafBoxesPerBody = 64;
 
 /// 16 bytes. One spring between two nodes (global indices): rest length and stiffness. Its
 /// damping is stiffness-proportional with its body's coefficient (BodyParams::damping).
@@ -67,12 +75,42 @@ struct Box {
 static_assert(sizeof(Box) == 32);
 static_assert(offsetof(Box, max) == 16);
 
-/// 8 bytes. One row of the paper's BoundingBox Face List (Fig. 7).
+/// 8 bytes. One row of the paper's BoundingBox Face List (Fig. 7): global face index, and the
+/// leaf box's index within its body (0-63, octree order).
 struct BoxFace {
   std::uint32_t face;
   std::uint32_t box;
 };
 static_assert(sizeof(BoxFace) == 8);
+
+/// 8 bytes. Two different bodies whose faces are tested against each other (a < b).
+struct BodyPair {
+  std::uint32_t a;
+  std::uint32_t b;
+};
+static_assert(sizeof(BodyPair) == 8);
+
+/// 48 bytes. One intersecting face pair (SSBO 10): global face indices, face_a of the pair's
+/// lower-numbered body; the intersection segment when the faces are not coplanar.
+struct FacePair {
+  std::uint32_t face_a;
+  std::uint32_t face_b;
+  std::uint32_t coplanar;  ///< 1 when the faces are coplanar (no segment), else 0
+  std::uint32_t pad;
+  glm::vec4 segment0;  ///< xyz: one end of the segment, w = 0
+  glm::vec4 segment1;  ///< xyz: the other end, w = 0
+};
+static_assert(sizeof(FacePair) == 48);
+static_assert(offsetof(FacePair, segment0) == 16);
+
+/// 16 bytes. What a collision pass counts, on the device (SSBO 23), reset each pass.
+struct CollisionCounters {
+  std::uint32_t face_pairs;       ///< intersecting face pairs found (may exceed the capacity)
+  std::uint32_t box_pairs;        ///< overlapping leaf-box pairs (octree)
+  std::uint32_t colliding_faces;  ///< faces whose flag (SSBO 5) the pass set
+  std::uint32_t pad;
+};
+static_assert(sizeof(CollisionCounters) == 16);
 
 /// 48 bytes. Where one body's data lies in the shared arrays (the paper's Object Information).
 struct ObjectInfo {

@@ -4,6 +4,7 @@
 /// and throws InputError naming the file, the line and what is wrong.
 
 #include <filesystem>
+#include <memory>
 #include <string_view>
 
 #include "deformcd/mesh.h"
@@ -39,6 +40,24 @@ void write_tetgen(const TetMesh& mesh, const std::filesystem::path& prefix);
 /// Writes an OFF file of triangles, with shortest round-trip doubles (atomically, and with the
 /// same checks, as write_tetgen).
 void write_off(const SurfaceMesh& mesh, const std::filesystem::path& file);
+
+/// A file written piece by piece (e.g. one line per frame) under a temporary name next to
+/// `target`, and renamed onto it by commit(). Destroyed without commit() (an error on the way),
+/// it leaves nothing behind, and an existing target is untouched. Throws Error naming the
+/// target when the temporary cannot be created or written.
+class StreamedFileWriter {
+ public:
+  explicit StreamedFileWriter(const std::filesystem::path& target);
+  ~StreamedFileWriter();
+  StreamedFileWriter(const StreamedFileWriter&) = delete;
+  StreamedFileWriter& operator=(const StreamedFileWriter&) = delete;
+  void append(std::string_view text);
+  void commit();
+
+ private:
+  struct File;
+  std::unique_ptr<File> file_;
+};
 
 /// Writes `contents` to `file` through a temporary file renamed into place, so a failure leaves
 /// neither a partial file nor a temporary. Throws Error naming the file.

@@ -7,6 +7,7 @@
 ///                           deformcd::step_settings(scene.settings));
 ///     for (int i = 0; i < 300; ++i) world.step();
 ///     std::vector<glm::vec3> p = world.positions(0);
+///     std::vector<deformcd::Contact> c = world.contacts();  // the last frame's
 
 #include <cstdint>
 #include <memory>
@@ -16,6 +17,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "deformcd/collision.h"
 #include "deformcd/error.h"
 #include "deformcd/gpu_layout.h"
 #include "deformcd/world_state.h"
@@ -27,6 +29,9 @@ class Context;
 }
 namespace sim {
 class SimulationBackend;
+}
+namespace collision {
+class CollisionBackend;
 }
 
 /// Which backend steps a world.
@@ -48,6 +53,8 @@ struct WorldOptions {
   int cpu_threads = 0;
   /// Frames between stability checks (each reads velocities back from a GL backend).
   int stability_check_interval = 10;
+  /// Collision detection run after each frame's simulation; kNone skips it.
+  BroadPhase broadphase = BroadPhase::kOctree;
 };
 
 /// The simulation blew up: a state became NaN/Inf or a node moved implausibly far in a step.
@@ -66,8 +73,9 @@ class World {
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
-  /// Advances one frame (settings.substeps substeps of dt / substeps). Throws SimulationError
-  /// naming the body and the frame when the state becomes unstable.
+  /// Advances one frame (settings.substeps substeps of dt / substeps), then detects the
+  /// collisions between different bodies with the broad phase set (see broadphase()). Throws
+  /// SimulationError naming the body and the frame when the state becomes unstable.
   void step();
   /// Frames stepped so far.
   [[nodiscard]] int frame() const { return frame_; }
@@ -92,6 +100,30 @@ class World {
   [[nodiscard]] const std::string& notice() const { return notice_; }
   /// Estimated largest stable substep (s), a conservative bound (see stability_estimate.h).
   [[nodiscard]] double estimated_max_substep() const { return max_stable_substep_; }
+  /// The broad phase step() runs; every one finds the same contacts.
+  [[nodiscard]] BroadPhase broadphase() const { return broadphase_; }
+  /// Switches the broad phase from the next step() on (e.g. a viewer's key).
+  void set_broadphase(BroadPhase method) { broadphase_ = method; }
+  /// Runs collision detection now on the current positions with broadphase() (as step() does
+  /// after the simulation), e.g. after set_broadphase() or for the initial pose.
+  void detect_collisions();
+  /// Counts of the last collision pass (all 0 before the first or with kNone). On GL this waits
+  /// for the pass.
+  [[nodiscard]] CollisionCounts collision_counts() const;
+  /// The intersecting face pairs of the last collision pass, sorted by (a.body, a.face, b.body,
+  /// b.face), a.body < b.body; the same on every backend and broad phase.
+  [[nodiscard]] std::vector<Contact> contacts() const;
+  /// Per surface face of every body (body i's faces start at object(i).face_offset): 1 when the
+  /// face was in a contact in the last pass, else 0.
+  [[nodiscard]] std::vector<std::uint32_t> face_flags() const;
+  /// GL buffer name of those flags (the paper's SSBO 5, one uint per face), for rendering
+  /// without a CPU copy. 0 on the CPU backend.
+  [[nodiscard]] std::uint32_t gl_face_flag_buffer() const;
+  /// The 64 leaf boxes per body as the last octree pass computed them (body i's at 64 i).
+  [[nodiscard]] std::vector<gpu::Box> leaf_boxes() const;
+  /// Surface faces of all bodies (global node indices), as in the GL face buffer.
+  [[nodiscard]] const std::vector<gpu::Face>& faces() const { return faces_; }
+
   /// GL buffer name of all node positions (vec4, xyz + inverse mass; body i's nodes start at
   /// object(i).node_offset), for rendering without a CPU copy. 0 on the CPU backend.
   [[nodiscard]] std::uint32_t gl_position_buffer() const;
@@ -102,6 +134,7 @@ class World {
 
   std::unique_ptr<gl::Context> owned_context_;
   std::unique_ptr<sim::SimulationBackend> backend_;
+  std::unique_ptr<collision::CollisionBackend> collision_;
   StepSettings settings_;
   int check_interval_;
   int frame_ = 0;
@@ -110,6 +143,9 @@ class World {
   std::vector<float> body_sizes_;  // bounding-box diagonal at the start, for the blow-up test
   double max_stable_substep_ = 0.0;
   std::string notice_;
+  BroadPhase broadphase_ = BroadPhase::kOctree;
+  bool detected_ = false;  // whether a collision pass has run (its results are there)
+  std::vector<gpu::Face> faces_;
 };
 
 }  // namespace deformcd

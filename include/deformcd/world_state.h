@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -52,6 +53,11 @@ struct WorldState {
   std::vector<std::uint32_t> node_tet_offset;     ///< SSBO 19, nodes + 1 entries
   std::vector<std::uint32_t> node_tet_list;       ///< SSBO 20, 4 x tetrahedra entries
   std::vector<std::int32_t> node_spring_list;     ///< SSBO 16, 2 x springs entries
+  /// SSBO 9: the BoundingBox Face List, body by body, and within a body box by box (Fig. 7).
+  std::vector<gpu::BoxFace> box_faces;
+  std::vector<glm::uvec2> face_boxes;     ///< SSBO 21: per face, bit k set if leaf box k lists it
+  std::vector<glm::uvec2> box_rows;       ///< SSBO 24: per leaf box, first row in box_faces, count
+  std::vector<gpu::BodyPair> body_pairs;  ///< SSBO 22: every pair of different bodies, a < b
   std::vector<std::string> body_names;
 
   [[nodiscard]] std::size_t node_count() const { return positions.size(); }
@@ -60,8 +66,9 @@ struct WorldState {
 
 /// Concatenates bodies into one world state: offsets indices, sets inverse masses (0 for fixed
 /// nodes), builds the per-node spring lists (CSR, springs in increasing index order, so that
-/// the force sum has one fixed order on every backend). Throws InputError for a fixed node
-/// index out of range or a body without surface faces.
+/// the force sum has one fixed order on every backend), and the collision lists (leaf boxes of
+/// each body's rest pose, see core/collision/leaf_boxes.h; all body pairs). Throws InputError for a
+/// fixed node index out of range or a body without surface faces.
 [[nodiscard]] WorldState assemble_world(const std::vector<BodyInit>& bodies);
 
 }  // namespace deformcd

@@ -168,8 +168,20 @@ bool tri_tri_coplanar_overlap(vec3 a[3], vec3 b[3], vec3 n, float size) {
 }
 
 // tri_tri_intersect: intersection of triangles p and q, symmetric in p and q.
+// Whether the closed bounding boxes of p and q share a point (exact: min/max do not round).
+bool tri_tri_boxes_touch(vec3 p[3], vec3 q[3]) {
+  vec3 p_min = min(min(p[0], p[1]), p[2]);
+  vec3 p_max = max(max(p[0], p[1]), p[2]);
+  vec3 q_min = min(min(q[0], q[1]), q[2]);
+  vec3 q_max = max(max(q[0], q[1]), q[2]);
+  return all(lessThanEqual(p_min, q_max)) && all(lessThanEqual(q_min, p_max));
+}
+
 TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
   TriTriResult result = TriTriResult(false, false, vec3(0.0), vec3(0.0));
+  // Triangles whose bounding boxes are apart cannot meet (see the C++ for why this matters to
+  // the broad phases).
+  if (!tri_tri_boxes_touch(p, q)) return result;
   // Symmetry: process the pair in a canonical order (lexicographic on the 9 coordinates).
   bool swap = false;
   bool decided = false;

@@ -27,6 +27,13 @@
 #define BINDING_TET_FORCE 18           // vec4 per tetrahedron corner (4 t + k): volume force
 #define BINDING_NODE_TET_OFFSET 19     // uint per node + 1: CSR offsets
 #define BINDING_NODE_TET_LIST 20       // uint per (node, tetrahedron corner): the slot 4 t + k
+#define BINDING_FACE_BOXES 21          // uvec2 per face: bit set of the leaf boxes listing it
+#define BINDING_BODY_PAIR 22           // BodyPair per pair of different bodies
+#define BINDING_COLLISION_COUNTERS 23  // one CollisionCounters
+#define BINDING_BOX_ROWS 24            // uvec2 per leaf box: its first row in SSBO 9, row count
+
+// Leaf boxes per body: a 3-level octree, 4 x 4 x 4 leaves (gpu::kLeafBoxesPerBody).
+#define LEAF_BOXES_PER_BODY 64u
 
 // 16 bytes. One spring between two nodes (global indices): rest length and stiffness. Its
 // damping is stiffness-proportional with its body's coefficient (BodyParams.damping).
@@ -94,4 +101,29 @@ struct Tetra {
   float stiffness;    // Pa / m^3: force on corner i = -stiffness (V - rest_volume) dV/dx_i
   float pad0;
   float pad1;
+};
+
+// 8 bytes. Two different bodies whose faces are tested against each other (a < b).
+struct BodyPair {
+  uint a;
+  uint b;
+};
+
+// 48 bytes. One intersecting face pair (SSBO 10): global face indices, face_a of the pair's
+// lower-numbered body; the intersection segment when the faces are not coplanar.
+struct FacePair {
+  uint face_a;
+  uint face_b;
+  uint coplanar;  // 1 when the faces are coplanar (no segment), else 0
+  uint pad;
+  vec4 segment0;  // xyz: one end of the segment, w = 0
+  vec4 segment1;  // xyz: the other end, w = 0
+};
+
+// 16 bytes. What a collision pass counts (SSBO 23), reset each pass.
+struct CollisionCounters {
+  uint face_pairs;       // intersecting face pairs found (may exceed the capacity)
+  uint box_pairs;        // overlapping leaf-box pairs (octree)
+  uint colliding_faces;  // faces whose flag (SSBO 5) the pass set
+  uint pad;
 };

@@ -14,6 +14,10 @@ layout(std430, binding = 3) buffer BoxFaces { BoxFace box_faces[]; };
 layout(std430, binding = 4) buffer ObjectInfos { ObjectInfo objects[]; };
 layout(std430, binding = 5) buffer Bindings { uint bindings[]; };
 layout(std430, binding = 6) buffer BodyParamsArray { BodyParams body_params[]; };
+layout(std430, binding = 7) buffer Tets { Tetra tets[]; };
+layout(std430, binding = 8) buffer BodyPairs { BodyPair body_pairs[]; };
+layout(std430, binding = 9) buffer FacePairs { FacePair face_pairs[]; };
+layout(std430, binding = 10) buffer Counters { CollisionCounters counters[]; };
 
 uniform uint u_count;
 
@@ -62,6 +66,30 @@ void main() {
   body_params[i].pad1 = probef(i, 6u);
   body_params[i].pad2 = probef(i, 7u);
 
+  tets[i].a = probe(i, 0u);
+  tets[i].b = probe(i, 1u);
+  tets[i].c = probe(i, 2u);
+  tets[i].d = probe(i, 3u);
+  tets[i].rest_volume = probef(i, 4u);
+  tets[i].stiffness = probef(i, 5u);
+  tets[i].pad0 = probef(i, 6u);
+  tets[i].pad1 = probef(i, 7u);
+
+  body_pairs[i].a = probe(i, 0u);
+  body_pairs[i].b = probe(i, 1u);
+
+  face_pairs[i].face_a = probe(i, 0u);
+  face_pairs[i].face_b = probe(i, 1u);
+  face_pairs[i].coplanar = probe(i, 2u);
+  face_pairs[i].pad = probe(i, 3u);
+  face_pairs[i].segment0 = probe4(i, 4u);
+  face_pairs[i].segment1 = probe4(i, 8u);
+
+  counters[i].face_pairs = probe(i, 0u);
+  counters[i].box_pairs = probe(i, 1u);
+  counters[i].colliding_faces = probe(i, 2u);
+  counters[i].pad = probe(i, 3u);
+
   if (i == 0u) {
     bindings[0] = BINDING_NODE_POSITION;
     bindings[1] = BINDING_NODE_VELOCITY;
@@ -80,5 +108,14 @@ void main() {
     bindings[14] = BINDING_SPRING_FORCE;
     bindings[15] = BINDING_NODE_SPRING_OFFSET;
     bindings[16] = BINDING_NODE_SPRING_LIST;
+    bindings[17] = BINDING_TET_INFO;
+    bindings[18] = BINDING_TET_FORCE;
+    bindings[19] = BINDING_NODE_TET_OFFSET;
+    bindings[20] = BINDING_NODE_TET_LIST;
+    bindings[21] = BINDING_FACE_BOXES;
+    bindings[22] = BINDING_BODY_PAIR;
+    bindings[23] = BINDING_COLLISION_COUNTERS;
+    bindings[24] = BINDING_BOX_ROWS;
+    bindings[25] = LEAF_BOXES_PER_BODY;  // not a binding: the one shared constant
   }
 }

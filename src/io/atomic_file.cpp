@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "deformcd/error.h"
@@ -35,6 +36,7 @@ std::filesystem::path temporary_name_for(const std::filesystem::path& target) {
 AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {}
 
 AtomicFile::~AtomicFile() {
+  if (file_) std::fclose(file_);
   if (!committed_ && !temporary_.empty()) {
     std::error_code ignored;  // nothing sensible to do if removal fails during unwinding
     std::filesystem::remove(temporary_, ignored);
@@ -42,21 +44,23 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::write(std::string_view contents) {
-  const std::filesystem::path temporary = temporary_name_for(target_);
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(temporary.c_str(), "wbx"),
-                                                    &std::fclose);
-  if (!f) fail(target_, std::strerror(errno));
-  temporary_ = temporary;  // from here on the destructor removes it
-
-  if (std::fwrite(contents.data(), 1, contents.size(), f.get()) != contents.size()) {
+  if (committed_) fail(target_, "written after commit");
+  if (!file_) {
+    const std::filesystem::path temporary = temporary_name_for(target_);
+    file_ = std::fopen(temporary.c_str(), "wbx");
+    if (!file_) fail(target_, std::strerror(errno));
+    temporary_ = temporary;  // from here on the destructor removes it
+  }
+  if (std::fwrite(contents.data(), 1, contents.size(), file_) != contents.size()) {
     fail(target_, std::strerror(errno));
   }
-  // fclose flushes; a full disk may only show here.
-  if (std::fclose(f.release()) != 0) fail(target_, std::strerror(errno));
 }
 
 void AtomicFile::commit() {
   if (temporary_.empty()) fail(target_, "nothing was written");
+  // fclose flushes; a full disk may only show here.
+  std::FILE* file = std::exchange(file_, nullptr);
+  if (std::fclose(file) != 0) fail(target_, std::strerror(errno));
   std::error_code ec;
   std::filesystem::rename(temporary_, target_, ec);
   if (ec) fail(target_, ec.message());
@@ -82,6 +86,30 @@ void write_files_atomically(std::span<const FileContents> files) {
 }  // namespace deformcd::io
 
 namespace deformcd {
+
+struct StreamedFileWriter::File {
+  explicit File(const std::filesystem::path& target) : file(target) {}
+  io::AtomicFile file;
+};
+
+StreamedFileWriter::StreamedFileWriter(const std::filesystem::path& target)
+    : file_(std::make_unique<File>(target)) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(target, ec)) {
+    throw Error("cannot write " + target.string() + ": it is a directory");
+  }
+  file_->file.write("");  // creates the temporary now: a bad directory fails before any work
+}
+
+StreamedFileWriter::~StreamedFileWriter() = default;
+
+void StreamedFileWriter::append(std::string_view text) {
+  file_->file.write(text);
+}
+
+void StreamedFileWriter::commit() {
+  file_->file.commit();
+}
 
 void write_file_atomically(const std::filesystem::path& file, std::string_view contents) {
   const io::FileContents one{file, std::string(contents)};

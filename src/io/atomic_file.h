@@ -3,6 +3,7 @@
 // target's directory (so the final rename stays within one file system and is atomic), and are
 // renamed into place only once everything was written.
 
+#include <cstdio>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -19,11 +20,11 @@ class AtomicFile {
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
 
-  /// Writes `contents` to a new temporary file next to the target. Throws Error naming the
-  /// target when the file cannot be created or written in full. Call at most once.
+  /// Appends `contents` to the temporary file next to the target (created by the first call).
+  /// Throws Error naming the target when the file cannot be created or written in full.
   void write(std::string_view contents);
 
-  /// Renames the written temporary file onto the target. Throws Error naming the target.
+  /// Closes the temporary file and renames it onto the target. Throws Error naming the target.
   void commit();
 
   [[nodiscard]] const std::filesystem::path& target() const { return target_; }
@@ -33,6 +34,7 @@ class AtomicFile {
  private:
   std::filesystem::path target_;
   std::filesystem::path temporary_;
+  std::FILE* file_ = nullptr;
   bool committed_ = false;
 };
 

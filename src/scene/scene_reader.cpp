@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "deformcd/collision.h"
 #include "deformcd/error.h"
 #include "deformcd/scene.h"
 #include "json_fields.h"
@@ -153,7 +154,12 @@ BodySpec read_body(JsonFields f, const fs::path& folder) {
 }  // namespace
 
 const std::vector<std::string>& known_broadphases() {
-  static const std::vector<std::string> names = {"brute", "octree"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out{std::string(broadphase_name(BroadPhase::kNone))};
+    const std::vector<std::string>& detecting = broadphase_names();
+    out.insert(out.end(), detecting.begin(), detecting.end());
+    return out;
+  }();
   return names;
 }
 

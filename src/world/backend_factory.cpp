@@ -1,8 +1,10 @@
 #include "backend_factory.h"
 
+#include "cpu/cpu_collision.h"
 #include "cpu/cpu_simulation.h"
 #include "deformcd/gl/context.h"  // declarations only: fine without the GL backend
 #ifdef DEFORMCD_HAS_GL
+#include "gpu/gl/gl_collision.h"
 #include "gpu/gl/gl_simulation.h"
 #endif
 
@@ -18,7 +20,9 @@ CreatedBackend create_gl(const WorldOptions& options) {
     created.owned_context = gl::create_headless_context();
     context = created.owned_context.get();
   }
-  created.backend = std::make_unique<gl::GlSimulation>(*context);
+  auto simulation = std::make_unique<gl::GlSimulation>(*context);
+  created.collision = std::make_unique<gl::GlCollision>(*context, *simulation);
+  created.backend = std::move(simulation);
   return created;
 #else
   (void)options;
@@ -26,6 +30,14 @@ CreatedBackend create_gl(const WorldOptions& options) {
       "this deformcd was built without the OpenGL backend (DEFORMCD_WITH_GL=OFF); the CPU "
       "backend (--backend cpu) is available");
 #endif
+}
+
+CreatedBackend create_cpu(const WorldOptions& options) {
+  CreatedBackend created;
+  auto simulation = std::make_unique<cpu::CpuSimulation>(options.cpu_threads);
+  created.collision = std::make_unique<cpu::CpuCollision>(*simulation);
+  created.backend = std::move(simulation);
+  return created;
 }
 
 }  // namespace
@@ -43,16 +55,13 @@ CreatedBackend create_backend(const WorldOptions& options) {
     try {
       return create_gl(options);
     } catch (const GlError& e) {
-      CreatedBackend created;
-      created.backend = std::make_unique<cpu::CpuSimulation>(options.cpu_threads);
+      CreatedBackend created = create_cpu(options);
       created.notice =
           std::string("OpenGL 4.3 is not available, using the CPU backend: ") + e.what();
       return created;
     }
   }
-  CreatedBackend created;
-  created.backend = std::make_unique<cpu::CpuSimulation>(options.cpu_threads);
-  return created;
+  return create_cpu(options);
 }
 
 }  // namespace deformcd

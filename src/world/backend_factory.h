@@ -1,10 +1,11 @@
 #pragma once
-// Chooses and creates the simulation backend of a world. The only place that knows whether the
-// GL backend was compiled in (DEFORMCD_WITH_GL).
+// Chooses and creates the simulation and collision backends of a world. The only place that knows
+// whether the GL backend was compiled in (DEFORMCD_WITH_GL).
 
 #include <memory>
 #include <string>
 
+#include "core/collision/collision_backend.h"
 #include "core/sim/simulation_backend.h"
 #include "deformcd/world.h"
 
@@ -13,6 +14,7 @@ namespace deformcd {
 struct CreatedBackend {
   std::unique_ptr<gl::Context> owned_context;  ///< set when the world made its own context
   std::unique_ptr<sim::SimulationBackend> backend;
+  std::unique_ptr<collision::CollisionBackend> collision;  ///< reads `backend`'s positions
   std::string notice;  ///< why kAuto fell back to the CPU, if it did
 };
 

@@ -4,6 +4,8 @@
 #include <sstream>
 
 #include "backend_factory.h"
+#include "core/collision/collision_backend.h"
+#include "core/collision/contacts.h"
 #include "core/sim/stability_estimate.h"
 #include "deformcd/gl/context.h"
 
@@ -11,7 +13,9 @@ namespace deformcd {
 
 World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
              const WorldOptions& options)
-    : settings_(settings), check_interval_(std::max(1, options.stability_check_interval)) {
+    : settings_(settings),
+      check_interval_(std::max(1, options.stability_check_interval)),
+      broadphase_(options.broadphase) {
   if (bodies.empty()) throw Error("a world needs at least one body");
   if (!(settings.dt > 0.0f) || settings.substeps < 1) {
     throw Error("dt must be positive and substeps at least 1");
@@ -19,6 +23,7 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   const WorldState state = assemble_world(bodies);
   objects_ = state.objects;
   names_ = state.body_names;
+  faces_ = state.faces;
   for (const BodyInit& b : bodies) {
     const Bounds box = compute_bounds(b.body);
     body_sizes_.push_back(static_cast<float>(glm::length(box.max - box.min)));
@@ -26,6 +31,7 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   CreatedBackend created = create_backend(options);
   owned_context_ = std::move(created.owned_context);
   backend_ = std::move(created.backend);
+  collision_ = std::move(created.collision);
   notice_ = std::move(created.notice);
   max_stable_substep_ = sim::estimate_max_stable_substep(state);
   const double h = static_cast<double>(settings.dt) / settings.substeps;
@@ -37,6 +43,7 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
     notice_ += (notice_.empty() ? "" : "\n") + msg.str();
   }
   backend_->upload(state);
+  collision_->upload(state);
 }
 
 World::~World() = default;
@@ -49,6 +56,44 @@ void World::step() {
     backend_->substep(constants);
   ++frame_;
   if (frame_ % check_interval_ == 0 || frame_ == 1) check_stability();
+  if (broadphase_ != BroadPhase::kNone) detect_collisions();
+}
+
+void World::detect_collisions() {
+  collision_->detect(broadphase_);
+  detected_ = broadphase_ != BroadPhase::kNone;
+}
+
+CollisionCounts World::collision_counts() const {
+  if (!detected_) return {};
+  const gpu::CollisionCounters c = collision_->counters();
+  return {c.face_pairs, c.box_pairs, c.colliding_faces};
+}
+
+std::vector<Contact> World::contacts() const {
+  if (!detected_) return {};
+  std::vector<gpu::FacePair> pairs;
+  collision_->download_face_pairs(pairs);
+  return collision::make_contacts(pairs, faces_, objects_);
+}
+
+std::vector<std::uint32_t> World::face_flags() const {
+  if (!detected_) return std::vector<std::uint32_t>(faces_.size(), 0u);
+  std::vector<std::uint32_t> flags;
+  collision_->download_face_flags(flags);
+  flags.resize(faces_.size());  // a GL buffer holds at least one element
+  return flags;
+}
+
+std::uint32_t World::gl_face_flag_buffer() const {
+  return collision_->gl_face_flag_buffer();
+}
+
+std::vector<gpu::Box> World::leaf_boxes() const {
+  std::vector<gpu::Box> boxes;
+  collision_->download_boxes(boxes);
+  boxes.resize(objects_.size() * gpu::kLeafBoxesPerBody);
+  return boxes;
 }
 
 void World::finish() {

@@ -76,6 +76,18 @@ TEST(TriTriIntersect, TouchingAlongAnEdgeGivesThatEdge) {
   expect_segment(r, vec3(0.2f, 0.2f, 0), vec3(1, 0.2f, 0), 1e-6f);
 }
 
+// Rotates about the y axis by 30 degrees: kBase then spans z, so that a triangle hovering
+// above it has a bounding box overlapping kBase's and reaches the plane test.
+Tri tilted(const Tri& t) {
+  const float c = std::cos(0.5236f);
+  const float s = std::sin(0.5236f);
+  Tri out;
+  for (int i = 0; i < 3; ++i) {
+    out.v[i] = vec3(c * t.v[i].x + s * t.v[i].z, t.v[i].y, -s * t.v[i].x + c * t.v[i].z);
+  }
+  return out;
+}
+
 TEST(TriTriIntersect, NearTouchingIsDecidedRelativeToSize) {
   // A vertex 2e-6 (relative to the size, 2) above kBase, over its inside: in the uncertain zone,
   // decided as touching, hence intersecting, at any scale.
@@ -83,10 +95,20 @@ TEST(TriTriIntersect, NearTouchingIsDecidedRelativeToSize) {
   // 1e-3 above the plane: clearly apart, at any scale.
   const Tri apart{{vec3(0.5f, 0.5f, 2e-3f), vec3(1, 0.5f, 1), vec3(0.5f, 1, 1)}};
   for (float scale : {1e-6f, 1.0f, 1e3f}) {
-    const Tri base = transformed(kBase, scale, vec3(0));
-    EXPECT_TRUE(intersect(base, transformed(barely, scale, vec3(0))).intersect) << scale;
-    EXPECT_FALSE(intersect(base, transformed(apart, scale, vec3(0))).intersect) << scale;
+    const Tri base = tilted(transformed(kBase, scale, vec3(0)));
+    EXPECT_TRUE(intersect(base, tilted(transformed(barely, scale, vec3(0)))).intersect) << scale;
+    EXPECT_FALSE(intersect(base, tilted(transformed(apart, scale, vec3(0)))).intersect) << scale;
   }
+}
+
+TEST(TriTriIntersect, BoundingBoxesApartNeverIntersect) {
+  // Untilted, `barely` hovers above kBase's plane with its bounding box apart from kBase's in z:
+  // decided exactly (no contact), whatever the plane tolerance would say.
+  const Tri barely{{vec3(0.5f, 0.5f, 4e-6f), vec3(1, 0.5f, 1), vec3(0.5f, 1, 1)}};
+  EXPECT_FALSE(intersect(kBase, barely).intersect);
+  // Touching bounding boxes (the vertex on the plane) still reach the test, and touch.
+  const Tri touching{{vec3(0.5f, 0.5f, 0.0f), vec3(1, 0.5f, 1), vec3(0.5f, 1, 1)}};
+  EXPECT_TRUE(intersect(kBase, touching).intersect);
 }
 
 TEST(TriTriIntersect, ThinTrianglesCrossUntilTooThinForAPlane) {
@@ -112,10 +134,9 @@ TEST(TriTriIntersect, CoplanarOverlappingIntersect) {
 }
 
 TEST(TriTriIntersect, CoplanarDisjointDoNotIntersect) {
+  // Bounding boxes apart: rejected before the planes are looked at.
   const Tri far{{vec3(3, 3, 0), vec3(5, 3, 0), vec3(3, 5, 0)}};
-  const TriTriResult r = intersect(kBase, far);
-  EXPECT_FALSE(r.intersect);
-  EXPECT_TRUE(r.coplanar);
+  EXPECT_FALSE(intersect(kBase, far).intersect);
   // Just across kBase's hypotenuse (x + y = 2), with a winding opposite to kBase's.
   const Tri across{{vec3(1.1f, 1.1f, 0), vec3(1.1f, 3, 0), vec3(3, 1.1f, 0)}};
   EXPECT_FALSE(intersect(kBase, across).intersect);

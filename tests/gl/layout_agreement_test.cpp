@@ -23,8 +23,16 @@ struct ProbeOutput {
   std::vector<gpu::BoxFace> box_faces;
   std::vector<gpu::ObjectInfo> objects;
   std::vector<gpu::BodyParams> body_params;
-  std::vector<std::uint32_t> bindings;  // the BINDING_* macros, in gpu::Binding order
+  std::vector<gpu::Tetra> tets;
+  std::vector<gpu::BodyPair> body_pairs;
+  std::vector<gpu::FacePair> face_pairs;
+  std::vector<gpu::CollisionCounters> counters;
+  // The BINDING_* macros in gpu::Binding order (kBindingCount of them), then
+  // LEAF_BOXES_PER_BODY.
+  std::vector<std::uint32_t> bindings;
 };
+
+constexpr std::uint32_t kBindingCount = gpu::kBoxRows + 1;
 
 // Runs shaders/test/layout_probe.comp over `count` elements of each struct.
 ProbeOutput run_layout_probe(std::uint32_t count) {
@@ -34,8 +42,12 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   const Ssbo<gpu::Box> boxes(count);
   const Ssbo<gpu::BoxFace> box_faces(count);
   const Ssbo<gpu::ObjectInfo> objects(count);
-  const Ssbo<std::uint32_t> bindings(17);
+  const Ssbo<std::uint32_t> bindings(kBindingCount + 1);
   const Ssbo<gpu::BodyParams> body_params(count);
+  const Ssbo<gpu::Tetra> tets(count);
+  const Ssbo<gpu::BodyPair> body_pairs(count);
+  const Ssbo<gpu::FacePair> face_pairs(count);
+  const Ssbo<gpu::CollisionCounters> counters(count);
   springs.bind(0);
   faces.bind(1);
   boxes.bind(2);
@@ -43,10 +55,15 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   objects.bind(4);
   bindings.bind(5);
   body_params.bind(6);
+  tets.bind(7);
+  body_pairs.bind(8);
+  face_pairs.bind(9);
+  counters.bind(10);
   program.set_uniform("u_count", count);
   program.dispatch_covering(count);
-  return {springs.download(), faces.download(),       boxes.download(),   box_faces.download(),
-          objects.download(), body_params.download(), bindings.download()};
+  return {springs.download(),    faces.download(),       boxes.download(),   box_faces.download(),
+          objects.download(),    body_params.download(), tets.download(),    body_pairs.download(),
+          face_pairs.download(), counters.download(),    bindings.download()};
 }
 
 std::uint32_t probe(std::uint32_t i, std::uint32_t k) {
@@ -98,17 +115,51 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
     EXPECT_EQ(p.pad0, probef(i, 5));
     EXPECT_EQ(p.pad1, probef(i, 6));
     EXPECT_EQ(p.pad2, probef(i, 7));
+
+    const gpu::Tetra& t = out.tets[i];
+    EXPECT_EQ(t.a, probe(i, 0));
+    EXPECT_EQ(t.b, probe(i, 1));
+    EXPECT_EQ(t.c, probe(i, 2));
+    EXPECT_EQ(t.d, probe(i, 3));
+    EXPECT_EQ(t.rest_volume, probef(i, 4));
+    EXPECT_EQ(t.stiffness, probef(i, 5));
+    EXPECT_EQ(t.pad0, probef(i, 6));
+    EXPECT_EQ(t.pad1, probef(i, 7));
+
+    EXPECT_EQ(out.body_pairs[i].a, probe(i, 0));
+    EXPECT_EQ(out.body_pairs[i].b, probe(i, 1));
+
+    const gpu::FacePair& fp = out.face_pairs[i];
+    EXPECT_EQ(fp.face_a, probe(i, 0));
+    EXPECT_EQ(fp.face_b, probe(i, 1));
+    EXPECT_EQ(fp.coplanar, probe(i, 2));
+    EXPECT_EQ(fp.pad, probe(i, 3));
+    EXPECT_EQ(fp.segment0, probe4(i, 4));
+    EXPECT_EQ(fp.segment1, probe4(i, 8));
+
+    const gpu::CollisionCounters& c = out.counters[i];
+    EXPECT_EQ(c.face_pairs, probe(i, 0));
+    EXPECT_EQ(c.box_pairs, probe(i, 1));
+    EXPECT_EQ(c.colliding_faces, probe(i, 2));
+    EXPECT_EQ(c.pad, probe(i, 3));
   }
 }
 
 TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
   const std::vector<std::uint32_t> expected = {
-      gpu::kNodePosition,  gpu::kNodeVelocity,    gpu::kSpringInfo,  gpu::kNodeForce,
-      gpu::kBoxInfo,       gpu::kCollisionResult, gpu::kFaceNormal,  gpu::kFaceInfo,
-      gpu::kObjectInfo,    gpu::kBoxFaceList,     gpu::kFacePair,    gpu::kBoxMask,
-      gpu::kBodyParams,    gpu::kNodeBody,        gpu::kSpringForce, gpu::kNodeSpringOffset,
-      gpu::kNodeSpringList};
-  EXPECT_EQ(run_layout_probe(1).bindings, expected);
+      gpu::kNodePosition,   gpu::kNodeVelocity,    gpu::kSpringInfo,  gpu::kNodeForce,
+      gpu::kBoxInfo,        gpu::kCollisionResult, gpu::kFaceNormal,  gpu::kFaceInfo,
+      gpu::kObjectInfo,     gpu::kBoxFaceList,     gpu::kFacePair,    gpu::kBoxMask,
+      gpu::kBodyParams,     gpu::kNodeBody,        gpu::kSpringForce, gpu::kNodeSpringOffset,
+      gpu::kNodeSpringList, gpu::kTetInfo,         gpu::kTetForce,    gpu::kNodeTetOffset,
+      gpu::kNodeTetList,    gpu::kFaceBoxes,       gpu::kBodyPair,    gpu::kCollisionCounters,
+      gpu::kBoxRows};
+  ASSERT_EQ(expected.size(), kBindingCount);
+  std::vector<std::uint32_t> bindings = run_layout_probe(1).bindings;
+  ASSERT_EQ(bindings.size(), kBindingCount + 1);
+  EXPECT_EQ(bindings.back(), gpu::kLeafBoxesPerBody) << "LEAF_BOXES_PER_BODY";
+  bindings.pop_back();
+  EXPECT_EQ(bindings, expected);
 }
 
 }  // namespace

@@ -267,7 +267,11 @@ TEST_F(TriTriGlTest, GlslMirrorMatchesTheCppNarrowPhase) {
     EXPECT_GT(intersecting[k], 0) << kKindNames[k];
     EXPECT_LT(intersecting[k], total[k]) << kKindNames[k];
   }
-  EXPECT_EQ(coplanar[static_cast<int>(Kind::kCoplanar)], total[static_cast<int>(Kind::kCoplanar)]);
+  // Coplanar pairs reach the coplanar branch unless their bounding boxes are apart (rejected
+  // first, with coplanar unset): every intersecting one is flagged coplanar.
+  EXPECT_GE(coplanar[static_cast<int>(Kind::kCoplanar)],
+            intersecting[static_cast<int>(Kind::kCoplanar)]);
+  EXPECT_GT(coplanar[static_cast<int>(Kind::kCoplanar)], 0);
 }
 
 }  // namespace

@@ -27,7 +27,8 @@ inline constexpr float kTriTriRoundoff = 1e-6f;
 inline constexpr float kTriTriDegenerateTolerance = 1e-4f;
 
 /// Result of tri_tri_intersect. segment is set only when intersect && !coplanar (both ends
-/// equal when the triangles touch at a point); otherwise it is zero.
+/// equal when the triangles touch at a point); otherwise it is zero. coplanar is only
+/// determined for triangles whose bounding boxes touch (others are rejected first).
 struct TriTriResult {
   bool intersect = false;
   bool coplanar = false;

@@ -1,5 +1,6 @@
 #include <string>
 
+#include "collision/leaf_boxes.h"
 #include "deformcd/error.h"
 #include "deformcd/world_state.h"
 
@@ -119,6 +120,7 @@ WorldState assemble_world(const std::vector<BodyInit>& bodies) {
   w.tet_forces.assign(4 * w.tets.size(), glm::vec4(0.0f));
   build_node_springs(w);
   build_node_tets(w);
+  collision::assemble_collision_lists(w);
   return w;
 }
 

@@ -102,7 +102,7 @@ std::vector<BufferSize> simulation_buffer_sizes(const WorldState& w) {
 }
 
 void check_buffer_sizes(std::span<const BufferSize> buffers, std::uint64_t max_bytes,
-                        std::string_view limit_name) {
+                        std::string_view limit_name, std::string_view owner) {
   std::string too_large;
   for (const BufferSize& b : buffers) {
     if (b.bytes() <= max_bytes) continue;
@@ -111,7 +111,7 @@ void check_buffer_sizes(std::span<const BufferSize> buffers, std::uint64_t max_b
                  std::to_string(b.element_bytes) + ")";
   }
   if (!too_large.empty()) {
-    throw GlError("GL simulation: buffers larger than " + std::string(limit_name) + " (" +
+    throw GlError(std::string(owner) + ": buffers larger than " + std::string(limit_name) + " (" +
                   std::to_string(max_bytes) + " bytes):" + too_large);
   }
 }

@@ -1,7 +1,8 @@
 #pragma once
 // What GlSimulation::upload checks before it allocates anything: that a WorldState's arrays fit
-// together, so that no shader can index past a buffer, and that every buffer fits the device.
-// No GL here: these run, and are tested, without a context.
+// together, so that no shader can index past a buffer, and that every buffer fits the device
+// (check_buffer_sizes serves GlCollision::upload too). No GL here: these run, and are tested,
+// without a context.
 
 #include <cstdint>
 #include <span>
@@ -26,9 +27,10 @@ struct BufferSize {
 [[nodiscard]] std::vector<BufferSize> simulation_buffer_sizes(const WorldState& state);
 
 // Throws GlError when any buffer holds more than `max_bytes`, naming each such buffer with its
-// size and the limit; `limit_name` says whose limit it is.
+// size and the limit; `limit_name` says whose limit it is, `owner` whose buffers they are (the
+// message's first words).
 void check_buffer_sizes(std::span<const BufferSize> buffers, std::uint64_t max_bytes,
-                        std::string_view limit_name);
+                        std::string_view limit_name, std::string_view owner = "GL simulation");
 
 // Throws Error naming the first array or element that does not fit: a per-node array whose
 // length differs from positions', a per-spring one from springs', a node, body or spring index

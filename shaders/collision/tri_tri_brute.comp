@@ -1,0 +1,28 @@
+#version 430
+// The paper's baseline ("original method"): every surface face of body a against every one of
+// body b, without boxes. Invocation (x, y, z) tests face x of body pair u_pair_first + z's body
+// a against face y of its body b. The host dispatches the chunk's largest N x M; invocations
+// past a pair's own faces return.
+#include "collision/narrow_phase.glsl"
+#include "common/layout.glsl"
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+layout(std430, binding = BINDING_OBJECT_INFO) readonly buffer ObjectInfos {
+  ObjectInfo objects[];
+};
+layout(std430, binding = BINDING_BODY_PAIR) readonly buffer BodyPairs {
+  BodyPair body_pairs[];
+};
+
+uniform uint u_pair_first;  // the chunk's first body pair
+
+void main() {
+  const uint x = gl_GlobalInvocationID.x;
+  const uint y = gl_GlobalInvocationID.y;
+  const BodyPair pair = body_pairs[u_pair_first + gl_GlobalInvocationID.z];
+  const ObjectInfo a = objects[pair.a];
+  const ObjectInfo b = objects[pair.b];
+  if (x >= a.face_count || y >= b.face_count) return;
+  test_face_pair(a.face_offset + x, b.face_offset + y);
+}

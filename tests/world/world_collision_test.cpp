@@ -1,0 +1,111 @@
+// Collision detection through the World on the shipped scenes, on the CPU backend: the paper's
+// octree returns exactly the pairs of the all-pairs baseline, on every frame.
+
+#include <filesystem>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "deformcd/io.h"
+#include "deformcd/scene.h"
+#include "deformcd/world.h"
+#include "support/contact_compare.h"
+#include "support/world_fixtures.h"
+
+namespace fs = std::filesystem;
+
+namespace deformcd {
+namespace {
+
+fs::path scene_path(const std::string& name) {
+  return fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (name + ".json");
+}
+
+// The scene's whole trajectory (apart, through each other, apart) in `frames` frames.
+World scene_world(const std::string& name, int frames, BroadPhase method) {
+  const Scene scene = read_scene(scene_path(name));
+  WorldOptions options;
+  options.backend = BackendKind::kCpu;
+  options.broadphase = method;
+  return World(make_scene_bodies(scene, read_tetgen, frames), step_settings(scene.settings),
+               options);
+}
+
+class CollisionOnScenes : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CollisionOnScenes, OctreeEqualsBruteOnEveryFrame) {
+  constexpr int kFrames = 24;
+  World world = scene_world(GetParam(), kFrames, BroadPhase::kOctree);
+  int frames_in_contact = 0;
+  std::size_t peak = 0;
+  std::vector<std::size_t> counts;
+  for (int f = 0; f <= kFrames; ++f) {
+    if (f > 0) world.step();
+    world.set_broadphase(BroadPhase::kOctree);
+    world.detect_collisions();
+    const std::vector<Contact> octree = world.contacts();
+    const CollisionCounts octree_counts = world.collision_counts();
+    world.set_broadphase(BroadPhase::kBrute);
+    world.detect_collisions();
+    const std::vector<Contact> brute = world.contacts();
+    ASSERT_EQ(test::contacts_difference(octree, brute), "") << "frame " << f;
+
+    EXPECT_EQ(octree_counts.contacts, octree.size());
+    std::set<std::pair<std::uint32_t, std::uint32_t>> faces;
+    for (const Contact& c : octree) {
+      EXPECT_LT(c.a.body, c.b.body);
+      faces.insert({c.a.body, c.a.face});
+      faces.insert({c.b.body, c.b.face});
+    }
+    EXPECT_EQ(octree_counts.colliding_faces, faces.size()) << "frame " << f;
+    const std::vector<std::uint32_t> flags = world.face_flags();
+    std::size_t flagged = 0;
+    for (std::uint32_t v : flags)
+      flagged += v != 0u ? 1 : 0;
+    EXPECT_EQ(flagged, faces.size()) << "frame " << f;
+    frames_in_contact += octree.empty() ? 0 : 1;
+    peak = std::max(peak, octree.size());
+    counts.push_back(octree.size());
+  }
+  // Apart at the start and the end, in contact in between.
+  EXPECT_EQ(counts.front(), 0u);
+  EXPECT_EQ(counts.back(), 0u);
+  EXPECT_GE(frames_in_contact, 3);
+  EXPECT_GE(peak, 50u);
+  std::cout << GetParam() << ": " << frames_in_contact << " of " << kFrames + 1
+            << " frames in contact, at most " << peak << " face pairs\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(ShippedScenes, CollisionOnScenes, ::testing::Values("phase1", "phase2"));
+
+TEST(WorldCollision, OneBodyHasNoContacts) {
+  World world = scene_world("hanging", 10, BroadPhase::kOctree);
+  world.step();
+  EXPECT_TRUE(world.contacts().empty());
+  EXPECT_EQ(world.collision_counts().contacts, 0u);
+}
+
+TEST(WorldCollision, NoBroadPhaseDetectsNothing) {
+  World world = scene_world("phase2", 24, BroadPhase::kNone);
+  for (int f = 0; f < 12; ++f)
+    world.step();  // in contact by now
+  EXPECT_TRUE(world.contacts().empty());
+  EXPECT_EQ(world.collision_counts().contacts, 0u);
+  world.set_broadphase(BroadPhase::kOctree);
+  world.detect_collisions();
+  EXPECT_FALSE(world.contacts().empty());
+}
+
+TEST(WorldCollision, UnknownBroadPhaseNamesTheValidOnes) {
+  try {
+    (void)parse_broadphase("kdtree");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "unknown broad phase 'kdtree' (valid: none, brute, octree)");
+  }
+  EXPECT_EQ(parse_broadphase("octree"), BroadPhase::kOctree);
+  EXPECT_EQ(broadphase_name(BroadPhase::kBrute), "brute");
+}
+
+}  // namespace
+}  // namespace deformcd
