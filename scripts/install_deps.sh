@@ -12,6 +12,8 @@ packages=(
   libepoxy-dev libegl-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev xvfb xauth
   # images
   libpng-dev libstb-dev
+  # bench --plot
+  gnuplot-nox
   # TetGen (AGPL-3, optional target)
   libtet1.5-dev
   # tests, benchmarks, exact oracle, CGAL's data set for the models

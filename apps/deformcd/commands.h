@@ -20,4 +20,8 @@ Command add_tetra_command(CLI::App& app);
 /// [--contacts FILE] [--positions-out FILE]`.
 Command add_run_command(CLI::App& app);
 
+/// `deformcd bench SCENE... [--frames N] [--backend gl,cpu] [--methods brute,octree]
+/// [--repeat R] [--json FILE] [--csv FILE] [--plot FILE.png]`.
+Command add_bench_command(CLI::App& app);
+
 }  // namespace deformcd::app

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   const deformcd::app::Command info = deformcd::app::add_info_command(app);
   const deformcd::app::Command tetra = deformcd::app::add_tetra_command(app);
   const deformcd::app::Command run = deformcd::app::add_run_command(app);
+  const deformcd::app::Command bench = deformcd::app::add_bench_command(app);
 
   try {
     app.parse(argc, argv);
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("info")) return info();
     if (app.got_subcommand("tetra")) return tetra();
     if (app.got_subcommand("run")) return run();
+    if (app.got_subcommand("bench")) return bench();
   } catch (const deformcd::Error& e) {
     std::cerr << "deformcd: error: " << e.what() << '\n';
     return 1;

@@ -55,6 +55,16 @@ struct WorldOptions {
   int stability_check_interval = 10;
   /// Collision detection run after each frame's simulation; kNone skips it.
   BroadPhase broadphase = BroadPhase::kOctree;
+  /// Time each stage of step() (see last_frame_times()): the world waits for the backend
+  /// (glFinish on GL) after the simulation and after the collision pass, before reading the
+  /// clock. Off by default, since waiting keeps the CPU from queueing the next frame's work.
+  bool measure_stage_times = false;
+};
+
+/// Wall time of the stages of one step(), in seconds (0 when not measured).
+struct FrameTimes {
+  double simulation_s = 0.0;  ///< substeps (forces, integration), and the stability check
+  double collision_s = 0.0;   ///< bounds, broad phase, narrow phase
 };
 
 /// The simulation blew up: a state became NaN/Inf or a node moved implausibly far in a step.
@@ -79,6 +89,8 @@ class World {
   void step();
   /// Frames stepped so far.
   [[nodiscard]] int frame() const { return frame_; }
+  /// The stage times of the last step() when WorldOptions::measure_stage_times is set.
+  [[nodiscard]] const FrameTimes& last_frame_times() const { return last_times_; }
   /// Waits until the backend has finished the work issued (for timing).
   void finish();
 
@@ -144,6 +156,8 @@ class World {
   double max_stable_substep_ = 0.0;
   std::string notice_;
   BroadPhase broadphase_ = BroadPhase::kOctree;
+  bool measure_stage_times_ = false;
+  FrameTimes last_times_;
   bool detected_ = false;  // whether a collision pass has run (its results are there)
   std::vector<gpu::Face> faces_;
 };

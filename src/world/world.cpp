@@ -1,5 +1,6 @@
 #include "deformcd/world.h"
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -15,7 +16,8 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
              const WorldOptions& options)
     : settings_(settings),
       check_interval_(std::max(1, options.stability_check_interval)),
-      broadphase_(options.broadphase) {
+      broadphase_(options.broadphase),
+      measure_stage_times_(options.measure_stage_times) {
   if (bodies.empty()) throw Error("a world needs at least one body");
   if (!(settings.dt > 0.0f) || settings.substeps < 1) {
     throw Error("dt must be positive and substeps at least 1");
@@ -49,6 +51,8 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
 World::~World() = default;
 
 void World::step() {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   const float h = settings_.dt / static_cast<float>(settings_.substeps);
   const sim::SubstepConstants constants{h, settings_.gravity,
                                         std::exp(-settings_.velocity_damping * h)};
@@ -56,7 +60,18 @@ void World::step() {
     backend_->substep(constants);
   ++frame_;
   if (frame_ % check_interval_ == 0 || frame_ == 1) check_stability();
-  if (broadphase_ != BroadPhase::kNone) detect_collisions();
+  if (measure_stage_times_) backend_->finish();
+  const auto simulated = Clock::now();
+  if (broadphase_ != BroadPhase::kNone) {
+    detect_collisions();
+  } else {
+    detected_ = false;
+  }
+  if (measure_stage_times_) {
+    backend_->finish();
+    last_times_.simulation_s = std::chrono::duration<double>(simulated - start).count();
+    last_times_.collision_s = std::chrono::duration<double>(Clock::now() - simulated).count();
+  }
 }
 
 void World::detect_collisions() {

@@ -1,0 +1,137 @@
+#include "bench_report.h"
+
+#include <iomanip>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace deformcd::app {
+
+namespace {
+
+nlohmann::json per_stage(const std::array<double, 3>& values) {
+  nlohmann::json j;
+  for (int s = 0; s < 3; ++s)
+    j[kStageNames[s]] = values[s];
+  return j;
+}
+
+}  // namespace
+
+void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results) {
+  out << std::fixed;
+  out << "\nTotal run time V (simulation + collision detection), each method against "
+      << "the first (V1):\n\n";
+  out << std::left << std::setw(22) << "scene" << std::setw(8) << "backend" << std::setw(8)
+      << "method" << std::right << std::setw(8) << "frames" << std::setw(12) << "V1 (s)"
+      << std::setw(12) << "V2 (s)" << std::setw(11) << "I" << std::setw(11) << "V1/V2"
+      << std::setw(14) << "CD V1/V2" << '\n';
+  for (const SceneBench& b : results) {
+    const MethodRun& base = b.runs.front();
+    for (std::size_t m = 1; m < b.runs.size(); ++m) {
+      const MethodRun& r = b.runs[m];
+      out << std::left << std::setw(22) << b.scene << std::setw(8) << b.backend << std::setw(8)
+          << broadphase_name(r.method) << std::right << std::setw(8) << b.frames
+          << std::setprecision(3) << std::setw(12) << base.total_s() << std::setw(12) << r.total_s()
+          << std::setprecision(1) << std::setw(10)
+          << 100.0 * improvement(base.total_s(), r.total_s()) << "%" << std::setprecision(2)
+          << std::setw(11) << base.total_s() / r.total_s() << std::setw(14)
+          << base.total_collision_s() / r.total_collision_s() << '\n';
+    }
+  }
+  out << "\n(I = (V1 - V2) / V2 as in the paper; CD = the collision-detection stage alone)\n";
+
+  for (const SceneBench& b : results) {
+    const int contact = static_cast<int>(std::count(b.stages.begin(), b.stages.end(), kContact));
+    out << "\n"
+        << b.scene << " on " << b.backend << " (" << b.device << "), " << b.frames << " frames, "
+        << contact << " in contact:\n";
+    out << std::left << std::setw(8) << "method" << std::right << std::setw(10) << "V (s)"
+        << std::setw(10) << "sim (s)" << std::setw(10) << "CD (s)" << std::setw(34)
+        << "ms/frame before | contact | after" << std::setw(37)
+        << "CD ms/frame before | contact | after" << std::setw(12) << "pairs" << '\n';
+    for (const MethodRun& r : b.runs) {
+      const StageTimes t = stage_times(r, b.stages);
+      std::ostringstream ms;
+      std::ostringstream cd;
+      ms << std::fixed << std::setprecision(1);
+      cd << std::fixed << std::setprecision(1);
+      for (int s = 0; s < 3; ++s) {
+        ms << (s ? " | " : "") << t.ms_per_frame[s];
+        cd << (s ? " | " : "") << t.collision_ms_per_frame[s];
+      }
+      out << std::left << std::setw(8) << broadphase_name(r.method) << std::right
+          << std::setprecision(3) << std::setw(10) << r.total_s() << std::setw(10)
+          << r.total_simulation_s() << std::setw(10) << r.total_collision_s() << std::setw(34)
+          << ms.str() << std::setw(37) << cd.str() << std::setw(12) << r.pairs() << '\n';
+    }
+    for (const std::string& m : b.disagreements) {
+      out << "WARNING: " << m << " found different contacts from "
+          << broadphase_name(b.runs.front().method) << " on some frame\n";
+    }
+  }
+}
+
+std::string bench_json(const std::vector<SceneBench>& results) {
+  nlohmann::json scenes = nlohmann::json::array();
+  for (const SceneBench& b : results) {
+    nlohmann::json methods = nlohmann::json::object();
+    nlohmann::json improvements = nlohmann::json::object();
+    nlohmann::json speedups = nlohmann::json::object();
+    nlohmann::json collision_speedups = nlohmann::json::object();
+    const MethodRun& base = b.runs.front();
+    for (const MethodRun& r : b.runs) {
+      const StageTimes t = stage_times(r, b.stages);
+      const std::string name(broadphase_name(r.method));
+      nlohmann::json frames_per_stage;
+      for (int s = 0; s < 3; ++s)
+        frames_per_stage[kStageNames[s]] = t.frames[s];
+      methods[name] = {{"total_s", r.total_s()},
+                       {"simulation_s", r.total_simulation_s()},
+                       {"collision_s", r.total_collision_s()},
+                       {"ms_per_frame", per_stage(t.ms_per_frame)},
+                       {"collision_ms_per_frame", per_stage(t.collision_ms_per_frame)},
+                       {"frames_per_stage", frames_per_stage},
+                       {"pairs", r.pairs()}};
+      if (&r == &base) continue;
+      improvements[name] = improvement(base.total_s(), r.total_s());
+      speedups[name] = base.total_s() / r.total_s();
+      collision_speedups[name] = base.total_collision_s() / r.total_collision_s();
+    }
+    scenes.push_back({{"scene", b.scene},
+                      {"backend", b.backend},
+                      {"device", b.device},
+                      {"frames", b.frames},
+                      {"baseline", std::string(broadphase_name(base.method))},
+                      {"methods", methods},
+                      {"improvement", improvements},
+                      {"speedup", speedups},
+                      {"collision_speedup", collision_speedups},
+                      {"methods_agree", b.disagreements.empty()}});
+  }
+  return nlohmann::json{{"scenes", scenes}}.dump(2) + "\n";
+}
+
+std::string bench_csv(const std::vector<SceneBench>& results) {
+  std::ostringstream out;
+  out << "scene,backend,method,frames,total_s,simulation_s,collision_s,"
+         "ms_before,ms_contact,ms_after,cd_ms_before,cd_ms_contact,cd_ms_after,pairs,"
+         "improvement\n";
+  out << std::setprecision(9);
+  for (const SceneBench& b : results) {
+    const MethodRun& base = b.runs.front();
+    for (const MethodRun& r : b.runs) {
+      const StageTimes t = stage_times(r, b.stages);
+      out << b.scene << ',' << b.backend << ',' << broadphase_name(r.method) << ',' << b.frames
+          << ',' << r.total_s() << ',' << r.total_simulation_s() << ',' << r.total_collision_s();
+      for (double v : t.ms_per_frame)
+        out << ',' << v;
+      for (double v : t.collision_ms_per_frame)
+        out << ',' << v;
+      out << ',' << r.pairs() << ',' << improvement(base.total_s(), r.total_s()) << '\n';
+    }
+  }
+  return out.str();
+}
+
+}  // namespace deformcd::app

@@ -1,0 +1,31 @@
+#pragma once
+// What `deformcd bench` prints and writes: the paper's table (phase, V1, V2, I) and the detail,
+// JSON and CSV.
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "bench_runner.h"
+
+namespace deformcd::app {
+
+/// The paper's improvement of a method over the baseline, I = (V1 - V2) / V2.
+[[nodiscard]] inline double improvement(double v1, double v2) {
+  return (v1 - v2) / v2;
+}
+
+/// The summary table (one row per scene, backend and method against the first method, which
+/// is the baseline) and the detail per method.
+void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results);
+
+/// {"scenes":[{"scene":..,"backend":..,"device":..,"frames":..,"methods":{"brute":{"total_s":..,
+/// "simulation_s":..,"collision_s":..,"ms_per_frame":{"before":..,"contact":..,"after":..},
+/// "collision_ms_per_frame":{...},"frames_per_stage":{...},"pairs":..},...},
+/// "improvement":{"octree":..},"speedup":{"octree":..},"collision_speedup":{...}},...]}
+[[nodiscard]] std::string bench_json(const std::vector<SceneBench>& results);
+
+/// One row per scene, backend and method.
+[[nodiscard]] std::string bench_csv(const std::vector<SceneBench>& results);
+
+}  // namespace deformcd::app

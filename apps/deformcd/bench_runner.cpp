@@ -1,0 +1,141 @@
+#include "bench_runner.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "deformcd/io.h"
+#include "deformcd/scene.h"
+#include "model_input.h"
+
+namespace deformcd::app {
+
+namespace {
+
+std::string_view backend_label(BackendKind kind) {
+  return kind == BackendKind::kGl ? "gl" : kind == BackendKind::kCpu ? "cpu" : "auto";
+}
+
+World make_world(const std::vector<BodyInit>& bodies, const StepSettings& settings,
+                 BackendKind backend, BroadPhase method, int threads) {
+  WorldOptions options;
+  options.backend = backend;
+  options.broadphase = method;
+  options.cpu_threads = threads;
+  options.measure_stage_times = true;
+  return World(bodies, settings, options);
+}
+
+MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& settings,
+                  BackendKind backend, BroadPhase method, int frames, int threads,
+                  const std::function<void()>& frame_done, std::string& device) {
+  World world = make_world(bodies, settings, backend, method, threads);
+  device = world.device();
+  MethodRun run;
+  run.method = method;
+  for (int f = 0; f < frames; ++f) {
+    world.step();
+    run.simulation_s.push_back(world.last_frame_times().simulation_s);
+    run.collision_s.push_back(world.last_frame_times().collision_s);
+    run.contacts.push_back(world.collision_counts().contacts);
+    frame_done();
+  }
+  return run;
+}
+
+std::vector<Stage> stages_from(const std::vector<std::uint64_t>& contacts) {
+  const auto first = std::find_if(contacts.begin(), contacts.end(), [](auto c) { return c > 0; });
+  const auto last = std::find_if(contacts.rbegin(), contacts.rend(), [](auto c) { return c > 0; });
+  std::vector<Stage> stages(contacts.size(), kBefore);
+  if (first == contacts.end()) return stages;  // never in contact: all "before"
+  const auto begin = static_cast<std::size_t>(first - contacts.begin());
+  const auto end = contacts.size() - static_cast<std::size_t>(last - contacts.rbegin());
+  for (std::size_t f = begin; f < contacts.size(); ++f)
+    stages[f] = f < end ? kContact : kAfter;
+  return stages;
+}
+
+}  // namespace
+
+double MethodRun::total_simulation_s() const {
+  return std::accumulate(simulation_s.begin(), simulation_s.end(), 0.0);
+}
+
+double MethodRun::total_collision_s() const {
+  return std::accumulate(collision_s.begin(), collision_s.end(), 0.0);
+}
+
+std::uint64_t MethodRun::pairs() const {
+  return std::accumulate(contacts.begin(), contacts.end(), std::uint64_t{0});
+}
+
+StageTimes stage_times(const MethodRun& run, const std::vector<Stage>& stages) {
+  StageTimes t;
+  for (std::size_t f = 0; f < stages.size() && f < run.collision_s.size(); ++f) {
+    ++t.frames[stages[f]];
+    t.ms_per_frame[stages[f]] += 1e3 * (run.simulation_s[f] + run.collision_s[f]);
+    t.collision_ms_per_frame[stages[f]] += 1e3 * run.collision_s[f];
+  }
+  for (int s = 0; s < 3; ++s) {
+    if (t.frames[s] == 0) continue;
+    t.ms_per_frame[s] /= t.frames[s];
+    t.collision_ms_per_frame[s] /= t.frames[s];
+  }
+  return t;
+}
+
+std::vector<SceneBench> run_bench(const BenchOptions& o, const BenchProgress& progress) {
+  if (o.repeat < 1) throw Error("--repeat must be at least 1");
+  if (o.methods.empty()) throw Error("bench needs at least one method");
+  for (BroadPhase m : o.methods) {
+    if (m == BroadPhase::kNone) throw Error("'none' is not a collision method to compare");
+  }
+  // Frames of every measured run, for the progress display.
+  long total = 0;
+  std::vector<Scene> scenes;
+  for (const auto& file : o.scenes) {
+    scenes.push_back(read_scene(file));
+    const int frames = o.frames > 0 ? o.frames : scenes.back().settings.frames;
+    total += static_cast<long>(frames) * o.repeat * static_cast<long>(o.methods.size()) *
+             static_cast<long>(o.backends.size());
+  }
+  long done = 0;
+  const auto frame_done = [&] { progress(++done, total); };
+
+  std::vector<SceneBench> results;
+  for (std::size_t s = 0; s < scenes.size(); ++s) {
+    const Scene& scene = scenes[s];
+    const int frames = o.frames > 0 ? o.frames : scene.settings.frames;
+    const std::vector<BodyInit> bodies = make_scene_bodies(scene, load_model_argument, frames);
+    const StepSettings settings = step_settings(scene.settings);
+    for (BackendKind backend : o.backends) {
+      SceneBench bench;
+      bench.scene = o.scenes[s].string();
+      bench.backend = std::string(backend_label(backend));
+      bench.frames = frames;
+      for (BroadPhase method : o.methods) {
+        // Warm-up: shader compilation on first dispatch, caches, thread pools.
+        (void)measure(
+            bodies, settings, backend, method, std::min(o.warmup_frames, frames), o.cpu_threads,
+            [] {}, bench.device);
+        std::vector<MethodRun> repeats;
+        for (int r = 0; r < o.repeat; ++r) {
+          repeats.push_back(measure(bodies, settings, backend, method, frames, o.cpu_threads,
+                                    frame_done, bench.device));
+        }
+        std::sort(repeats.begin(), repeats.end(),
+                  [](const MethodRun& x, const MethodRun& y) { return x.total_s() < y.total_s(); });
+        bench.runs.push_back(std::move(repeats[repeats.size() / 2]));  // the median
+      }
+      bench.stages = stages_from(bench.runs.front().contacts);
+      for (const MethodRun& run : bench.runs) {
+        if (run.contacts != bench.runs.front().contacts) {
+          bench.disagreements.emplace_back(broadphase_name(run.method));
+        }
+      }
+      results.push_back(std::move(bench));
+    }
+  }
+  return results;
+}
+
+}  // namespace deformcd::app

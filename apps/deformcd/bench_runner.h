@@ -1,0 +1,75 @@
+#pragma once
+// `deformcd bench`: runs each scene with each collision method on each backend over the same
+// frames and measures the simulation and the collision stage of every frame (World's stage
+// times: the world waits for the backend, glFinish on GL, before reading the clock).
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "deformcd/collision.h"
+#include "deformcd/world.h"
+
+namespace deformcd::app {
+
+/// The paper's three phases of a run, from the contacts found: before the first frame with a
+/// contact, from it to the last, and after.
+enum Stage { kBefore = 0, kContact = 1, kAfter = 2 };
+inline constexpr std::array<const char*, 3> kStageNames = {"before", "contact", "after"};
+
+/// One method's measured run (the median of the repeats, by total time).
+struct MethodRun {
+  BroadPhase method = BroadPhase::kBrute;
+  std::vector<double> simulation_s;     ///< per frame 1..N
+  std::vector<double> collision_s;      ///< per frame 1..N
+  std::vector<std::uint64_t> contacts;  ///< per frame 1..N
+
+  [[nodiscard]] double total_simulation_s() const;
+  [[nodiscard]] double total_collision_s() const;
+  /// The paper's V: the run's total time, simulation and collision detection.
+  [[nodiscard]] double total_s() const { return total_simulation_s() + total_collision_s(); }
+  [[nodiscard]] std::uint64_t pairs() const;
+};
+
+/// Per-stage means of one run, given the stage of each frame.
+struct StageTimes {
+  std::array<int, 3> frames{};
+  std::array<double, 3> ms_per_frame{};            ///< simulation + collision
+  std::array<double, 3> collision_ms_per_frame{};  ///< collision only
+};
+[[nodiscard]] StageTimes stage_times(const MethodRun& run, const std::vector<Stage>& stages);
+
+/// One scene on one backend, every method over the same frames.
+struct SceneBench {
+  std::string scene;  ///< the scene file as given
+  std::string backend;
+  std::string device;
+  int frames = 0;
+  std::vector<MethodRun> runs;  ///< in the order of the methods asked for
+  std::vector<Stage> stages;    ///< per frame, from the first run's contacts
+  /// Methods whose contact counts differ from the first method's on some frame (empty: all
+  /// agree, as they must).
+  std::vector<std::string> disagreements;
+};
+
+struct BenchOptions {
+  std::vector<std::filesystem::path> scenes;
+  std::vector<BackendKind> backends;
+  std::vector<BroadPhase> methods;
+  int frames = 0;  ///< the trajectory in this many frames; 0: the scene's own
+  int repeat = 1;
+  int warmup_frames = 2;  ///< a discarded short run per backend and method, before measuring
+  int cpu_threads = 0;
+};
+
+/// Called after each measured frame: (frames done, frames in all runs).
+using BenchProgress = std::function<void(long done, long total)>;
+
+/// Runs everything. Throws Error/GlError (e.g. kGl without GL 4.3, naming the scene).
+[[nodiscard]] std::vector<SceneBench> run_bench(const BenchOptions& options,
+                                                const BenchProgress& progress);
+
+}  // namespace deformcd::app

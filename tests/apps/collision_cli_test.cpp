@@ -1,0 +1,157 @@
+// `deformcd run --contacts` and `deformcd bench` as a user runs them: the files they write, and
+// their errors.
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string output;
+};
+
+CliRun run_cli(const std::string& args) {
+  CliRun r;
+  const std::string command = std::string(DEFORMCD_CLI) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    r.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string scene(const char* name) {
+  return (fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (std::string(name) + ".json")).string();
+}
+
+std::vector<std::string> lines_of(const fs::path& file) {
+  std::ifstream in(file);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(line);
+  return lines;
+}
+
+class CollisionCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("deformcd_collision_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+TEST_F(CollisionCli, ContactsFileHasOneSortedLinePerFrameAndIsTheSameForEveryBroadPhase) {
+  constexpr int kFrames = 12;
+  for (const char* method : {"brute", "octree"}) {
+    const CliRun r =
+        run_cli("run " + scene("phase2") + " --backend cpu --frames " + std::to_string(kFrames) +
+                " --broadphase " + method + " --contacts " + path(std::string(method) + ".jsonl"));
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("collision  " + std::string(method)), std::string::npos) << r.output;
+  }
+  const std::vector<std::string> brute = lines_of(path("brute.jsonl"));
+  const std::vector<std::string> octree = lines_of(path("octree.jsonl"));
+  ASSERT_EQ(brute.size(), kFrames + 1u);  // frames 0..N
+  EXPECT_EQ(brute, octree);
+  int frames_in_contact = 0;
+  for (std::size_t f = 0; f < brute.size(); ++f) {
+    const nlohmann::json line = nlohmann::json::parse(brute[f]);
+    EXPECT_EQ(line.at("frame").get<std::size_t>(), f);
+    const nlohmann::json& contacts = line.at("contacts");
+    frames_in_contact += contacts.empty() ? 0 : 1;
+    std::tuple<int, int, int, int> previous{-1, -1, -1, -1};
+    for (const nlohmann::json& c : contacts) {
+      const auto key = std::make_tuple(c["a"]["body"].get<int>(), c["a"]["face"].get<int>(),
+                                       c["b"]["body"].get<int>(), c["b"]["face"].get<int>());
+      EXPECT_LT(previous, key) << "frame " << f << ": not sorted";
+      previous = key;
+      EXPECT_LT(std::get<0>(key), std::get<2>(key));
+      EXPECT_EQ(c["a"]["nodes"].size(), 3u);
+      EXPECT_EQ(c["b"]["nodes"].size(), 3u);
+      if (c.contains("coplanar")) {
+        EXPECT_TRUE(c["segment"].is_null());
+      } else {
+        ASSERT_EQ(c["segment"].size(), 2u);
+        EXPECT_EQ(c["segment"][0].size(), 3u);
+      }
+    }
+  }
+  EXPECT_GE(frames_in_contact, 2);
+  EXPECT_TRUE(nlohmann::json::parse(brute.front())["contacts"].empty());
+}
+
+TEST_F(CollisionCli, BadContactsPathFailsBeforeRunningAndLeavesNothing) {
+  const CliRun r = run_cli("run " + scene("phase2") + " --backend cpu --frames 3 --contacts " +
+                           path("missing_dir/out.jsonl"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("missing_dir/out.jsonl"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(CollisionCli, UnknownBroadPhaseListsTheValidOnes) {
+  const CliRun r = run_cli("run " + scene("phase2") + " --backend cpu --frames 3 --broadphase kd");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("unknown broad phase 'kd' (valid: none, brute, octree)"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST_F(CollisionCli, BenchJsonHasEveryKeyAndEqualPairCounts) {
+  const CliRun r = run_cli("bench " + scene("phase2") +
+                           " --backend cpu --frames 12 --methods brute,octree --json " +
+                           path("bench.json") + " --csv " + path("bench.csv"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("V1/V2"), std::string::npos) << r.output;
+  std::ifstream in(path("bench.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_EQ(j.at("scenes").size(), 1u);
+  const nlohmann::json& s = j["scenes"][0];
+  EXPECT_EQ(s.at("backend"), "cpu");
+  EXPECT_TRUE(s.at("methods_agree").get<bool>());
+  const nlohmann::json& brute = s.at("methods").at("brute");
+  const nlohmann::json& octree = s.at("methods").at("octree");
+  for (const nlohmann::json* m : {&brute, &octree}) {
+    EXPECT_GT(m->at("total_s").get<double>(), 0.0);
+    EXPECT_GT(m->at("collision_s").get<double>(), 0.0);
+    EXPECT_GT(m->at("simulation_s").get<double>(), 0.0);
+    for (const char* stage : {"before", "contact", "after"}) {
+      EXPECT_GT(m->at("ms_per_frame").at(stage).get<double>(), 0.0) << stage;
+      EXPECT_GT(m->at("frames_per_stage").at(stage).get<int>(), 0) << stage;
+    }
+  }
+  EXPECT_GT(brute.at("pairs").get<long>(), 0);
+  EXPECT_EQ(brute.at("pairs"), octree.at("pairs"));
+  const double v1 = brute["total_s"].get<double>();
+  const double v2 = octree["total_s"].get<double>();
+  EXPECT_NEAR(s.at("improvement").at("octree").get<double>(), (v1 - v2) / v2, 1e-9);
+  EXPECT_EQ(lines_of(path("bench.csv")).size(), 3u);  // header + 2 methods
+}
+
+TEST_F(CollisionCli, BenchRejectsNoneAndAuto) {
+  EXPECT_EQ(run_cli("bench " + scene("phase2") + " --backend cpu --methods brute,none").status, 1);
+  EXPECT_EQ(run_cli("bench " + scene("phase2") + " --backend auto").status, 1);
+}
+
+}  // namespace
