@@ -19,6 +19,12 @@ enum class BroadPhase {
   kNone,    ///< no collision detection
   kBrute,   ///< every face of body A against every face of body B (the paper's baseline)
   kOctree,  ///< the paper's method: 64 leaf boxes per body, box-pair mask, N' x M' face rows
+  /// Beyond the paper: the paper's boxes, but the triangle tests run over the compacted face
+  /// pairs of overlapping boxes only.
+  kOctreeCompact,
+  /// Beyond the paper: a BVH per body (one face per leaf), refitted every frame; body pairs
+  /// culled by their root boxes; tree traversal appends candidate pairs, tested alone.
+  kBvh,
 };
 
 /// "none", "brute" or "octree"; throws Error listing the valid names otherwise.

@@ -42,7 +42,14 @@ enum Binding : std::uint32_t {
   kBodyPair = 22,           ///< BodyPair per pair of different bodies
   kCollisionCounters = 23,  ///< one CollisionCounters
   kBoxRows = 24,            ///< glm::uvec2 per leaf box: its first row in SSBO 9, row count
+  kBvhNode = 25,            ///< BvhNode per BVH node of every body (global indices)
+  kBvhBox = 26,             ///< Box per BVH node, refitted every frame
+  kBodyBvh = 27,            ///< BodyBvh per body
+  kCandidatePair = 28,      ///< glm::uvec2 per candidate face pair (global face indices)
 };
+
+/// BvhNode::face of an internal node.
+inline constexpr std::uint32_t kBvhInternal = 0xFFFFFFFFu;
 
 /// Leaf boxes per body: a 3-level octree over the body's rest pose, 4 x 4 x 4 leaves (paper).
 inline constexpr std::uint32_t kLeafBoxesPerBody = 64;
@@ -103,12 +110,32 @@ struct FacePair {
 static_assert(sizeof(FacePair) == 48);
 static_assert(offsetof(FacePair, segment0) == 16);
 
+/// 16 bytes. A node of a body's bounding volume hierarchy over its surface faces, one face per
+/// leaf. Nodes are stored in depth-first preorder from the root (a node's children come after
+/// it), with global indices; refitting in reverse order visits children before parents.
+struct BvhNode {
+  std::uint32_t left;    ///< child node (internal nodes), else kBvhInternal
+  std::uint32_t right;   ///< child node (internal nodes), else kBvhInternal
+  std::uint32_t parent;  ///< kBvhInternal for the root
+  std::uint32_t face;    ///< the leaf's global face index, kBvhInternal for internal nodes
+};
+static_assert(sizeof(BvhNode) == 16);
+
+/// 16 bytes. Where one body's BVH lies in the node array.
+struct BodyBvh {
+  std::uint32_t root;        ///< global index of the root (= node_offset)
+  std::uint32_t node_count;  ///< 2 x faces - 1
+  std::uint32_t depth;       ///< longest root-to-leaf path, in edges (stack bound)
+  std::uint32_t pad;
+};
+static_assert(sizeof(BodyBvh) == 16);
+
 /// 16 bytes. What a collision pass counts, on the device (SSBO 23), reset each pass.
 struct CollisionCounters {
   std::uint32_t face_pairs;       ///< intersecting face pairs found (may exceed the capacity)
   std::uint32_t box_pairs;        ///< overlapping leaf-box pairs (octree)
   std::uint32_t colliding_faces;  ///< faces whose flag (SSBO 5) the pass set
-  std::uint32_t pad;
+  std::uint32_t candidates;       ///< face pairs given to the triangle test (saturates)
 };
 static_assert(sizeof(CollisionCounters) == 16);
 

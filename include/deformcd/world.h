@@ -142,6 +142,8 @@ class World {
 
  private:
   void check_stability();
+  // Lets the collision backend finish the last pass (rerunning it after an overflow).
+  void complete_collision_pass() const;
   [[nodiscard]] int suggested_substeps() const;
 
   std::unique_ptr<gl::Context> owned_context_;
@@ -158,7 +160,9 @@ class World {
   BroadPhase broadphase_ = BroadPhase::kOctree;
   bool measure_stage_times_ = false;
   FrameTimes last_times_;
-  bool detected_ = false;  // whether a collision pass has run (its results are there)
+  bool detected_ = false;
+  mutable bool pass_pending_ = false;  // a pass was issued and not yet completed  // whether a
+                                       // collision pass has run (its results are there)
   std::vector<gpu::Face> faces_;
 };
 

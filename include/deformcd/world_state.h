@@ -58,6 +58,8 @@ struct WorldState {
   std::vector<glm::uvec2> face_boxes;     ///< SSBO 21: per face, bit k set if leaf box k lists it
   std::vector<glm::uvec2> box_rows;       ///< SSBO 24: per leaf box, first row in box_faces, count
   std::vector<gpu::BodyPair> body_pairs;  ///< SSBO 22: every pair of different bodies, a < b
+  std::vector<gpu::BvhNode> bvh_nodes;    ///< SSBO 25: every body's BVH, body by body
+  std::vector<gpu::BodyBvh> body_bvhs;    ///< SSBO 27: per body
   std::vector<std::string> body_names;
 
   [[nodiscard]] std::size_t node_count() const { return positions.size(); }

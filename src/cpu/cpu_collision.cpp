@@ -1,9 +1,9 @@
 #include "cpu_collision.h"
 
-#include <atomic>
+#include <algorithm>
+#include <tuple>
 
 #include "core/collision/broad_phase.h"
-#include "core/collision/tri_tri_intersection.h"
 #include "deformcd/error.h"
 #include "parallel_for.h"
 
@@ -30,24 +30,49 @@ void CpuCollision::upload(const WorldState& state) {
   flags_.assign(faces_.size(), 0u);
   pairs_.clear();
   counters_ = {};
+  bvh_.upload(state);
 }
 
 void CpuCollision::detect(BroadPhase method) {
-  if (simulation_.state().positions.empty() && !faces_.empty()) {
+  const std::vector<glm::vec4>& positions = simulation_.state().positions;
+  if (positions.empty() && !faces_.empty()) {
     throw Error("CPU collision: the simulation holds no positions (upload it first)");
   }
   std::fill(flags_.begin(), flags_.end(), 0u);
   pairs_.clear();
   counters_ = {};
-  if (method == BroadPhase::kNone) return;
-  if (method == BroadPhase::kOctree) update_boxes();
-  for (const gpu::BodyPair& pair : body_pairs_) {
-    if (method == BroadPhase::kOctree) {
-      octree_pair(pair);
-    } else {
-      brute_pair(pair);
+  const NarrowPhase narrow{positions.data(), faces_.data(), flags_.data()};
+  switch (method) {
+    case BroadPhase::kNone:
+      return;
+    case BroadPhase::kBrute:
+      for (const gpu::BodyPair& pair : body_pairs_)
+        brute_pair(pair, narrow);
+      break;
+    case BroadPhase::kOctree:
+    case BroadPhase::kOctreeCompact: {
+      update_boxes();
+      const LeafBoxRows lists{box_faces_.data(), face_boxes_.data(), box_rows_.data()};
+      for (const gpu::BodyPair& pair : body_pairs_) {
+        update_box_mask(pair);
+        if (method == BroadPhase::kOctree) {
+          octree_pair(pair, narrow);
+        } else {
+          octree_compact_.run(pair, mask_, lists, narrow, collector_);
+        }
+      }
+      break;
     }
+    case BroadPhase::kBvh:
+      bvh_.run(positions, faces_, body_pairs_, narrow, collector_);
+      break;
   }
+  counters_.candidates = saturate_u32(collector_.gather(pairs_));
+  // Threads append in any order; sorting makes the raw output one list whatever the schedule
+  // (each face pair is found once, so the order is total).
+  std::sort(pairs_.begin(), pairs_.end(), [](const gpu::FacePair& x, const gpu::FacePair& y) {
+    return std::tie(x.face_a, x.face_b) < std::tie(y.face_a, y.face_b);
+  });
   counters_.face_pairs = static_cast<std::uint32_t>(pairs_.size());
   std::uint32_t colliding = 0;
   for (std::uint32_t f : flags_)
@@ -74,33 +99,7 @@ void CpuCollision::update_boxes() {
       64);
 }
 
-void CpuCollision::test_faces(std::uint32_t face_a, std::uint32_t face_b,
-                              std::vector<gpu::FacePair>& out) {
-  const std::vector<glm::vec4>& p = simulation_.state().positions;
-  const gpu::Face& fa = faces_[face_a];
-  const gpu::Face& fb = faces_[face_b];
-  const glm::vec3 ta[3] = {glm::vec3(p[fa.a]), glm::vec3(p[fa.b]), glm::vec3(p[fa.c])};
-  const glm::vec3 tb[3] = {glm::vec3(p[fb.a]), glm::vec3(p[fb.b]), glm::vec3(p[fb.c])};
-  const collision::TriTriResult hit = collision::tri_tri_intersect(ta, tb);
-  if (!hit.intersect) return;
-  // Several threads may flag one face; the value written is the same.
-  std::atomic_ref<std::uint32_t>(flags_[face_a]).store(1u, std::memory_order_relaxed);
-  std::atomic_ref<std::uint32_t>(flags_[face_b]).store(1u, std::memory_order_relaxed);
-  out.push_back({face_a, face_b, hit.coplanar ? 1u : 0u, 0u, glm::vec4(hit.segment[0], 0.0f),
-                 glm::vec4(hit.segment[1], 0.0f)});
-}
-
-// Results are gathered per row, then appended in row order: the output does not depend on the
-// thread schedule.
-void CpuCollision::collect(std::vector<std::vector<gpu::FacePair>>& per_row) {
-  for (std::vector<gpu::FacePair>& row : per_row) {
-    pairs_.insert(pairs_.end(), row.begin(), row.end());
-  }
-}
-
-// BBCollision (Algorithm 2) into the 64 x 64 mask, then the N' x M' sweep over the two bodies'
-// BoundingBox Face List rows (Algorithm 3), skipping rows whose boxes do not overlap.
-void CpuCollision::octree_pair(const gpu::BodyPair& pair) {
+void CpuCollision::update_box_mask(const gpu::BodyPair& pair) {
   const std::uint32_t box_a = pair.a * kBoxes;
   const std::uint32_t box_b = pair.b * kBoxes;
   for (std::uint32_t i = 0; i < kBoxes; ++i) {
@@ -110,13 +109,18 @@ void CpuCollision::octree_pair(const gpu::BodyPair& pair) {
       counters_.box_pairs += overlap ? 1u : 0u;
     }
   }
+}
+
+// The N' x M' sweep over the two bodies' BoundingBox Face List rows (Algorithm 3), skipping
+// rows whose boxes do not overlap.
+void CpuCollision::octree_pair(const gpu::BodyPair& pair, const NarrowPhase& narrow) {
   const gpu::ObjectInfo& a = objects_[pair.a];
   const gpu::ObjectInfo& b = objects_[pair.b];
   const auto overlap = [&](std::uint32_t i, std::uint32_t j) { return mask_[i * kBoxes + j] == 1; };
-  std::vector<std::vector<gpu::FacePair>> per_row(a.box_face_count);
   parallel_for(
       a.box_face_count,
       [&](std::size_t x) {
+        ThreadPairs& local = collector_.local();
         const gpu::BoxFace row_a = box_faces_[a.box_face_offset + x];
         for (std::uint32_t y = 0; y < b.box_face_count; ++y) {
           const gpu::BoxFace row_b = box_faces_[b.box_face_offset + y];
@@ -124,28 +128,25 @@ void CpuCollision::octree_pair(const gpu::BodyPair& pair) {
           if (!collision::is_first_box_pair(face_boxes_[row_a.face], face_boxes_[row_b.face],
                                             row_a.box, row_b.box, overlap))
             continue;
-          test_faces(row_a.face, row_b.face, per_row[x]);
+          narrow.test(row_a.face, row_b.face, local);
         }
       },
       kRowGrain);
-  collect(per_row);
 }
 
 // The paper's baseline: every face of body a against every face of body b.
-void CpuCollision::brute_pair(const gpu::BodyPair& pair) {
+void CpuCollision::brute_pair(const gpu::BodyPair& pair, const NarrowPhase& narrow) {
   const gpu::ObjectInfo& a = objects_[pair.a];
   const gpu::ObjectInfo& b = objects_[pair.b];
-  std::vector<std::vector<gpu::FacePair>> per_row(a.face_count);
   parallel_for(
       a.face_count,
       [&](std::size_t x) {
+        ThreadPairs& local = collector_.local();
         const auto face_a = static_cast<std::uint32_t>(a.face_offset + x);
-        for (std::uint32_t y = 0; y < b.face_count; ++y) {
-          test_faces(face_a, b.face_offset + y, per_row[x]);
-        }
+        for (std::uint32_t y = 0; y < b.face_count; ++y)
+          narrow.test(face_a, b.face_offset + y, local);
       },
       kRowGrain);
-  collect(per_row);
 }
 
 }  // namespace deformcd::cpu

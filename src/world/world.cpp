@@ -51,6 +51,7 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
 World::~World() = default;
 
 void World::step() {
+  complete_collision_pass();  // before the positions move
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const float h = settings_.dt / static_cast<float>(settings_.substeps);
@@ -74,19 +75,32 @@ void World::step() {
   }
 }
 
+void World::complete_collision_pass() const {
+  if (!pass_pending_) return;
+  collision_->complete_pass();
+  pass_pending_ = false;
+}
+
 void World::detect_collisions() {
+  complete_collision_pass();
   collision_->detect(broadphase_);
+  pass_pending_ = true;
+  // Timed passes include a rerun after an overflow; otherwise the check waits until the next
+  // step or read, so that the GPU can run on while the CPU queues the next frame.
+  if (measure_stage_times_) complete_collision_pass();
   detected_ = broadphase_ != BroadPhase::kNone;
 }
 
 CollisionCounts World::collision_counts() const {
   if (!detected_) return {};
+  complete_collision_pass();
   const gpu::CollisionCounters c = collision_->counters();
   return {c.face_pairs, c.box_pairs, c.colliding_faces};
 }
 
 std::vector<Contact> World::contacts() const {
   if (!detected_) return {};
+  complete_collision_pass();
   std::vector<gpu::FacePair> pairs;
   collision_->download_face_pairs(pairs);
   return collision::make_contacts(pairs, faces_, objects_);
@@ -94,6 +108,7 @@ std::vector<Contact> World::contacts() const {
 
 std::vector<std::uint32_t> World::face_flags() const {
   if (!detected_) return std::vector<std::uint32_t>(faces_.size(), 0u);
+  complete_collision_pass();
   std::vector<std::uint32_t> flags;
   collision_->download_face_flags(flags);
   flags.resize(faces_.size());  // a GL buffer holds at least one element
@@ -105,6 +120,7 @@ std::uint32_t World::gl_face_flag_buffer() const {
 }
 
 std::vector<gpu::Box> World::leaf_boxes() const {
+  complete_collision_pass();
   std::vector<gpu::Box> boxes;
   collision_->download_boxes(boxes);
   boxes.resize(objects_.size() * gpu::kLeafBoxesPerBody);

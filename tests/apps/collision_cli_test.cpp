@@ -113,8 +113,9 @@ TEST_F(CollisionCli, BadContactsPathFailsBeforeRunningAndLeavesNothing) {
 TEST_F(CollisionCli, UnknownBroadPhaseListsTheValidOnes) {
   const CliRun r = run_cli("run " + scene("phase2") + " --backend cpu --frames 3 --broadphase kd");
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find("unknown broad phase 'kd' (valid: none, brute, octree)"),
-            std::string::npos)
+  EXPECT_NE(
+      r.output.find("unknown broad phase 'kd' (valid: none, brute, octree, octree-compact, bvh)"),
+      std::string::npos)
       << r.output;
 }
 

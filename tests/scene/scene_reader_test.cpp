@@ -96,9 +96,9 @@ TEST_F(SceneReaderTest, WrongTypesAreNamed) {
 TEST_F(SceneReaderTest, UnknownBroadPhaseListsTheValidOnes) {
   const std::string msg = error_of(R"({"collision": {"broadphase": "kdtree"},
       "bodies": [{"model": "models/cube"}]})");
-  EXPECT_NE(
-      msg.find("/collision/broadphase: unknown broad phase 'kdtree' (valid: none, brute, octree)"),
-      std::string::npos)
+  EXPECT_NE(msg.find("/collision/broadphase: unknown broad phase 'kdtree' (valid: none, brute, "
+                     "octree, octree-compact, bvh)"),
+            std::string::npos)
       << msg;
 }
 

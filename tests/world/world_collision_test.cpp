@@ -101,7 +101,8 @@ TEST(WorldCollision, UnknownBroadPhaseNamesTheValidOnes) {
     (void)parse_broadphase("kdtree");
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "unknown broad phase 'kdtree' (valid: none, brute, octree)");
+    EXPECT_STREQ(e.what(),
+                 "unknown broad phase 'kdtree' (valid: none, brute, octree, octree-compact, bvh)");
   }
   EXPECT_EQ(parse_broadphase("octree"), BroadPhase::kOctree);
   EXPECT_EQ(broadphase_name(BroadPhase::kBrute), "brute");

@@ -10,8 +10,11 @@ struct NamedMethod {
   BroadPhase method;
   std::string_view name;
 };
-constexpr NamedMethod kMethods[] = {
-    {BroadPhase::kNone, "none"}, {BroadPhase::kBrute, "brute"}, {BroadPhase::kOctree, "octree"}};
+constexpr NamedMethod kMethods[] = {{BroadPhase::kNone, "none"},
+                                    {BroadPhase::kBrute, "brute"},
+                                    {BroadPhase::kOctree, "octree"},
+                                    {BroadPhase::kOctreeCompact, "octree-compact"},
+                                    {BroadPhase::kBvh, "bvh"}};
 }  // namespace
 
 BroadPhase parse_broadphase(std::string_view name) {

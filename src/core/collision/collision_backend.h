@@ -26,8 +26,13 @@ class CollisionBackend {
   /// Error when a buffer does not fit the device.
   virtual void upload(const WorldState& state) = 0;
   /// One pass over the current positions: resets the face flags and counters, then runs the
-  /// broad phase `method` (not kNone) and the narrow phase.
+  /// broad phase `method` and the narrow phase (kNone only resets). Throws Error for a method
+  /// the backend does not implement.
   virtual void detect(BroadPhase method) = 0;
+  /// Makes sure the last pass is complete and whole: a backend whose candidate buffer
+  /// overflowed grows it and reruns the pass (on the same positions). The world calls it after
+  /// each pass, before the positions move again; results are read only after it.
+  virtual void complete_pass() {}
   /// The last pass's counters (on GL, waits for the pass).
   [[nodiscard]] virtual gpu::CollisionCounters counters() = 0;
   /// The last pass's intersecting face pairs, in no particular order; all of them (a backend

@@ -1,5 +1,6 @@
 #include <string>
 
+#include "collision/bvh.h"
 #include "collision/leaf_boxes.h"
 #include "deformcd/error.h"
 #include "deformcd/world_state.h"
@@ -121,6 +122,7 @@ WorldState assemble_world(const std::vector<BodyInit>& bodies) {
   build_node_springs(w);
   build_node_tets(w);
   collision::assemble_collision_lists(w);
+  collision::assemble_bvhs(w);
   return w;
 }
 

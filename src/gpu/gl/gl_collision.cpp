@@ -8,7 +8,6 @@
 #include <string>
 #include <utility>
 
-#include "collision_upload_checks.h"
 #include "core/collision/broad_phase.h"
 #include "deformcd/error.h"
 #include "gl_check.h"
@@ -41,14 +40,16 @@ std::uint32_t checked_mask_slots(std::uint32_t requested, std::uint32_t max_grou
   return std::min(requested, max_groups_z);
 }
 
-// Dispatches `program` over a chunk: x and y cover the chunk's largest counts, z its pairs.
-void dispatch_chunk(ComputeProgram& program, const PairChunk& chunk) {
-  const std::array<std::uint32_t, 3>& local = program.work_group_size();
-  const std::uint32_t groups_x = groups_covering(chunk.max_a, local[0]);
-  const std::uint32_t groups_y = groups_covering(chunk.max_b, local[1]);
-  if (groups_x == 0 || groups_y == 0) return;
-  program.set_uniform("u_pair_first", chunk.first);
-  program.dispatch(groups_x, groups_y, chunk.count);
+std::uint32_t checked_check_interval(std::uint32_t passes) {
+  if (passes == 0) throw Error("GlCollisionOptions::bvh_check_interval must be positive");
+  return passes;
+}
+
+std::uint32_t largest_row_count(const std::vector<glm::uvec2>& box_rows) {
+  std::uint32_t most = 0;
+  for (const glm::uvec2& rows : box_rows)
+    most = std::max(most, rows.y);
+  return most;
 }
 
 }  // namespace
@@ -68,52 +69,75 @@ GlCollision::GlCollision(const DeviceInfo& device, const GlSimulation& simulatio
       max_work_groups_(device.max_work_group_count),
       mask_slots_(checked_mask_slots(options.mask_slots, device.max_work_group_count[2])),
       initial_pair_capacity_(options.initial_pair_capacity),
+      initial_candidate_capacity_(options.initial_candidate_capacity),
+      initial_box_pair_capacity_(options.initial_box_pair_capacity),
+      bvh_check_interval_(checked_check_interval(options.bvh_check_interval)),
       bb_update_("collision/bb_update.comp"),
       bb_collision_("collision/bb_collision.comp"),
       tri_tri_octree_("collision/tri_tri_octree.comp"),
-      tri_tri_brute_("collision/tri_tri_brute.comp") {}
+      tri_tri_brute_("collision/tri_tri_brute.comp"),
+      bb_pair_list_("collision/bb_pair_list.comp"),
+      octree_candidates_("collision/octree_candidates.comp"),
+      bvh_refit_("collision/bvh_refit.comp"),
+      bvh_traverse_("collision/bvh_traverse.comp"),
+      dispatch_args_("collision/dispatch_args.comp"),
+      tri_tri_candidates_("collision/tri_tri_candidates.comp") {}
 
 void GlCollision::upload(const WorldState& state) {
   // Everything is checked before the first allocation, so a failed upload keeps the old state.
   check_collision_consistency(state);
-  const std::uint64_t capacity = initial_capacity(state);
-  const std::uint64_t slots = std::clamp<std::uint64_t>(state.body_pairs.size(), 1, mask_slots_);
-  check_buffer_sizes(collision_buffer_sizes(state, capacity, slots), max_buffer_bytes_,
-                     limit_name(), "GL collision");
+  const CollisionCapacities capacities = initial_capacities(state);
+  check_buffer_sizes(collision_buffer_sizes(state, capacities), max_buffer_bytes_, limit_name(),
+                     "GL collision");
   const auto box_count = static_cast<std::uint32_t>(gpu::kLeafBoxesPerBody * state.body_count());
-  std::vector<PairChunk> octree_chunks = plan_pair_chunks(
-      state.body_pairs, state.objects, mask_slots_, &gpu::ObjectInfo::box_face_count);
-  std::vector<PairChunk> brute_chunks = plan_pair_chunks(
-      state.body_pairs, state.objects, max_work_groups_[2], &gpu::ObjectInfo::face_count);
-  check_dispatches(box_count, octree_chunks, brute_chunks);
+  BvhRebuilder rebuilder(state, bvh_check_interval_);
 
   // The new buffers are all allocated before the old ones are released: if GL runs out of
   // memory (GlError from BufferObject), the previous state stays intact.
   const std::vector<gpu::Box> empty_boxes(box_count, collision::empty_box());
-  buffers_.emplace(CollisionBuffers{
+  CollisionBuffers b{
       .boxes = make_buffer(empty_boxes),
       .face_flags = Ssbo<std::uint32_t>(std::max<std::size_t>(state.faces.size(), 1)),
       .faces = make_buffer(state.faces),
       .objects = make_buffer(state.objects),
       .box_faces = make_buffer(state.box_faces),
-      .face_pairs = Ssbo<gpu::FacePair>(capacity),
-      .box_mask = Ssbo<std::int32_t>(slots * gpu::kLeafBoxesPerBody * gpu::kLeafBoxesPerBody),
+      .face_pairs = Ssbo<gpu::FacePair>(capacities.face_pairs),
+      .box_mask = Ssbo<std::int32_t>(capacities.mask_slots * gpu::kLeafBoxesPerBody *
+                                     gpu::kLeafBoxesPerBody),
       .face_boxes = make_buffer(state.face_boxes),
       .body_pairs = make_buffer(state.body_pairs),
       .counters = Ssbo<gpu::CollisionCounters>(1),
       .box_rows = make_buffer(state.box_rows),
+      .bvh_nodes = make_buffer(state.bvh_nodes),
+      .bvh_boxes = Ssbo<gpu::Box>(std::max<std::size_t>(state.bvh_nodes.size(), 1)),
+      .body_bvhs = make_buffer(state.body_bvhs),
+      .candidates = Ssbo<glm::uvec2>(capacities.candidates),
+      .dispatch_args = Ssbo<std::uint32_t>(kDispatchArgsWords),
+      .box_pair_list = Ssbo<glm::uvec2>(capacities.box_pairs),
+      .bvh_visits = Ssbo<std::uint32_t>(std::max<std::size_t>(state.bvh_nodes.size(), 1)),
       .node_count = static_cast<std::uint32_t>(state.node_count()),
       .face_count = static_cast<std::uint32_t>(state.faces.size()),
       .box_count = box_count,
-      .pair_capacity = static_cast<std::uint32_t>(capacity),
-      .octree_chunks = std::move(octree_chunks),
-      .brute_chunks = std::move(brute_chunks),
-  });
+      .pair_capacity = static_cast<std::uint32_t>(capacities.face_pairs),
+      .bvh_node_count = static_cast<std::uint32_t>(state.bvh_nodes.size()),
+      .candidate_capacity = static_cast<std::uint32_t>(capacities.candidates),
+      .box_pair_capacity = static_cast<std::uint32_t>(capacities.box_pairs),
+      .max_box_rows = largest_row_count(state.box_rows),
+      .octree_chunks = plan_pair_chunks(state.body_pairs, state.objects, mask_slots_,
+                                        &gpu::ObjectInfo::box_face_count),
+      .brute_chunks = plan_pair_chunks(state.body_pairs, state.objects, max_work_groups_[2],
+                                       &gpu::ObjectInfo::face_count),
+  };
+  check_dispatches(b);
+  buffers_.emplace(std::move(b));
+  rebuilder_.emplace(std::move(rebuilder));
   bb_update_.set_uniform("u_box_count", box_count);
-  set_pair_capacity_uniforms(buffers_->pair_capacity);
+  bvh_refit_.set_uniform("u_node_count", buffers_->bvh_node_count);
+  set_capacity_uniforms(*buffers_);
   clear_to_zero(buffers_->face_flags);
   clear_to_zero(buffers_->counters);
   last_method_ = BroadPhase::kNone;
+  pass_pending_ = false;
 }
 
 void GlCollision::detect(BroadPhase method) {
@@ -123,71 +147,46 @@ void GlCollision::detect(BroadPhase method) {
   memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the last pass's shader writes land first
   clear_to_zero(b.face_flags);
   clear_to_zero(b.counters);
+  if (method == BroadPhase::kBvh) clear_to_zero(b.bvh_visits);
   last_method_ = method;
-  switch (method) {
-    case BroadPhase::kNone:
-      break;
-    case BroadPhase::kOctree:
-      run_octree(b);
-      break;
-    case BroadPhase::kBrute:
-      run_brute(b);
-      break;
-  }
+  pass_pending_ = true;
+  run(method, b);
   // Downloads, the next pass and renderers reading the flags see this pass's results.
   memory_barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
 }
 
-void GlCollision::run_octree(const CollisionBuffers& b) {
-  bb_update_.dispatch_covering(b.box_count);
-  storage_barrier();  // bb_collision reads the boxes
-  const std::array<std::uint32_t, 3>& local = bb_collision_.work_group_size();
-  for (const PairChunk& chunk : b.octree_chunks) {
-    bb_collision_.set_uniform("u_pair_first", chunk.first);
-    bb_collision_.dispatch(groups_covering(gpu::kLeafBoxesPerBody, local[0]),
-                           groups_covering(gpu::kLeafBoxesPerBody, local[1]), chunk.count);
-    storage_barrier();  // the narrow phase reads the masks
-    dispatch_chunk(tri_tri_octree_, chunk);
-    storage_barrier();  // the next chunk's bb_collision rewrites the mask slots read here
-  }
-}
-
-void GlCollision::run_brute(const CollisionBuffers& b) {
-  for (const PairChunk& chunk : b.brute_chunks)
-    dispatch_chunk(tri_tri_brute_, chunk);
-}
-
 gpu::CollisionCounters GlCollision::counters() {
+  complete_pass();
   return buffers("counters").counters.download(0, 1).front();
 }
 
 void GlCollision::download_face_pairs(std::vector<gpu::FacePair>& out) {
-  CollisionBuffers& b = buffers("download_face_pairs");
-  gpu::CollisionCounters found = counters();
-  // A pass is deterministic in what it finds (only the slots' order varies), so one rerun on
-  // the same positions fills the grown buffer; the bound guards against a changed state.
-  for (int rerun = 0; found.face_pairs > b.pair_capacity; ++rerun) {
-    if (rerun == 2) {
-      throw Error("GlCollision::download_face_pairs: the pass found " +
-                  std::to_string(found.face_pairs) + " face pairs after " + std::to_string(rerun) +
-                  " reruns with room for " + std::to_string(b.pair_capacity) +
-                  " (did the positions change?)");
-    }
-    grow_face_pairs(b, found.face_pairs);
-    detect(last_method_);
-    found = counters();
-  }
-  out = b.face_pairs.download(0, found.face_pairs);
+  complete_pass();
+  const CollisionBuffers& b = buffers("download_face_pairs");
+  out = b.face_pairs.download(0, b.counters.download(0, 1).front().face_pairs);
 }
 
 void GlCollision::download_face_flags(std::vector<std::uint32_t>& out) {
+  complete_pass();
   const CollisionBuffers& b = buffers("download_face_flags");
   out = b.face_flags.download(0, b.face_count);
 }
 
 void GlCollision::download_boxes(std::vector<gpu::Box>& out) {
+  complete_pass();
   const CollisionBuffers& b = buffers("download_boxes");
   out = b.boxes.download(0, b.box_count);
+}
+
+void GlCollision::download_bvh_boxes(std::vector<gpu::Box>& out) {
+  complete_pass();
+  const CollisionBuffers& b = buffers("download_bvh_boxes");
+  out = b.bvh_boxes.download(0, b.bvh_node_count);
+}
+
+void GlCollision::download_bvh_nodes(std::vector<gpu::BvhNode>& out) {
+  const CollisionBuffers& b = buffers("download_bvh_nodes");
+  out = b.bvh_nodes.download(0, b.bvh_node_count);
 }
 
 std::uint32_t GlCollision::gl_face_flag_buffer() const {
@@ -196,6 +195,18 @@ std::uint32_t GlCollision::gl_face_flag_buffer() const {
 
 std::uint32_t GlCollision::face_pair_capacity() const {
   return buffers_ ? buffers_->pair_capacity : 0;
+}
+
+std::uint32_t GlCollision::candidate_capacity() const {
+  return buffers_ ? buffers_->candidate_capacity : 0;
+}
+
+std::uint32_t GlCollision::box_pair_capacity() const {
+  return buffers_ ? buffers_->box_pair_capacity : 0;
+}
+
+std::uint32_t GlCollision::bvh_rebuilds() const {
+  return rebuilder_ ? rebuilder_->rebuilds() : 0;
 }
 
 CollisionBuffers& GlCollision::buffers(const char* operation) {
@@ -208,30 +219,69 @@ std::string_view GlCollision::limit_name() const {
                           : "GlCollisionOptions::max_buffer_bytes";
 }
 
-std::uint64_t GlCollision::initial_capacity(const WorldState& state) const {
-  if (initial_pair_capacity_ > 0) return initial_pair_capacity_;
-  // Room for every face in a few contacts; more only in deep interpenetration, which grows it.
-  const std::uint64_t wanted = std::max<std::uint64_t>(1024, 4 * std::uint64_t{state.faces.size()});
-  const std::uint64_t most = max_buffer_bytes_ / sizeof(gpu::FacePair);
-  return std::clamp<std::uint64_t>(wanted, 1, std::max<std::uint64_t>(most, 1));
+std::uint64_t GlCollision::most_elements(std::uint64_t element_bytes) const {
+  return std::min<std::uint64_t>(max_buffer_bytes_ / element_bytes,
+                                 std::numeric_limits<std::uint32_t>::max());
 }
 
-void GlCollision::check_dispatches(std::uint32_t box_count,
-                                   const std::vector<PairChunk>& octree_chunks,
-                                   const std::vector<PairChunk>& brute_chunks) const {
-  const std::uint32_t box_groups = groups_covering(box_count, bb_update_.work_group_size()[0]);
-  if (box_groups > max_work_groups_[0]) {
-    throw GlError("GL collision: '" + bb_update_.shader_name() + "' would need " +
-                  std::to_string(box_groups) + " work groups along x for " +
-                  std::to_string(box_count) +
-                  " leaf boxes, more than the device's GL_MAX_COMPUTE_WORK_GROUP_COUNT of " +
+CollisionCapacities GlCollision::initial_capacities(const WorldState& state) const {
+  // A default never exceeds the limit (a given one may, and is then reported).
+  const auto fit = [this](std::uint32_t given, std::uint64_t wanted, std::uint64_t bytes) {
+    if (given > 0) return std::uint64_t{given};
+    return std::clamp<std::uint64_t>(wanted, 1, std::max<std::uint64_t>(most_elements(bytes), 1));
+  };
+  const std::uint64_t faces = state.faces.size();
+  CollisionCapacities c;
+  // Room for every face in a few contacts; more only in deep interpenetration, which grows it.
+  c.face_pairs =
+      fit(initial_pair_capacity_, std::max<std::uint64_t>(1024, 4 * faces), sizeof(gpu::FacePair));
+  c.mask_slots = std::clamp<std::uint64_t>(state.body_pairs.size(), 1, mask_slots_);
+  // Candidates are face pairs whose boxes overlap: in contact, a few per face near the contact.
+  c.candidates = fit(initial_candidate_capacity_, std::max<std::uint64_t>(4096, 16 * faces),
+                     sizeof(glm::uvec2));
+  // Every leaf-box pair of every body pair for two or three bodies; with more, a body seldom
+  // touches all the others at once.
+  const std::uint64_t box_pairs_per_body_pair =
+      std::uint64_t{gpu::kLeafBoxesPerBody} * gpu::kLeafBoxesPerBody;
+  c.box_pairs = fit(initial_box_pair_capacity_,
+                    box_pairs_per_body_pair *
+                        std::min<std::uint64_t>(state.body_pairs.size(), state.body_count()),
+                    sizeof(glm::uvec2));
+  return c;
+}
+
+void GlCollision::check_dispatches(const CollisionBuffers& b) const {
+  const auto check_x = [&](const ComputeProgram& program, std::uint32_t invocations,
+                           const std::string& what) {
+    const std::uint32_t groups = groups_covering(invocations, program.work_group_size()[0]);
+    if (groups <= max_work_groups_[0]) return;
+    throw GlError("GL collision: '" + program.shader_name() + "' would need " +
+                  std::to_string(groups) + " work groups along x for " +
+                  std::to_string(invocations) + " " + what +
+                  ", more than the device's GL_MAX_COMPUTE_WORK_GROUP_COUNT of " +
                   std::to_string(max_work_groups_[0]));
-  }
+  };
+  check_x(bb_update_, b.box_count, "leaf boxes");
+  check_x(bvh_refit_, b.bvh_node_count, "BVH nodes");
   // bb_collision.comp's z extents are the octree chunks': checked with tri_tri_octree.comp's.
-  check_chunks_fit(tri_tri_octree_.shader_name(), octree_chunks, tri_tri_octree_.work_group_size(),
+  check_chunks_fit(tri_tri_octree_.shader_name(), b.octree_chunks,
+                   tri_tri_octree_.work_group_size(), max_work_groups_);
+  // bvh_traverse.comp and bb_pair_list.comp run over the brute chunks' z extents too, with x
+  // extents of the smaller body's faces and of 64 boxes.
+  check_chunks_fit(tri_tri_brute_.shader_name(), b.brute_chunks, tri_tri_brute_.work_group_size(),
                    max_work_groups_);
-  check_chunks_fit(tri_tri_brute_.shader_name(), brute_chunks, tri_tri_brute_.work_group_size(),
-                   max_work_groups_);
+  for (const PairChunk& chunk : b.brute_chunks)
+    check_x(bvh_traverse_, std::min(chunk.max_a, chunk.max_b), "faces");
+  // The indirect dispatches clamp x to the limit and loop; y covers the largest leaf box's rows.
+  const std::uint32_t groups_y =
+      groups_covering(b.max_box_rows, octree_candidates_.work_group_size()[1]);
+  if (groups_y > max_work_groups_[1]) {
+    throw GlError("GL collision: '" + octree_candidates_.shader_name() + "' would need " +
+                  std::to_string(groups_y) + " work groups along y for a leaf box of " +
+                  std::to_string(b.max_box_rows) +
+                  " rows, more than the device's GL_MAX_COMPUTE_WORK_GROUP_COUNT of " +
+                  std::to_string(max_work_groups_[1]));
+  }
 }
 
 void GlCollision::bind_positions(const CollisionBuffers& b) const {
@@ -252,26 +302,15 @@ void GlCollision::bind_positions(const CollisionBuffers& b) const {
   DEFORMCD_GL_CHECK(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kNodePosition, positions));
 }
 
-void GlCollision::set_pair_capacity_uniforms(std::uint32_t capacity) {
-  tri_tri_octree_.set_uniform("u_pair_capacity", capacity);
-  tri_tri_brute_.set_uniform("u_pair_capacity", capacity);
-}
-
-void GlCollision::grow_face_pairs(CollisionBuffers& b, std::uint32_t pairs) {
-  const std::uint64_t most = std::min<std::uint64_t>(max_buffer_bytes_ / sizeof(gpu::FacePair),
-                                                     std::numeric_limits<std::uint32_t>::max());
-  if (pairs > most) {
-    throw GlError("GL collision: a pass found " + std::to_string(pairs) +
-                  " intersecting face pairs, more than Face Pair (SSBO 10) can hold under " +
-                  std::string(limit_name()) + " (" + std::to_string(max_buffer_bytes_) +
-                  " bytes: " + std::to_string(most) + " pairs of " +
-                  std::to_string(sizeof(gpu::FacePair)) + " bytes)");
-  }
-  // Half again as many: a few more contacts next frame do not cost another rerun.
-  const std::uint64_t capacity = std::min<std::uint64_t>(most, pairs + pairs / 2);
-  b.face_pairs = Ssbo<gpu::FacePair>(capacity);
-  b.pair_capacity = static_cast<std::uint32_t>(capacity);
-  set_pair_capacity_uniforms(b.pair_capacity);
+void GlCollision::set_capacity_uniforms(const CollisionBuffers& b) {
+  tri_tri_octree_.set_uniform("u_pair_capacity", b.pair_capacity);
+  tri_tri_brute_.set_uniform("u_pair_capacity", b.pair_capacity);
+  tri_tri_candidates_.set_uniform("u_pair_capacity", b.pair_capacity);
+  tri_tri_candidates_.set_uniform("u_candidate_capacity", b.candidate_capacity);
+  bvh_traverse_.set_uniform("u_candidate_capacity", b.candidate_capacity);
+  octree_candidates_.set_uniform("u_candidate_capacity", b.candidate_capacity);
+  octree_candidates_.set_uniform("u_box_pair_capacity", b.box_pair_capacity);
+  bb_pair_list_.set_uniform("u_box_pair_capacity", b.box_pair_capacity);
 }
 
 }  // namespace deformcd::gl

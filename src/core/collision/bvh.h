@@ -1,0 +1,72 @@
+#pragma once
+// Bounding volume hierarchies over a body's surface faces (one face per leaf), for the `bvh`
+// broad phase (beyond the paper). The tree's topology is built once on the rest pose (and again
+// when refitting has degraded it); every frame only the boxes are refitted, bottom-up, from the
+// faces' current vertices. Box unions are min/max of the same floats, so every box is exact and
+// the broad phase loses no pair that the narrow phase's exact box test would keep.
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "broad_phase.h"
+#include "deformcd/gpu_layout.h"
+#include "deformcd/world_state.h"
+
+namespace deformcd::collision {
+
+/// Longest root-to-leaf path a traversal stack must hold (a median split keeps the depth at
+/// ceil(log2(faces)) + 1, so 64 holds any mesh that fits in memory).
+inline constexpr std::uint32_t kBvhMaxDepth = 64;
+
+/// Builds the BVH of faces [face_offset, face_offset + face_count) (vertices in `positions`)
+/// top-down: each node's faces are split at the median of their centroids along the longest
+/// axis of the centroids' bounds. Nodes in preorder, numbered from node_offset. Throws Error for
+/// zero faces.
+[[nodiscard]] std::vector<gpu::BvhNode> build_bvh(const std::vector<glm::vec4>& positions,
+                                                  const std::vector<gpu::Face>& faces,
+                                                  std::uint32_t face_offset,
+                                                  std::uint32_t face_count,
+                                                  std::uint32_t node_offset);
+
+/// Depth (edges on the longest root-to-leaf path) of the tree rooted at `root`.
+[[nodiscard]] std::uint32_t bvh_depth(const std::vector<gpu::BvhNode>& nodes, std::uint32_t root);
+
+/// Fills state.bvh_nodes and state.body_bvhs for every body from the current positions.
+void assemble_bvhs(WorldState& state);
+
+/// Recomputes the boxes of nodes [first, first + count) in reverse preorder (children first):
+/// leaves from their face's vertices, internal nodes as the union of their children.
+void refit_bvh(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first, std::uint32_t count,
+               const std::vector<glm::vec4>& positions, const std::vector<gpu::Face>& faces,
+               std::vector<gpu::Box>& boxes);
+
+/// Calls visit(face) for every leaf of the tree at `root` whose box overlaps `query` (closed
+/// boxes), depth first with an explicit stack (mirrored in shaders/collision/bvh.glsl).
+template <class Visit>
+void query_bvh(const gpu::BvhNode* nodes, const gpu::Box* boxes, std::uint32_t root,
+               const gpu::Box& query, const Visit& visit) {
+  std::uint32_t stack[kBvhMaxDepth + 1];
+  std::uint32_t size = 0;
+  stack[size++] = root;
+  while (size > 0) {
+    const std::uint32_t i = stack[--size];
+    if (!boxes_overlap(boxes[i], query)) continue;
+    const gpu::BvhNode& n = nodes[i];
+    if (n.face != gpu::kBvhInternal) {
+      visit(n.face);
+    } else {
+      stack[size++] = n.right;
+      stack[size++] = n.left;
+    }
+  }
+}
+
+/// How loose a refitted tree has become: the summed surface area of its internal nodes over the
+/// root's (scale-free; grows as deformation makes siblings overlap). Compare with the value
+/// right after a build to decide on a rebuild.
+[[nodiscard]] double bvh_area_ratio(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first,
+                                    std::uint32_t count, const std::vector<gpu::Box>& boxes);
+
+}  // namespace deformcd::collision
