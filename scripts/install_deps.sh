@@ -18,6 +18,8 @@ packages=(
   libtet1.5-dev
   # tests, benchmarks, exact oracle, CGAL's data set for the models
   libgtest-dev libgmock-dev libbenchmark-dev libcgal-dev libcgal-demo libeigen3-dev
+  # peers of the comparison benchmark (bench_peers)
+  libfcl-dev
 )
 
 missing=()

@@ -1,0 +1,112 @@
+// deformcd against the libraries a user would pick instead, on identical frames: the contact
+// frames of the shipped phase scenes (positions replayed on the CPU backend), each contestant
+// finding every intersecting surface-triangle pair between the two bodies.
+//   deformcd/<method>: the CPU backend's collision pass (box update or refit included).
+//   fcl: FCL 0.7 BVHModel<AABB> per body, refitted each frame (beginUpdateModel /
+//        updateSubModel / endUpdateModel), collide() with exhaustive contacts.
+//   cgal: CGAL box_intersection_d over the faces' boxes, then do_intersect on Triangle_3 (Epick).
+// One iteration runs every kept contact frame once; the time reported is per frame (wall clock,
+// the iteration's time divided by the frames), "contacts" is the number found over the frames:
+// peers must match deformcd's up to the float test's uncertain zone.
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "contact_frames.h"
+#include "cpu/cpu_collision.h"
+#include "cpu/cpu_simulation.h"
+#include "peer_contestants.h"
+
+namespace {
+
+using namespace deformcd;
+
+constexpr int kSceneFrames = 48;  // the whole trajectory
+constexpr int kKeptFrames = 6;    // contact frames measured
+
+const bench::ContactFrames& frames_of(const std::string& scene) {
+  static std::map<std::string, bench::ContactFrames> cache;
+  auto it = cache.find(scene);
+  if (it == cache.end()) {
+    it = cache.emplace(scene, bench::contact_frames(scene, kSceneFrames, kKeptFrames)).first;
+  }
+  return it->second;
+}
+
+void report(benchmark::State& state, const bench::ContactFrames& f, std::size_t found) {
+  state.counters["contacts"] =
+      benchmark::Counter(static_cast<double>(found), benchmark::Counter::kAvgIterations);
+  state.counters["brute_contacts"] = 0.0;
+  for (std::size_t c : f.contacts)
+    state.counters["brute_contacts"] += static_cast<double>(c);
+  state.counters["frames"] = static_cast<double>(f.positions.size());
+  state.counters["faces"] = static_cast<double>(f.state.faces.size());
+  // Wall time per frame (one iteration covers every frame): frames per second, inverted.
+  state.counters["per_frame"] = benchmark::Counter(
+      static_cast<double>(f.positions.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void deformcd_method(benchmark::State& state, const std::string& scene, BroadPhase method) {
+  const bench::ContactFrames& f = frames_of(scene);
+  WorldState w = f.state;
+  cpu::CpuSimulation sim;
+  cpu::CpuCollision collision(sim);
+  sim.upload(w);
+  collision.upload(w);
+  std::size_t found = 0;
+  for (auto _ : state) {
+    for (const std::vector<glm::vec4>& positions : f.positions) {
+      state.PauseTiming();
+      w.positions = positions;
+      sim.upload(w);
+      state.ResumeTiming();
+      collision.detect(method);
+      collision.complete_pass();
+      found += collision.counters().face_pairs;
+    }
+  }
+  report(state, f, found);
+}
+
+void peer(benchmark::State& state, const std::string& scene, const std::string& name) {
+  const bench::ContactFrames& f = frames_of(scene);
+  std::unique_ptr<bench::PeerContestant> contestant = bench::make_peer(name, f.state);
+  std::size_t found = 0;
+  for (auto _ : state) {
+    for (const std::vector<glm::vec4>& positions : f.positions)
+      found += contestant->detect(positions);
+  }
+  report(state, f, found);
+}
+
+void register_all() {
+  for (const std::string scene : {"phase1", "phase2"}) {
+    for (BroadPhase method : {BroadPhase::kBrute, BroadPhase::kOctree, BroadPhase::kBvh}) {
+      const std::string name =
+          "contact_frame/" + scene + "/deformcd-" + std::string(broadphase_name(method));
+      benchmark::RegisterBenchmark(name.c_str(), deformcd_method, scene, method)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
+    for (const std::string& p : bench::peer_names()) {
+      const std::string name = "contact_frame/" + scene + "/" + p;
+      benchmark::RegisterBenchmark(name.c_str(), peer, scene, p)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
