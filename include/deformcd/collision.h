@@ -56,6 +56,9 @@ struct CollisionCounts {
   std::uint64_t contacts = 0;         ///< intersecting face pairs
   std::uint64_t box_pairs = 0;        ///< overlapping leaf-box pairs (octree; 0 for brute)
   std::uint64_t colliding_faces = 0;  ///< faces in at least one contact
+  /// Face pairs given to the triangle test: N x M for brute, the first-box-pair rows for the
+  /// octree methods, the pairs whose own boxes overlap for bvh.
+  std::uint64_t candidates = 0;
 };
 
 }  // namespace deformcd

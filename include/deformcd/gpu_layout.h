@@ -135,7 +135,7 @@ struct CollisionCounters {
   std::uint32_t face_pairs;       ///< intersecting face pairs found (may exceed the capacity)
   std::uint32_t box_pairs;        ///< overlapping leaf-box pairs (octree)
   std::uint32_t colliding_faces;  ///< faces whose flag (SSBO 5) the pass set
-  std::uint32_t candidates;       ///< face pairs given to the triangle test (saturates)
+  std::uint32_t candidates;       ///< face pairs given to the triangle test
 };
 static_assert(sizeof(CollisionCounters) == 16);
 

@@ -31,9 +31,19 @@
 #define BINDING_BODY_PAIR 22           // BodyPair per pair of different bodies
 #define BINDING_COLLISION_COUNTERS 23  // one CollisionCounters
 #define BINDING_BOX_ROWS 24            // uvec2 per leaf box: its first row in SSBO 9, row count
+#define BINDING_BVH_NODE 25            // BvhNode per BVH node of every body (global indices)
+#define BINDING_BVH_BOX 26             // Box per BVH node, refitted every frame
+#define BINDING_BODY_BVH 27            // BodyBvh per body
+#define BINDING_CANDIDATE_PAIR 28      // uvec2 per candidate face pair (global face indices)
 
 // Leaf boxes per body: a 3-level octree, 4 x 4 x 4 leaves (gpu::kLeafBoxesPerBody).
 #define LEAF_BOXES_PER_BODY 64u
+
+// BvhNode.face of an internal node (gpu::kBvhInternal).
+#define BVH_INTERNAL 0xFFFFFFFFu
+// Longest root-to-leaf path a BVH traversal stack holds (collision::kBvhMaxDepth in
+// src/core/collision/bvh.h; not a layout, but a bound the host checks before upload).
+#define BVH_MAX_DEPTH 64u
 
 // 16 bytes. One spring between two nodes (global indices): rest length and stiffness. Its
 // damping is stiffness-proportional with its body's coefficient (BodyParams.damping).
@@ -125,5 +135,22 @@ struct CollisionCounters {
   uint face_pairs;       // intersecting face pairs found (may exceed the capacity)
   uint box_pairs;        // overlapping leaf-box pairs (octree)
   uint colliding_faces;  // faces whose flag (SSBO 5) the pass set
+  uint candidates;       // face pairs given to the triangle test
+};
+
+// 16 bytes. A node of a body's bounding volume hierarchy over its surface faces, one face per
+// leaf, in depth-first preorder from the root (children after their parent), global indices.
+struct BvhNode {
+  uint left;    // child node (internal nodes), else BVH_INTERNAL
+  uint right;   // child node (internal nodes), else BVH_INTERNAL
+  uint parent;  // BVH_INTERNAL for the root
+  uint face;    // the leaf's global face index, BVH_INTERNAL for internal nodes
+};
+
+// 16 bytes. Where one body's BVH lies in the node array.
+struct BodyBvh {
+  uint root;        // global index of the root (= node offset)
+  uint node_count;  // 2 x faces - 1
+  uint depth;       // longest root-to-leaf path, in edges (stack bound)
   uint pad;
 };

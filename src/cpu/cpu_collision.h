@@ -1,12 +1,17 @@
 #pragma once
 // Collision detection on the CPU, in parallel with oneTBB: the same broad phases and narrow
 // phase as the GL backend's shaders (BBUpdate, BBCollision, Triangle-Triangle Intersection),
-// element for element, over the positions the CPU simulation holds.
+// element for element, over the positions the CPU simulation holds. The paper's two methods
+// (brute, octree) live here; the ones beyond it in cpu_octree_compact.h and
+// cpu_bvh_broad_phase.h.
 
 #include <cstdint>
 #include <vector>
 
 #include "core/collision/collision_backend.h"
+#include "cpu_bvh_broad_phase.h"
+#include "cpu_narrow_phase.h"
+#include "cpu_octree_compact.h"
 #include "cpu_simulation.h"
 
 namespace deformcd::cpu {
@@ -20,17 +25,22 @@ class CpuCollision final : public collision::CollisionBackend {
   void upload(const WorldState& state) override;
   void detect(BroadPhase method) override;
   [[nodiscard]] gpu::CollisionCounters counters() override { return counters_; }
+  /// Sorted by (face_a, face_b): the same list for every method and thread count.
   void download_face_pairs(std::vector<gpu::FacePair>& out) override { out = pairs_; }
   void download_face_flags(std::vector<std::uint32_t>& out) override { out = flags_; }
+  /// The leaf boxes of the last octree or octree-compact pass (a bvh pass leaves them as they
+  /// were: its boxes are the BVH's, see bvh_trees()).
   void download_boxes(std::vector<gpu::Box>& out) override { out = boxes_; }
+
+  /// The BVHs as the last bvh pass refitted (and perhaps rebuilt) them.
+  [[nodiscard]] const BvhTrees& bvh_trees() const { return bvh_.trees(); }
 
  private:
   void update_boxes();
-  void octree_pair(const gpu::BodyPair& pair);
-  void brute_pair(const gpu::BodyPair& pair);
-  // The exact test of one face pair; records it when the faces intersect.
-  void test_faces(std::uint32_t face_a, std::uint32_t face_b, std::vector<gpu::FacePair>& out);
-  void collect(std::vector<std::vector<gpu::FacePair>>& per_row);
+  // BBCollision (Algorithm 2) for one body pair into mask_; counts the overlapping box pairs.
+  void update_box_mask(const gpu::BodyPair& pair);
+  void octree_pair(const gpu::BodyPair& pair, const NarrowPhase& narrow);
+  void brute_pair(const gpu::BodyPair& pair, const NarrowPhase& narrow);
 
   const CpuSimulation& simulation_;
   std::vector<gpu::Face> faces_;
@@ -45,6 +55,9 @@ class CpuCollision final : public collision::CollisionBackend {
   std::vector<std::uint32_t> flags_;  // SSBO 5
   std::vector<gpu::FacePair> pairs_;  // SSBO 10
   gpu::CollisionCounters counters_{};
+  PairCollector collector_;
+  OctreeCompactPass octree_compact_;
+  BvhBroadPhase bvh_;
 };
 
 }  // namespace deformcd::cpu

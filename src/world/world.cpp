@@ -95,7 +95,7 @@ CollisionCounts World::collision_counts() const {
   if (!detected_) return {};
   complete_collision_pass();
   const gpu::CollisionCounters c = collision_->counters();
-  return {c.face_pairs, c.box_pairs, c.colliding_faces};
+  return {c.face_pairs, c.box_pairs, c.colliding_faces, c.candidates};
 }
 
 std::vector<Contact> World::contacts() const {

@@ -1,13 +1,17 @@
 // The CPU collision backend against the plainest oracle: the narrow phase over every face pair.
+// Every broad phase (brute, octree, octree-compact, bvh) must return exactly its pairs.
 
 #include "cpu/cpu_collision.h"
 
 #include <algorithm>
+#include <limits>
 #include <set>
+#include <string>
 #include <tuple>
 
 #include <gtest/gtest.h>
 
+#include "core/collision/broad_phase.h"
 #include "core/collision/tri_tri_intersection.h"
 #include "cpu/cpu_simulation.h"
 #include "support/world_fixtures.h"
@@ -68,6 +72,76 @@ Detected detect(const WorldState& w, BroadPhase method, int threads = 0) {
   return d;
 }
 
+PairSet pair_set(const std::vector<gpu::FacePair>& raw) {
+  PairSet set;
+  for (const gpu::FacePair& p : raw)
+    set.insert({p.face_a, p.face_b});
+  return set;
+}
+
+std::vector<gpu::FacePair> raw_pairs(const WorldState& w, BroadPhase method, int threads) {
+  CpuSimulation sim(threads);
+  sim.upload(w);
+  CpuCollision collision(sim);
+  collision.upload(w);
+  collision.detect(method);
+  std::vector<gpu::FacePair> raw;
+  collision.download_face_pairs(raw);
+  return raw;
+}
+
+// Empty when the two raw lists are equal element by element, segments bit for bit.
+std::string difference(const std::vector<gpu::FacePair>& x, const std::vector<gpu::FacePair>& y) {
+  if (x.size() != y.size()) return std::to_string(x.size()) + " vs " + std::to_string(y.size());
+  const auto key = [](const gpu::FacePair& p) {
+    return std::tie(p.face_a, p.face_b, p.coplanar, p.segment0.x, p.segment0.y, p.segment0.z,
+                    p.segment1.x, p.segment1.y, p.segment1.z);
+  };
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (key(x[i]) != key(y[i])) return "pair " + std::to_string(i) + " differs";
+  }
+  return "";
+}
+
+// Face pairs of different bodies whose exact bounding boxes overlap.
+std::uint64_t face_box_overlaps(const WorldState& w) {
+  const auto box = [&](std::uint32_t face) {
+    gpu::Box b = collision::empty_box();
+    for (std::uint32_t n : {w.faces[face].a, w.faces[face].b, w.faces[face].c})
+      collision::grow_box(b, glm::vec3(w.positions[n]));
+    return b;
+  };
+  std::uint64_t count = 0;
+  for (const gpu::BodyPair& bp : w.body_pairs) {
+    const gpu::ObjectInfo& a = w.objects[bp.a];
+    const gpu::ObjectInfo& b = w.objects[bp.b];
+    for (std::uint32_t i = a.face_offset; i < a.face_offset + a.face_count; ++i) {
+      for (std::uint32_t j = b.face_offset; j < b.face_offset + b.face_count; ++j)
+        count += collision::boxes_overlap(box(i), box(j)) ? 1u : 0u;
+    }
+  }
+  return count;
+}
+
+// Mirrors the nodes of `body` below its middle height through its middle x plane, then those
+// left of it through its middle z plane: quarters turn inside out (their surfaces crossing the
+// others'), so the siblings of a tree built on the unfolded shape overlap everywhere.
+void fold_quarters(WorldState& w, std::uint32_t body) {
+  const gpu::ObjectInfo& o = w.objects[body];
+  glm::vec3 lo(std::numeric_limits<float>::max());
+  glm::vec3 hi(std::numeric_limits<float>::lowest());
+  for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
+    lo = glm::min(lo, glm::vec3(w.positions[i]));
+    hi = glm::max(hi, glm::vec3(w.positions[i]));
+  }
+  const glm::vec3 mid = 0.5f * (lo + hi);
+  for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
+    glm::vec4& p = w.positions[i];
+    if (p.y < mid.y) p.x = 2.0f * mid.x - p.x;
+    if (p.x < mid.x) p.z = 2.0f * mid.z - p.z;
+  }
+}
+
 // Three grids: 0 and 1 interpenetrate, 1 and 2 interpenetrate, 0 and 2 are apart. Spacings
 // differ so that faces cross at general angles of the grid lines.
 WorldState three_bodies() {
@@ -76,11 +150,14 @@ WorldState three_bodies() {
                          grid_body(3, 0.3, glm::dvec3(1.41, 0.52, 0.45))});
 }
 
-TEST(CpuCollision, BruteAndOctreeReturnExactlyTheOraclePairs) {
+constexpr BroadPhase kMethods[] = {BroadPhase::kBrute, BroadPhase::kOctree,
+                                   BroadPhase::kOctreeCompact, BroadPhase::kBvh};
+
+TEST(CpuCollision, EveryMethodReturnsExactlyTheOraclePairs) {
   const WorldState w = three_bodies();
   const PairSet oracle = all_pairs_oracle(w);
   ASSERT_GT(oracle.size(), 20u);
-  for (BroadPhase method : {BroadPhase::kBrute, BroadPhase::kOctree}) {
+  for (BroadPhase method : kMethods) {
     const Detected d = detect(w, method);
     EXPECT_EQ(d.pairs, oracle) << broadphase_name(method);
     EXPECT_EQ(d.raw_count, oracle.size()) << "a pair reported twice by " << broadphase_name(method);
@@ -106,40 +183,122 @@ TEST(CpuCollision, OctreeCountsOverlappingLeafBoxPairs) {
   const Detected octree = detect(w, BroadPhase::kOctree);
   EXPECT_GT(octree.counters.box_pairs, 0u);
   EXPECT_LT(octree.counters.box_pairs, 3u * 64u * 64u);
+  EXPECT_EQ(detect(w, BroadPhase::kOctreeCompact).counters.box_pairs, octree.counters.box_pairs);
   EXPECT_EQ(detect(w, BroadPhase::kBrute).counters.box_pairs, 0u);
+  EXPECT_EQ(detect(w, BroadPhase::kBvh).counters.box_pairs, 0u);
+}
+
+TEST(CpuCollision, CandidatesCountTheTriangleTestsRun) {
+  const WorldState w = three_bodies();
+  std::uint64_t all = 0;
+  for (const gpu::BodyPair& bp : w.body_pairs)
+    all += std::uint64_t{w.objects[bp.a].face_count} * w.objects[bp.b].face_count;
+  const Detected brute = detect(w, BroadPhase::kBrute);
+  const Detected octree = detect(w, BroadPhase::kOctree);
+  const Detected compact = detect(w, BroadPhase::kOctreeCompact);
+  const Detected bvh = detect(w, BroadPhase::kBvh);
+  EXPECT_EQ(brute.counters.candidates, all);
+  // The same first-box-pair rule picks the same tests; only the sweep that finds them differs.
+  EXPECT_EQ(compact.counters.candidates, octree.counters.candidates);
+  // One face per leaf: the bvh tests exactly the pairs whose own boxes overlap.
+  EXPECT_EQ(bvh.counters.candidates, face_box_overlaps(w));
+  EXPECT_LT(bvh.counters.candidates, octree.counters.candidates);
+  EXPECT_LT(octree.counters.candidates, brute.counters.candidates);
+  EXPECT_GE(bvh.counters.candidates, bvh.counters.face_pairs);
 }
 
 TEST(CpuCollision, BodiesApartHaveNoContactsAndNoBoxPairs) {
   const WorldState w =
       assemble_world({grid_body(3, 0.3, glm::dvec3(0.0)), grid_body(3, 0.3, glm::dvec3(2.0))});
-  for (BroadPhase method : {BroadPhase::kBrute, BroadPhase::kOctree}) {
+  for (BroadPhase method : kMethods) {
     const Detected d = detect(w, method);
     EXPECT_TRUE(d.pairs.empty());
     EXPECT_EQ(d.counters.box_pairs, 0u);
     EXPECT_EQ(std::count(d.flags.begin(), d.flags.end(), 0u), static_cast<long>(d.flags.size()));
+    if (method != BroadPhase::kBrute) {
+      EXPECT_EQ(d.counters.candidates, 0u) << broadphase_name(method);
+    }
   }
 }
 
 TEST(CpuCollision, OneBodyHasNoPairsToTest) {
   const WorldState w = assemble_world({grid_body(3, 0.3, glm::dvec3(0.0))});
   EXPECT_TRUE(w.body_pairs.empty());
-  EXPECT_TRUE(detect(w, BroadPhase::kOctree).pairs.empty());
+  for (BroadPhase method : kMethods)
+    EXPECT_TRUE(detect(w, method).pairs.empty());
 }
 
-TEST(CpuCollision, ResultsDoNotDependOnTheThreadCount) {
+TEST(CpuCollision, RawPairsAreOneListForEveryThreadCountAndMethod) {
   const WorldState w = three_bodies();
-  CpuSimulation one(1);
-  one.upload(w);
-  CpuCollision c1(one);
-  c1.upload(w);
-  c1.detect(BroadPhase::kOctree);
-  std::vector<gpu::FacePair> serial;
-  c1.download_face_pairs(serial);
-  const Detected parallel = detect(w, BroadPhase::kOctree, 2);
-  PairSet serial_set;
-  for (const gpu::FacePair& p : serial)
-    serial_set.insert({p.face_a, p.face_b});
-  EXPECT_EQ(serial_set, parallel.pairs);
+  const std::vector<gpu::FacePair> reference = raw_pairs(w, BroadPhase::kBrute, 1);
+  ASSERT_GT(reference.size(), 20u);
+  for (BroadPhase method : kMethods) {
+    for (int threads : {1, 2}) {
+      EXPECT_EQ(difference(raw_pairs(w, method, threads), reference), "")
+          << broadphase_name(method) << " on " << threads << " threads";
+    }
+  }
+}
+
+TEST(CpuCollision, BvhRebuildsADegradedTreeAndStillFindsThePairs) {
+  const WorldState rest = three_bodies();
+  WorldState folded = rest;
+  // Body 1 has the most faces: its tree is the one both of its pairs traverse.
+  fold_quarters(folded, 1);
+  CpuSimulation sim;
+  sim.upload(rest);
+  CpuCollision collision(sim);
+  collision.upload(rest);
+  collision.detect(BroadPhase::kBvh);
+  EXPECT_EQ(collision.bvh_trees().rebuild_count(), 0u);
+
+  sim.upload(folded);
+  collision.detect(BroadPhase::kBvh);
+  const BvhTrees& trees = collision.bvh_trees();
+  EXPECT_EQ(trees.rebuild_count(), 1u);
+  // Measured on the refitted tree, the fold loosened it past the threshold; the rebuilt tree
+  // is the reference from now on.
+  EXPECT_EQ(trees.area_ratio(1), trees.built_area_ratio(1));
+  std::vector<gpu::FacePair> bvh;
+  collision.download_face_pairs(bvh);
+  const PairSet oracle = all_pairs_oracle(folded);
+  ASSERT_NE(oracle, all_pairs_oracle(rest));
+  EXPECT_EQ(pair_set(bvh), oracle);
+  collision.detect(BroadPhase::kBrute);
+  std::vector<gpu::FacePair> brute;
+  collision.download_face_pairs(brute);
+  EXPECT_EQ(difference(bvh, brute), "");
+
+  // The same shape again: the fresh tree is as tight as it gets, no second rebuild.
+  collision.detect(BroadPhase::kBvh);
+  EXPECT_EQ(collision.bvh_trees().rebuild_count(), 1u);
+  std::vector<gpu::FacePair> again;
+  collision.download_face_pairs(again);
+  EXPECT_EQ(difference(again, brute), "");
+}
+
+TEST(CpuCollision, BvhLeavesATreeNobodyTraversesAsItIs) {
+  const WorldState rest = three_bodies();
+  WorldState folded = rest;
+  // Body 2 has the fewest faces: its faces query the others' trees, its own tree is only read
+  // at the root, which is exact however loose the tree below it.
+  fold_quarters(folded, 2);
+  CpuSimulation sim;
+  sim.upload(folded);
+  CpuCollision collision(sim);
+  collision.upload(rest);
+  collision.detect(BroadPhase::kBvh);
+  EXPECT_GT(collision.bvh_trees().area_ratio(2),
+            kBvhRebuildFactor * collision.bvh_trees().built_area_ratio(2));
+  EXPECT_EQ(collision.bvh_trees().rebuild_count(), 0u);
+  std::vector<gpu::FacePair> bvh;
+  collision.download_face_pairs(bvh);
+  const PairSet oracle = all_pairs_oracle(folded);
+  EXPECT_EQ(pair_set(bvh), oracle);
+  // The folded body still crosses body 1: its faces did query body 1's tree.
+  EXPECT_TRUE(std::any_of(oracle.begin(), oracle.end(), [&](const auto& pair) {
+    return pair.second >= folded.objects[2].face_offset;
+  }));
 }
 
 TEST(CpuCollision, LeafBoxesHoldTheirFacesCurrentVertices) {

@@ -1,5 +1,6 @@
 // Collision detection through the World on the shipped scenes, on the CPU backend: the paper's
-// octree returns exactly the pairs of the all-pairs baseline, on every frame.
+// octree and the broad phases beyond it (octree-compact, bvh) return exactly the pairs of the
+// all-pairs baseline, on every frame.
 
 #include <filesystem>
 #include <set>
@@ -33,39 +34,45 @@ World scene_world(const std::string& name, int frames, BroadPhase method) {
 
 class CollisionOnScenes : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(CollisionOnScenes, OctreeEqualsBruteOnEveryFrame) {
+TEST_P(CollisionOnScenes, EveryMethodEqualsBruteOnEveryFrame) {
   constexpr int kFrames = 24;
-  World world = scene_world(GetParam(), kFrames, BroadPhase::kOctree);
+  constexpr BroadPhase kMethods[] = {BroadPhase::kOctree, BroadPhase::kOctreeCompact,
+                                     BroadPhase::kBvh};
+  World world = scene_world(GetParam(), kFrames, BroadPhase::kBrute);
   int frames_in_contact = 0;
   std::size_t peak = 0;
   std::vector<std::size_t> counts;
   for (int f = 0; f <= kFrames; ++f) {
     if (f > 0) world.step();
-    world.set_broadphase(BroadPhase::kOctree);
-    world.detect_collisions();
-    const std::vector<Contact> octree = world.contacts();
-    const CollisionCounts octree_counts = world.collision_counts();
     world.set_broadphase(BroadPhase::kBrute);
     world.detect_collisions();
     const std::vector<Contact> brute = world.contacts();
-    ASSERT_EQ(test::contacts_difference(octree, brute), "") << "frame " << f;
+    for (BroadPhase method : kMethods) {
+      world.set_broadphase(method);
+      world.detect_collisions();
+      const std::vector<Contact> contacts = world.contacts();
+      ASSERT_EQ(test::contacts_difference(contacts, brute), "")
+          << broadphase_name(method) << ", frame " << f;
 
-    EXPECT_EQ(octree_counts.contacts, octree.size());
-    std::set<std::pair<std::uint32_t, std::uint32_t>> faces;
-    for (const Contact& c : octree) {
-      EXPECT_LT(c.a.body, c.b.body);
-      faces.insert({c.a.body, c.a.face});
-      faces.insert({c.b.body, c.b.face});
+      const CollisionCounts method_counts = world.collision_counts();
+      EXPECT_EQ(method_counts.contacts, contacts.size());
+      std::set<std::pair<std::uint32_t, std::uint32_t>> faces;
+      for (const Contact& c : contacts) {
+        EXPECT_LT(c.a.body, c.b.body);
+        faces.insert({c.a.body, c.a.face});
+        faces.insert({c.b.body, c.b.face});
+      }
+      EXPECT_EQ(method_counts.colliding_faces, faces.size())
+          << broadphase_name(method) << ", frame " << f;
+      const std::vector<std::uint32_t> flags = world.face_flags();
+      std::size_t flagged = 0;
+      for (std::uint32_t v : flags)
+        flagged += v != 0u ? 1 : 0;
+      EXPECT_EQ(flagged, faces.size()) << broadphase_name(method) << ", frame " << f;
     }
-    EXPECT_EQ(octree_counts.colliding_faces, faces.size()) << "frame " << f;
-    const std::vector<std::uint32_t> flags = world.face_flags();
-    std::size_t flagged = 0;
-    for (std::uint32_t v : flags)
-      flagged += v != 0u ? 1 : 0;
-    EXPECT_EQ(flagged, faces.size()) << "frame " << f;
-    frames_in_contact += octree.empty() ? 0 : 1;
-    peak = std::max(peak, octree.size());
-    counts.push_back(octree.size());
+    frames_in_contact += brute.empty() ? 0 : 1;
+    peak = std::max(peak, brute.size());
+    counts.push_back(brute.size());
   }
   // Apart at the start and the end, in contact in between.
   EXPECT_EQ(counts.front(), 0u);

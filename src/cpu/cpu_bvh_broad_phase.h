@@ -1,0 +1,42 @@
+#pragma once
+// The `bvh` broad phase on the CPU (beyond the paper): per body a BVH over its surface faces,
+// refitted every pass (cpu_bvh_trees.h); body pairs whose root boxes overlap are traversed, the
+// faces of the body with fewer faces each querying the tree of the other, and every face pair
+// whose boxes overlap goes straight to the exact triangle test.
+//
+// Exactness: tri_tri_intersect rejects a pair whose float bounding boxes are apart, and every
+// BVH box is the exact min/max of the same floats, so culling by closed-box overlap loses no
+// pair that the all-pairs baseline reports; each face pair is met once (one face per leaf).
+
+#include <cstdint>
+#include <vector>
+
+#include "cpu_bvh_trees.h"
+#include "cpu_narrow_phase.h"
+
+namespace deformcd::cpu {
+
+class BvhBroadPhase {
+ public:
+  void upload(const WorldState& state);
+  // One pass: refits the trees, rebuilds the degraded ones about to be traversed, and tests
+  // the face pairs of `body_pairs` whose boxes overlap.
+  void run(const std::vector<glm::vec4>& positions, const std::vector<gpu::Face>& faces,
+           const std::vector<gpu::BodyPair>& body_pairs, const NarrowPhase& narrow,
+           PairCollector& out);
+
+  [[nodiscard]] const BvhTrees& trees() const { return trees_; }
+
+ private:
+  // The faces of `query_body` against the tree of `tree_body`.
+  void traverse(const gpu::BodyPair& pair, std::uint32_t query_body, std::uint32_t tree_body,
+                const std::vector<glm::vec4>& positions, const std::vector<gpu::Face>& faces,
+                const NarrowPhase& narrow, PairCollector& out) const;
+
+  BvhTrees trees_;
+  std::vector<gpu::ObjectInfo> objects_;
+  std::vector<gpu::BodyPair> touching_;  // body pairs whose root boxes overlap, this pass
+  std::vector<std::uint8_t> queried_;    // per body: its tree is traversed this pass
+};
+
+}  // namespace deformcd::cpu
