@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/collision/body_pairs.h"
 #include "core/collision/broad_phase.h"
 #include "core/collision/bvh.h"
 
@@ -38,15 +39,18 @@ void BvhBroadPhase::run(const std::vector<glm::vec4>& positions,
                         const std::vector<gpu::BodyPair>& body_pairs, const NarrowPhase& narrow,
                         PairCollector& out) {
   trees_.refit(positions, faces);
-  touching_.clear();
   std::fill(queried_.begin(), queried_.end(), 0u);
-  for (const gpu::BodyPair& pair : body_pairs) {
-    const gpu::Box& root_a = trees_.boxes()[trees_.tree(pair.a).root];
-    const gpu::Box& root_b = trees_.boxes()[trees_.tree(pair.b).root];
-    if (!collision::boxes_overlap(root_a, root_b)) continue;
-    touching_.push_back(pair);
-    queried_[traversed_body(pair, objects_)] = 1u;
+  // Body level: sort and sweep over the root boxes, so that many bodies cost what their
+  // nearby pairs cost. Every pair of different bodies is a candidate here (body_pairs lists
+  // them all); the sweep returns those whose roots touch, in (a, b) order.
+  (void)body_pairs;
+  root_boxes_.resize(objects_.size());
+  for (std::uint32_t body = 0; body < objects_.size(); ++body) {
+    root_boxes_[body] = trees_.boxes()[trees_.tree(body).root];
   }
+  touching_ = collision::overlapping_body_pairs(root_boxes_);
+  for (const gpu::BodyPair& pair : touching_)
+    queried_[traversed_body(pair, objects_)] = 1u;
   // A tree nobody traverses may stay loose: its root box, all that is read of it, is exact.
   for (std::uint32_t body = 0; body < queried_.size(); ++body) {
     if (queried_[body] != 0u) trees_.rebuild_if_degraded(body, positions, faces);

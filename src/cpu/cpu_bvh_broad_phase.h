@@ -36,6 +36,7 @@ class BvhBroadPhase {
   BvhTrees trees_;
   std::vector<gpu::ObjectInfo> objects_;
   std::vector<gpu::BodyPair> touching_;  // body pairs whose root boxes overlap, this pass
+  std::vector<gpu::Box> root_boxes_;     // per body, this pass
   std::vector<std::uint8_t> queried_;    // per body: its tree is traversed this pass
 };
 

@@ -85,6 +85,38 @@ TEST_P(CollisionOnScenes, EveryMethodEqualsBruteOnEveryFrame) {
 
 INSTANTIATE_TEST_SUITE_P(ShippedScenes, CollisionOnScenes, ::testing::Values("phase1", "phase2"));
 
+// Sixteen bodies in two lanes crossing each other: the body-level sort and sweep keeps only the
+// nearby pairs, and the beyond-paper methods still find exactly the contacts of testing all
+// pairs (brute, too slow for every frame here, on the frame in the middle of the run).
+TEST(CollisionOnScenesMany, BvhEqualsOctreeCompactEveryFrameAndBruteMidRun) {
+  constexpr int kFrames = 12;
+  World world = scene_world("crossing16", kFrames, BroadPhase::kBvh);
+  ASSERT_EQ(world.body_count(), 16u);
+  int frames_in_contact = 0;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> body_pairs_in_contact;
+  for (int f = 0; f <= kFrames; ++f) {
+    if (f > 0) world.step();
+    world.set_broadphase(BroadPhase::kBvh);
+    world.detect_collisions();
+    const std::vector<Contact> bvh = world.contacts();
+    world.set_broadphase(BroadPhase::kOctreeCompact);
+    world.detect_collisions();
+    ASSERT_EQ(test::contacts_difference(bvh, world.contacts()), "") << "frame " << f;
+    if (f == kFrames / 2) {
+      world.set_broadphase(BroadPhase::kBrute);
+      world.detect_collisions();
+      ASSERT_EQ(test::contacts_difference(bvh, world.contacts()), "") << "frame " << f;
+    }
+    frames_in_contact += bvh.empty() ? 0 : 1;
+    for (const Contact& c : bvh)
+      body_pairs_in_contact.insert({c.a.body, c.b.body});
+  }
+  EXPECT_GE(frames_in_contact, 4);
+  // Each body meets only its oncoming neighbours: far fewer than all 120 pairs.
+  EXPECT_GE(body_pairs_in_contact.size(), 8u);
+  EXPECT_LE(body_pairs_in_contact.size(), 40u);
+}
+
 TEST(WorldCollision, OneBodyHasNoContacts) {
   World world = scene_world("hanging", 10, BroadPhase::kOctree);
   world.step();
