@@ -1,6 +1,7 @@
 #include "bench_report.h"
 
 #include <iomanip>
+#include <numeric>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -22,7 +23,7 @@ void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results
   out << std::fixed;
   out << "\nTotal run time V (simulation + collision detection), each method against "
       << "the first (V1):\n\n";
-  out << std::left << std::setw(22) << "scene" << std::setw(8) << "backend" << std::setw(8)
+  out << std::left << std::setw(22) << "scene" << std::setw(8) << "backend" << std::setw(16)
       << "method" << std::right << std::setw(8) << "frames" << std::setw(12) << "V1 (s)"
       << std::setw(12) << "V2 (s)" << std::setw(11) << "I" << std::setw(11) << "V1/V2"
       << std::setw(14) << "CD V1/V2" << '\n';
@@ -30,7 +31,7 @@ void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results
     const MethodRun& base = b.runs.front();
     for (std::size_t m = 1; m < b.runs.size(); ++m) {
       const MethodRun& r = b.runs[m];
-      out << std::left << std::setw(22) << b.scene << std::setw(8) << b.backend << std::setw(8)
+      out << std::left << std::setw(22) << b.scene << std::setw(8) << b.backend << std::setw(16)
           << broadphase_name(r.method) << std::right << std::setw(8) << b.frames
           << std::setprecision(3) << std::setw(12) << base.total_s() << std::setw(12) << r.total_s()
           << std::setprecision(1) << std::setw(10)
@@ -46,7 +47,7 @@ void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results
     out << "\n"
         << b.scene << " on " << b.backend << " (" << b.device << "), " << b.frames << " frames, "
         << contact << " in contact:\n";
-    out << std::left << std::setw(8) << "method" << std::right << std::setw(10) << "V (s)"
+    out << std::left << std::setw(16) << "method" << std::right << std::setw(10) << "V (s)"
         << std::setw(10) << "sim (s)" << std::setw(10) << "CD (s)" << std::setw(34)
         << "ms/frame before | contact | after" << std::setw(37)
         << "CD ms/frame before | contact | after" << std::setw(12) << "pairs" << '\n';
@@ -60,7 +61,7 @@ void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results
         ms << (s ? " | " : "") << t.ms_per_frame[s];
         cd << (s ? " | " : "") << t.collision_ms_per_frame[s];
       }
-      out << std::left << std::setw(8) << broadphase_name(r.method) << std::right
+      out << std::left << std::setw(16) << broadphase_name(r.method) << std::right
           << std::setprecision(3) << std::setw(10) << r.total_s() << std::setw(10)
           << r.total_simulation_s() << std::setw(10) << r.total_collision_s() << std::setw(34)
           << ms.str() << std::setw(37) << cd.str() << std::setw(12) << r.pairs() << '\n';
@@ -92,7 +93,9 @@ std::string bench_json(const std::vector<SceneBench>& results) {
                        {"ms_per_frame", per_stage(t.ms_per_frame)},
                        {"collision_ms_per_frame", per_stage(t.collision_ms_per_frame)},
                        {"frames_per_stage", frames_per_stage},
-                       {"pairs", r.pairs()}};
+                       {"pairs", r.pairs()},
+                       {"candidates", std::accumulate(r.candidates.begin(), r.candidates.end(),
+                                                      std::uint64_t{0})}};
       if (&r == &base) continue;
       improvements[name] = improvement(base.total_s(), r.total_s());
       speedups[name] = base.total_s() / r.total_s();

@@ -36,7 +36,9 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
     world.step();
     run.simulation_s.push_back(world.last_frame_times().simulation_s);
     run.collision_s.push_back(world.last_frame_times().collision_s);
-    run.contacts.push_back(world.collision_counts().contacts);
+    const CollisionCounts counts = world.collision_counts();
+    run.contacts.push_back(counts.contacts);
+    run.candidates.push_back(counts.candidates);
     frame_done();
   }
   return run;

@@ -26,6 +26,8 @@ struct MethodRun {
   std::vector<double> simulation_s;     ///< per frame 1..N
   std::vector<double> collision_s;      ///< per frame 1..N
   std::vector<std::uint64_t> contacts;  ///< per frame 1..N
+  /// Per frame 1..N: face pairs given to the triangle test.
+  std::vector<std::uint64_t> candidates;
 
   [[nodiscard]] double total_simulation_s() const;
   [[nodiscard]] double total_collision_s() const;
