@@ -1,10 +1,13 @@
 # Install rules and the exported package: find_package(deformcd) gives deformcd::core,
-# deformcd::io, and (when built) deformcd::gl and deformcd::tetgen.
+# deformcd::io, and (when built) deformcd::gl, deformcd::render and deformcd::tetgen.
 include(CMakePackageConfigHelpers)
 
 set(_deformcd_targets deformcd_core deformcd_io deformcd_cpu deformcd_scene deformcd_world)
 if(TARGET deformcd_gl)
   list(APPEND _deformcd_targets deformcd_gl)
+endif()
+if(TARGET deformcd_render)
+  list(APPEND _deformcd_targets deformcd_render)
 endif()
 if(TARGET deformcd_tetgen)
   list(APPEND _deformcd_targets deformcd_tetgen)

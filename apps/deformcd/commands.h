@@ -24,4 +24,14 @@ Command add_run_command(CLI::App& app);
 /// [--repeat R] [--json FILE] [--csv FILE] [--plot FILE.png]`.
 Command add_bench_command(CLI::App& app);
 
+#ifdef DEFORMCD_HAS_RENDER
+/// `deformcd render SCENE (--frames K1,K2,... | --every-frame) --out DIR [--size WxH]
+/// [--broadphase METHOD] [--shaded] [--backend gl] [--total-frames N] [--video FILE]`.
+Command add_render_command(CLI::App& app);
+
+/// `deformcd view SCENE [--frames N [--screenshot FILE]] [--broadphase none|METHOD]
+/// [--total-frames N]`.
+Command add_view_command(CLI::App& app);
+#endif
+
 }  // namespace deformcd::app

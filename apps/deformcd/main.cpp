@@ -17,6 +17,10 @@ int main(int argc, char** argv) {
   const deformcd::app::Command tetra = deformcd::app::add_tetra_command(app);
   const deformcd::app::Command run = deformcd::app::add_run_command(app);
   const deformcd::app::Command bench = deformcd::app::add_bench_command(app);
+#ifdef DEFORMCD_HAS_RENDER
+  const deformcd::app::Command render = deformcd::app::add_render_command(app);
+  const deformcd::app::Command view = deformcd::app::add_view_command(app);
+#endif
 
   try {
     app.parse(argc, argv);
@@ -28,6 +32,10 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("tetra")) return tetra();
     if (app.got_subcommand("run")) return run();
     if (app.got_subcommand("bench")) return bench();
+#ifdef DEFORMCD_HAS_RENDER
+    if (app.got_subcommand("render")) return render();
+    if (app.got_subcommand("view")) return view();
+#endif
   } catch (const deformcd::Error& e) {
     std::cerr << "deformcd: error: " << e.what() << '\n';
     return 1;

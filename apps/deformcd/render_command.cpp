@@ -1,0 +1,222 @@
+// `deformcd render SCENE`: runs a scene on a headless GL context and writes PNG images of
+// chosen frames, drawn straight from the simulation's buffers.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "commands.h"
+#include "deformcd/error.h"
+#include "deformcd/gl/context.h"
+#include "deformcd/render/offscreen_target.h"
+#include "deformcd/render/scene_renderer.h"
+#include "deformcd/world.h"
+#include "progress.h"
+#include "video_encoder.h"
+#include "view_scene.h"
+
+namespace deformcd::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RenderOptions {
+  std::string scene;
+  std::vector<int> frames;
+  std::string out;
+  std::string size = "1280x720";
+  std::optional<std::string> broadphase;
+  bool shaded = false;
+  bool every_frame = false;
+  std::string backend = "gl";
+  std::optional<int> total_frames;
+  std::string video;
+};
+
+struct ImageSize {
+  int width = 0;
+  int height = 0;
+};
+
+ImageSize parse_size(const std::string& text) {
+  ImageSize size;
+  char x = 0;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &size.width, &x, &size.height, &extra) != 3 ||
+      (x != 'x' && x != 'X') || size.width < 1 || size.height < 1 || size.width > 16384 ||
+      size.height > 16384) {
+    throw Error("--size '" + text + "': expected WIDTHxHEIGHT in pixels, e.g. 1280x720");
+  }
+  return size;
+}
+
+// The frames to write, increasing, each checked against the run's length.
+std::vector<int> chosen_frames(const RenderOptions& o, int total_frames) {
+  if (o.every_frame || !o.video.empty()) {
+    std::vector<int> all(static_cast<std::size_t>(total_frames) + 1);
+    for (int f = 0; f <= total_frames; ++f)
+      all[static_cast<std::size_t>(f)] = f;
+    return all;
+  }
+  const std::set<int> unique(o.frames.begin(), o.frames.end());
+  for (int f : unique) {
+    if (f < 0 || f > total_frames) {
+      throw Error("--frames: frame " + std::to_string(f) + " is outside the run (0 to " +
+                  std::to_string(total_frames) + "; frame 0 is the initial pose; see " +
+                  "--total-frames)");
+    }
+  }
+  return {unique.begin(), unique.end()};
+}
+
+// A file in the way is reported before the (long) run; the directory is created after it.
+void check_output_directory(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
+    throw Error("--out " + dir.string() +
+                ": cannot create the output directory (a file of that name is in the way)");
+  }
+}
+
+void create_output_directory(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) {
+    throw Error("--out " + dir.string() + ": cannot create the output directory (" +
+                (ec ? ec.message() : std::string("a file of that name is in the way")) + ")");
+  }
+}
+
+std::string image_name(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%05d.png", frame);
+  return name;
+}
+
+std::unique_ptr<gl::Context> headless_context() {
+  try {
+    return gl::create_headless_context();
+  } catch (const GlError& e) {
+    throw GlError(std::string("deformcd render draws from the simulation's OpenGL buffers and "
+                              "needs an OpenGL 4.3 context, which could not be had:\n") +
+                  e.what());
+  }
+}
+
+int render(const RenderOptions& o) {
+  // Everything that can be checked without the scene is checked first, so mistakes fail fast.
+  if (o.backend == "cpu") {
+    throw Error(
+        "deformcd render draws the world from its OpenGL buffers, so it runs on the GL "
+        "backend only (--backend gl); the CPU backend has no buffers to draw");
+  }
+  if (o.frames.empty() && !o.every_frame && o.video.empty()) {
+    throw Error("say which frames to write: --frames K1,K2,... or --every-frame");
+  }
+  if (!o.frames.empty() && (o.every_frame || !o.video.empty())) {
+    throw Error(o.every_frame ? "--frames and --every-frame exclude each other"
+                              : "--video encodes every frame; give it without --frames");
+  }
+  const ImageSize size = parse_size(o.size);
+  std::optional<fs::path> ffmpeg;
+  if (!o.video.empty()) {
+    ffmpeg = find_on_path("ffmpeg");
+    if (!ffmpeg) {
+      throw Error("--video " + o.video +
+                  ": encoding needs ffmpeg, and there is none on PATH. Install ffmpeg, or "
+                  "write the frames with --every-frame and encode " +
+                  o.out + "/frame_%05d.png with another tool");
+    }
+  }
+  const fs::path out_dir(o.out);
+  check_output_directory(out_dir);
+
+  const ViewScene view = load_view_scene(o.scene, o.total_frames);
+  const std::vector<int> frames = chosen_frames(o, view.total_frames);
+  const BroadPhase broadphase = view_broadphase(o.broadphase, view.scene);
+
+  const std::unique_ptr<gl::Context> context = headless_context();
+  WorldOptions options;
+  options.backend = BackendKind::kGl;
+  options.gl_context = context.get();
+  // Collision detection runs only on the frames drawn (the simulation does not depend on it).
+  options.broadphase = BroadPhase::kNone;
+  World world(view.bodies, step_settings(view.scene.settings), options);
+  if (!world.notice().empty()) std::cerr << "deformcd: " << world.notice() << '\n';
+
+  const float aspect = static_cast<float>(size.width) / static_cast<float>(size.height);
+  const render::Camera camera = render::Camera::framing(view.swept, aspect);
+  const render::SceneRenderer renderer(world);
+  const render::OffscreenTarget target(size.width, size.height);
+  render::DrawOptions draw;
+  draw.mode = o.shaded ? render::RenderMode::kShaded : render::RenderMode::kWireframe;
+  draw.show_collisions = broadphase != BroadPhase::kNone;
+  create_output_directory(out_dir);
+
+  Progress progress("rendering", frames.back());
+  for (int frame : frames) {
+    while (world.frame() < frame) {
+      world.step();
+      progress.update(world.frame());
+    }
+    std::uint64_t contacts = 0;
+    if (broadphase != BroadPhase::kNone) {
+      world.set_broadphase(broadphase);
+      world.detect_collisions();
+      contacts = world.collision_counts().contacts;
+      world.set_broadphase(BroadPhase::kNone);
+    }
+    target.bind();
+    renderer.draw(camera, size.width, size.height, draw);
+    const fs::path file = out_dir / image_name(frame);
+    render::write_png(file, target.read());
+    progress.done();
+    std::cout << file.string() << "  frame " << frame << "  " << contacts << " contacts"
+              << std::endl;
+  }
+  if (ffmpeg) {
+    const double fps = 1.0 / view.scene.settings.dt;
+    encode_video(*ffmpeg, out_dir, frames.front(), std::round(fps * 1000.0) / 1000.0, o.video);
+    std::cout << o.video << "  " << frames.size() << " frames\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command add_render_command(CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Run a scene headless on OpenGL and write PNG images of chosen frames");
+  cmd->add_option("scene", o->scene, "Scene file (JSON)")->required();
+  cmd->add_option("--frames", o->frames,
+                  "Frames to write, comma-separated (0 = the initial pose), e.g. 0,100,200")
+      ->delimiter(',');
+  cmd->add_option("--out", o->out, "Directory for the images (created): DIR/frame_00042.png")
+      ->required();
+  cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default 1280x720)");
+  cmd->add_option("--broadphase", o->broadphase,
+                  "Collision broad phase: brute, octree... (default: the scene's)")
+      ->check(CLI::IsMember(broadphase_names()));
+  cmd->add_flag("--shaded", o->shaded,
+                "Lit faces instead of the paper's wireframe (colliding faces coloured alike)");
+  cmd->add_flag("--every-frame", o->every_frame, "Write every frame of the run");
+  cmd->add_option("--backend", o->backend, "gl (images are drawn from the GL buffers)")
+      ->check(CLI::IsMember({"gl", "auto", "cpu"}));
+  cmd->add_option("--total-frames", o->total_frames,
+                  "Length of the run (default: the scene's frames); paths span it");
+  cmd->add_option("--video", o->video,
+                  "Also encode every frame into this video (needs ffmpeg on PATH)");
+  return [o]() { return render(*o); };
+}
+
+}  // namespace deformcd::app
