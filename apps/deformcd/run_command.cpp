@@ -154,8 +154,9 @@ Command add_run_command(CLI::App& app) {
   cmd->add_option("--backend", o->backend, "gl, cpu, or auto (GL when available)")
       ->check(CLI::IsMember({"auto", "gl", "cpu"}));
   cmd->add_option("--threads", o->threads, "CPU backend threads (0: all cores)");
-  cmd->add_option("--broadphase", o->broadphase,
-                  "Collision broad phase: none, brute or octree (default: the scene's)");
+  cmd->add_option(
+      "--broadphase", o->broadphase,
+      "Collision broad phase: none, brute, octree, octree-compact or bvh (default: the scene's)");
   cmd->add_option("--contacts", o->contacts_out,
                   "Write each frame's intersecting face pairs (JSON Lines, frames 0..N)");
   cmd->add_option("--positions-out", o->positions_out,

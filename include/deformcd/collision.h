@@ -27,7 +27,8 @@ enum class BroadPhase {
   kBvh,
 };
 
-/// "none", "brute" or "octree"; throws Error listing the valid names otherwise.
+/// "none", "brute", "octree", "octree-compact" or "bvh"; throws Error listing the valid names
+/// otherwise.
 [[nodiscard]] BroadPhase parse_broadphase(std::string_view name);
 /// The name parse_broadphase takes.
 [[nodiscard]] std::string_view broadphase_name(BroadPhase method);

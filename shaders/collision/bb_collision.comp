@@ -5,6 +5,7 @@
 // otherwise. Each invocation writes only its own entry. The host runs chunks of at most
 // "mask slots" body pairs, so the mask takes slots x 64 x 64 ints however many bodies there are.
 #include "collision/broad_phase.glsl"
+#include "collision/counters.glsl"
 #include "common/layout.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -17,9 +18,6 @@ layout(std430, binding = BINDING_BODY_PAIR) readonly buffer BodyPairs {
 };
 layout(std430, binding = BINDING_BOX_MASK) writeonly buffer BoxMask {
   int box_mask[];  // slot z, entry (i, j) at z * 4096 + i * 64 + j
-};
-layout(std430, binding = BINDING_COLLISION_COUNTERS) buffer Counters {
-  CollisionCounters counters;
 };
 
 uniform uint u_pair_first;  // the chunk's first body pair

@@ -1,25 +1,19 @@
-// The narrow phase shared by collision/tri_tri_octree.comp and collision/tri_tri_brute.comp: the
-// exact test of one face pair and, when the faces intersect, its record in the outputs.
+// The narrow phase shared by collision/tri_tri_octree.comp, collision/tri_tri_brute.comp and
+// collision/tri_tri_candidates.comp: the exact test of one face pair and, when the faces
+// intersect, its record in the outputs.
 //
 // Outputs, all reset by the host before a pass: the faces' flags (SSBO 5, set once with
 // atomicExchange so that colliding_faces counts each face once), the counters (SSBO 23) and the
 // face pairs (SSBO 10). A pair's slot comes from atomicAdd on counters.face_pairs, so the pairs
 // land in no particular order; a count above u_pair_capacity tells the host that the buffer
 // overflowed (it then grows the buffer and reruns the pass).
+#include "collision/counters.glsl"
+#include "collision/surface.glsl"
 #include "collision/tri_tri_intersection.glsl"
 #include "common/layout.glsl"
 
-layout(std430, binding = BINDING_NODE_POSITION) readonly buffer NodePositions {
-  vec4 positions[];
-};
-layout(std430, binding = BINDING_FACE_INFO) readonly buffer FaceInfo {
-  Face faces[];
-};
 layout(std430, binding = BINDING_COLLISION_RESULT) buffer FaceFlags {
   uint face_flags[];
-};
-layout(std430, binding = BINDING_COLLISION_COUNTERS) buffer Counters {
-  CollisionCounters counters;
 };
 layout(std430, binding = BINDING_FACE_PAIR) writeonly buffer FacePairs {
   FacePair face_pairs[];

@@ -2,7 +2,7 @@
 // The paper's baseline ("original method"): every surface face of body a against every one of
 // body b, without boxes. Invocation (x, y, z) tests face x of body pair u_pair_first + z's body
 // a against face y of its body b. The host dispatches the chunk's largest N x M; invocations
-// past a pair's own faces return.
+// past a pair's own faces return. counters.candidates counts the pairs tested.
 #include "collision/narrow_phase.glsl"
 #include "common/layout.glsl"
 
@@ -23,6 +23,14 @@ void main() {
   const BodyPair pair = body_pairs[u_pair_first + gl_GlobalInvocationID.z];
   const ObjectInfo a = objects[pair.a];
   const ObjectInfo b = objects[pair.b];
+  // Each face pair in range is tested: the group's first invocation counts the group's share
+  // of them at once (counters.candidates), rather than one atomicAdd per invocation.
+  if (gl_LocalInvocationIndex == 0u) {
+    const uvec2 origin = gl_WorkGroupID.xy * gl_WorkGroupSize.xy;
+    const uint nx = a.face_count > origin.x ? min(a.face_count - origin.x, gl_WorkGroupSize.x) : 0u;
+    const uint ny = b.face_count > origin.y ? min(b.face_count - origin.y, gl_WorkGroupSize.y) : 0u;
+    if (nx * ny > 0u) atomicAdd(counters.candidates, nx * ny);
+  }
   if (x >= a.face_count || y >= b.face_count) return;
   test_face_pair(a.face_offset + x, b.face_offset + y);
 }

@@ -51,5 +51,6 @@ void main() {
                          slot)) {
     return;
   }
+  atomicAdd(counters.candidates, 1u);  // the pairs tested, as the other broad phases count them
   test_face_pair(row_a.face, row_b.face);
 }

@@ -3,6 +3,7 @@
 // that C++ reading the buffers through include/deformcd/gpu_layout.h sees exactly those values
 // only if offsets, sizes and array strides agree. Field k of element i holds probe(i, k);
 // tests/gl/layout_agreement_test.cpp computes the same function.
+#include "collision/gl_work_buffers.glsl"
 #include "common/layout.glsl"
 
 layout(local_size_x = 4) in;
@@ -18,6 +19,8 @@ layout(std430, binding = 7) buffer Tets { Tetra tets[]; };
 layout(std430, binding = 8) buffer BodyPairs { BodyPair body_pairs[]; };
 layout(std430, binding = 9) buffer FacePairs { FacePair face_pairs[]; };
 layout(std430, binding = 10) buffer Counters { CollisionCounters counters[]; };
+layout(std430, binding = 11) buffer BvhNodes { BvhNode bvh_nodes[]; };
+layout(std430, binding = 12) buffer BodyBvhs { BodyBvh body_bvhs[]; };
 
 uniform uint u_count;
 
@@ -88,7 +91,17 @@ void main() {
   counters[i].face_pairs = probe(i, 0u);
   counters[i].box_pairs = probe(i, 1u);
   counters[i].colliding_faces = probe(i, 2u);
-  counters[i].pad = probe(i, 3u);
+  counters[i].candidates = probe(i, 3u);
+
+  bvh_nodes[i].left = probe(i, 0u);
+  bvh_nodes[i].right = probe(i, 1u);
+  bvh_nodes[i].parent = probe(i, 2u);
+  bvh_nodes[i].face = probe(i, 3u);
+
+  body_bvhs[i].root = probe(i, 0u);
+  body_bvhs[i].node_count = probe(i, 1u);
+  body_bvhs[i].depth = probe(i, 2u);
+  body_bvhs[i].pad = probe(i, 3u);
 
   if (i == 0u) {
     bindings[0] = BINDING_NODE_POSITION;
@@ -116,6 +129,22 @@ void main() {
     bindings[22] = BINDING_BODY_PAIR;
     bindings[23] = BINDING_COLLISION_COUNTERS;
     bindings[24] = BINDING_BOX_ROWS;
-    bindings[25] = LEAF_BOXES_PER_BODY;  // not a binding: the one shared constant
+    bindings[25] = BINDING_BVH_NODE;
+    bindings[26] = BINDING_BVH_BOX;
+    bindings[27] = BINDING_BODY_BVH;
+    bindings[28] = BINDING_CANDIDATE_PAIR;
+    // Not gpu::Binding: the shared constants, then the GL backend's private work buffers.
+    bindings[29] = LEAF_BOXES_PER_BODY;
+    bindings[30] = BVH_INTERNAL;
+    bindings[31] = BVH_MAX_DEPTH;
+    bindings[32] = BINDING_DISPATCH_ARGS;
+    bindings[33] = BINDING_BOX_PAIR_LIST;
+    bindings[34] = BINDING_BVH_LEVELS;
+    bindings[35] = BINDING_TOUCHING_PAIRS;
+    bindings[36] = DISPATCH_ARGS_EXPAND;
+    bindings[37] = DISPATCH_ARGS_TOUCHING;
+    bindings[38] = DISPATCH_ARGS_NARROW;
+    bindings[39] = DISPATCH_ARGS_TRAVERSE;
+    bindings[40] = BINDING_BVH_LEAVES;
   }
 }

@@ -23,13 +23,13 @@
 
 #include <glm/vec4.hpp>
 
+#include "core/collision/bvh.h"
 #include "deformcd/gpu_layout.h"
 #include "deformcd/world_state.h"
 
 namespace deformcd::cpu {
 
-/// Rebuild a tree when its area ratio exceeds this factor x the ratio after its last build.
-inline constexpr double kBvhRebuildFactor = 1.5;
+using collision::kBvhRebuildFactor;
 
 class BvhTrees {
  public:

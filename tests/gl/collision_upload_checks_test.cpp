@@ -11,6 +11,7 @@
 #include "deformcd/body.h"
 #include "deformcd/error.h"
 #include "deformcd/world_state.h"
+#include "gpu/gl/bvh_work_order.h"
 #include "gpu/gl/collision_dispatch_plan.h"
 #include "gpu/gl/collision_upload_checks.h"
 #include "support/world_fixtures.h"
@@ -29,12 +30,19 @@ WorldState three_body_world() {
 
 TEST(CollisionBufferSizes, ListsEveryBufferWithItsBindingAndSize) {
   const WorldState w = three_body_world();
-  const std::vector<BufferSize> sizes = collision_buffer_sizes(w, 100, 2);
-  const std::vector<std::uint32_t> bindings = {4, 5, 7, 8, 9, 10, 11, 21, 22, 23, 24};
+  const std::vector<BufferSize> sizes = collision_buffer_sizes(
+      w, {.face_pairs = 100, .mask_slots = 2, .candidates = 7, .box_pairs = 9});
+  const std::vector<std::uint32_t> bindings = {4,  5,  7,  8,  9,  10, 11, 21, 22, 23,
+                                               24, 25, 26, 27, 28, 29, 30, 31, 32, 33};
+  const std::uint64_t nodes = w.bvh_nodes.size();
+  ASSERT_EQ(nodes, 2 * w.faces.size() - 3);  // 2 x faces - 1 per body
+  // clang-format off
   const std::vector<std::uint64_t> bytes = {
       32 * 64 * 3, 4 * w.faces.size(), 16 * w.faces.size(), 48 * 3, 8 * w.box_faces.size(),
-      48 * 100,    4 * 64 * 64 * 2,    8 * w.faces.size(),  8 * 3,  16,
-      8 * 64 * 3};
+      48 * 100, 4 * 64 * 64 * 2, 8 * w.faces.size(), 8 * 3, 16, 8 * 64 * 3,
+      16 * nodes, 32 * nodes, 16 * 3, 8 * 7, 4 * 12, 8 * 9, 4 * (nodes - w.faces.size()), 8 * 3,
+      4 * w.faces.size()};
+  // clang-format on
   ASSERT_EQ(sizes.size(), bindings.size());
   for (std::size_t i = 0; i < sizes.size(); ++i) {
     EXPECT_EQ(sizes[i].binding, bindings[i]) << sizes[i].name;
@@ -42,6 +50,10 @@ TEST(CollisionBufferSizes, ListsEveryBufferWithItsBindingAndSize) {
   }
   EXPECT_EQ(sizes[5].name, "Face Pair");
   EXPECT_EQ(sizes[6].name, "BoundingBox Mask");
+  EXPECT_EQ(sizes[14].name, "Candidate Pair");
+  EXPECT_EQ(sizes[16].name, "Box Pair List");
+  EXPECT_EQ(sizes[18].name, "Touching Pairs");
+  EXPECT_EQ(sizes[19].name, "BVH Leaves");
 }
 
 TEST(CheckCollisionConsistency, AcceptsAssembledWorlds) {
@@ -86,6 +98,86 @@ TEST(CheckCollisionConsistency, NamesWhatDoesNotFit) {
       "lacks bit 0");
   expect_rejected([](WorldState& w) { w.body_pairs[2] = {2, 1}; }, "body pair 2 is (2, 1)");
   expect_rejected([](WorldState& w) { w.body_pairs[0] = {0, 3}; }, "body pair 0 is (0, 3)");
+}
+
+// The BVH checks: what the refit's walks and the traversal's fixed stack rely on.
+TEST(CheckCollisionConsistency, NamesWhatIsWrongWithABvh) {
+  expect_rejected([](WorldState& w) { w.body_bvhs.pop_back(); }, "body_bvhs has 2 entries");
+  expect_rejected([](WorldState& w) { w.body_bvhs[1].root += 1; }, "body 1's BVH has nodes");
+  expect_rejected([](WorldState& w) { w.body_bvhs[2].node_count -= 2; }, "body 2's BVH has nodes");
+  expect_rejected([](WorldState& w) { w.body_bvhs[0].depth = 64; }, "has depth 64");
+  expect_rejected([](WorldState& w) { w.body_bvhs[0].depth = 1; }, "but its BodyBvh says 1");
+  expect_rejected([](WorldState& w) { w.bvh_nodes[w.body_bvhs[1].root].parent = 0; },
+                  "has parent 0, not an earlier node of the tree (or none for the root)");
+  expect_rejected(
+      [](WorldState& w) {
+        const gpu::BvhNode root = w.bvh_nodes[0];
+        w.bvh_nodes[root.left].parent = root.right;  // the child no longer names its parent
+      },
+      "node 0 has child");
+  expect_rejected(
+      [](WorldState& w) {
+        const std::uint32_t root = w.body_bvhs[1].root;
+        w.bvh_nodes[root].right = w.bvh_nodes[root].left;
+      },
+      "has the same node as both children");
+  expect_rejected(
+      [](WorldState& w) {
+        // Two leaves of the same face: another face is missing.
+        std::uint32_t first_leaf = gpu::kBvhInternal;
+        for (std::uint32_t i = 0; i < w.body_bvhs[0].node_count; ++i) {
+          if (w.bvh_nodes[i].face == gpu::kBvhInternal) continue;
+          if (first_leaf == gpu::kBvhInternal) {
+            first_leaf = i;
+          } else {
+            w.bvh_nodes[i].face = w.bvh_nodes[first_leaf].face;
+            return;
+          }
+        }
+      },
+      "not a face of the body listed once");
+  expect_rejected([](WorldState& w) { w.bvh_nodes.push_back(w.bvh_nodes.back()); },
+                  "but the bodies' trees have");
+}
+
+// The refit's levels: every internal node once, each after its internal children (its leaves
+// come from the first dispatch); the traversal's leaves: each body's, in preorder, from its face
+// offset.
+TEST(PlanBvhWorkOrder, OrdersTheRefitByLevelAndTheLeavesInPreorder) {
+  const WorldState w = three_body_world();
+  const BvhWorkOrder plan =
+      plan_bvh_work_order(w.bvh_nodes, w.body_bvhs, w.objects, w.faces.size());
+  ASSERT_EQ(plan.refit_order.size(), w.bvh_nodes.size() - w.faces.size());
+  std::vector<int> level_of(w.bvh_nodes.size(), -1);
+  std::uint32_t next = 0;
+  for (std::size_t l = 0; l < plan.levels.size(); ++l) {
+    ASSERT_EQ(plan.levels[l].x, next);
+    ASSERT_GT(plan.levels[l].y, 0u);
+    for (std::uint32_t k = next; k < next + plan.levels[l].y; ++k) {
+      const std::uint32_t node = plan.refit_order[k];
+      ASSERT_EQ(w.bvh_nodes[node].face, gpu::kBvhInternal);
+      ASSERT_EQ(level_of[node], -1) << "node " << node << " listed twice";
+      level_of[node] = static_cast<int>(l);
+    }
+    next += plan.levels[l].y;
+  }
+  for (std::uint32_t node : plan.refit_order) {
+    for (std::uint32_t child : {w.bvh_nodes[node].left, w.bvh_nodes[node].right}) {
+      if (w.bvh_nodes[child].face == gpu::kBvhInternal) {
+        EXPECT_LT(level_of[child], level_of[node]) << "node " << node << ", child " << child;
+      }
+    }
+  }
+  ASSERT_EQ(plan.leaves.size(), w.faces.size());
+  for (std::size_t b = 0; b < w.body_count(); ++b) {
+    std::vector<std::uint32_t> leaves;
+    const gpu::BodyBvh& t = w.body_bvhs[b];
+    for (std::uint32_t i = t.root; i < t.root + t.node_count; ++i) {
+      if (w.bvh_nodes[i].face != gpu::kBvhInternal) leaves.push_back(i);
+    }
+    const auto first = plan.leaves.begin() + w.objects[b].face_offset;
+    EXPECT_EQ(std::vector<std::uint32_t>(first, first + w.objects[b].face_count), leaves);
+  }
 }
 
 TEST(PlanPairChunks, CoversThePairsInChunksWithTheirLargestCounts) {

@@ -1,9 +1,9 @@
-// The GL collision backend against host references: the octree pass and the all-pairs
-// baseline find exactly the face pairs that testing every pair of faces with the C++ narrow
-// phase finds (the GLSL mirror performs the same float operations, so the segments agree bit
-// for bit on llvmpipe), the face flags and counters agree with those pairs, the leaf boxes with
-// boxes grown on the host; and the backend's boundaries: a full result buffer, several mask
-// chunks, buffers over the limit, a single body.
+// The GL collision backend against host references: every broad phase (the octree, the
+// all-pairs baseline, octree-compact, bvh) finds exactly the face pairs that testing every pair
+// of faces with the C++ narrow phase finds (the GLSL mirror performs the same float operations, so
+// the segments agree bit for bit on llvmpipe), the face flags and counters agree with those pairs,
+// the leaf boxes with boxes grown on the host; and the backend's boundaries: a full result buffer,
+// several mask chunks, buffers over the limit, a single body.
 
 #include <gtest/gtest.h>
 
@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "collision_test_backends.h"
 #include "collision_test_worlds.h"
 #include "deformcd/error.h"
 #include "deformcd/world_state.h"
@@ -22,55 +23,17 @@
 namespace deformcd::gl {
 namespace {
 
-void expect_same_pairs(const std::vector<gpu::FacePair>& actual,
-                       const std::vector<gpu::FacePair>& expected, const std::string& what) {
-  SCOPED_TRACE(what);
-  ASSERT_EQ(actual.size(), expected.size());
-  for (std::size_t i = 0; i < actual.size(); ++i) {
-    const gpu::FacePair& x = actual[i];
-    const gpu::FacePair& y = expected[i];
-    ASSERT_EQ(x.face_a, y.face_a) << "pair " << i;
-    ASSERT_EQ(x.face_b, y.face_b) << "pair " << i;
-    EXPECT_EQ(x.coplanar, y.coplanar) << "faces " << x.face_a << ", " << x.face_b;
-    EXPECT_EQ(x.segment0, y.segment0) << "faces " << x.face_a << ", " << x.face_b;
-    EXPECT_EQ(x.segment1, y.segment1) << "faces " << x.face_a << ", " << x.face_b;
-  }
+using test::Backends;
+using test::count_set;
+using test::expect_same_pairs;
+using test::flags_of;
+
+constexpr BroadPhase kEveryMethod[] = {BroadPhase::kOctree, BroadPhase::kBrute,
+                                       BroadPhase::kOctreeCompact, BroadPhase::kBvh};
+
+bool lists_box_pairs(BroadPhase method) {
+  return method == BroadPhase::kOctree || method == BroadPhase::kOctreeCompact;
 }
-
-// Flag 1 on every face of `pairs`, 0 elsewhere.
-std::vector<std::uint32_t> flags_of(const std::vector<gpu::FacePair>& pairs,
-                                    std::size_t face_count) {
-  std::vector<std::uint32_t> flags(face_count, 0u);
-  for (const gpu::FacePair& p : pairs)
-    flags[p.face_a] = flags[p.face_b] = 1u;
-  return flags;
-}
-
-std::uint32_t count_set(const std::vector<std::uint32_t>& flags) {
-  std::uint32_t n = 0;
-  for (std::uint32_t f : flags)
-    n += f != 0 ? 1u : 0u;
-  return n;
-}
-
-// A simulation holding a world's positions and a collision backend over them.
-struct Backends {
-  GlSimulation simulation;
-  GlCollision collision;
-
-  Backends(Context& context, const WorldState& world, const GlCollisionOptions& options = {})
-      : simulation(context), collision(context, simulation, options) {
-    simulation.upload(world);
-    collision.upload(world);
-  }
-
-  std::vector<gpu::FacePair> pairs(BroadPhase method) {
-    collision.detect(method);
-    std::vector<gpu::FacePair> out;
-    collision.download_face_pairs(out);
-    return test::sorted(out);
-  }
-};
 
 class GlCollisionTest : public test_support::GlTest {};
 
@@ -85,13 +48,13 @@ TEST_F(GlCollisionTest, CrossingBodiesGiveTheHostPairsFlagsAndCounts) {
 
   Backends gl(context(), world);
   EXPECT_EQ(gl.collision.name(), "gl");
-  for (BroadPhase method : {BroadPhase::kOctree, BroadPhase::kBrute}) {
+  for (BroadPhase method : kEveryMethod) {
     const std::string name(broadphase_name(method));
     expect_same_pairs(gl.pairs(method), expected, name);
     const gpu::CollisionCounters counters = gl.collision.counters();
     EXPECT_EQ(counters.face_pairs, expected.size()) << name;
     EXPECT_EQ(counters.colliding_faces, count_set(expected_flags)) << name;
-    EXPECT_EQ(counters.box_pairs, method == BroadPhase::kOctree ? expected_box_pairs : 0u) << name;
+    EXPECT_EQ(counters.box_pairs, lists_box_pairs(method) ? expected_box_pairs : 0u) << name;
     std::vector<std::uint32_t> flags;
     gl.collision.download_face_flags(flags);
     EXPECT_EQ(flags, expected_flags) << name;
@@ -102,7 +65,7 @@ TEST_F(GlCollisionTest, BodiesApartGiveNoPairsNoFlagsAndNoBoxPairs) {
   const WorldState world = test::two_separate_grids();
   ASSERT_TRUE(test::all_pairs_on_host(world).empty());
   Backends gl(context(), world);
-  for (BroadPhase method : {BroadPhase::kOctree, BroadPhase::kBrute}) {
+  for (BroadPhase method : kEveryMethod) {
     const std::string name(broadphase_name(method));
     EXPECT_TRUE(gl.pairs(method).empty()) << name;
     const gpu::CollisionCounters counters = gl.collision.counters();
@@ -154,7 +117,7 @@ TEST_F(GlCollisionTest, AFullPairBufferGrowsAndTheRerunReturnsEveryPair) {
   const std::vector<gpu::FacePair> expected = test::all_pairs_on_host(world);
   Backends gl(context(), world, {.initial_pair_capacity = 1});
   EXPECT_EQ(gl.collision.face_pair_capacity(), 1u);
-  for (BroadPhase method : {BroadPhase::kOctree, BroadPhase::kBrute}) {
+  for (BroadPhase method : kEveryMethod) {
     expect_same_pairs(gl.pairs(method), expected, std::string(broadphase_name(method)));
     EXPECT_GE(gl.collision.face_pair_capacity(), expected.size());
     std::vector<std::uint32_t> flags;
@@ -183,6 +146,9 @@ TEST_F(GlCollisionTest, ThreeBodiesInOneMaskSlotChunkByChunkFindEveryPair) {
   expect_same_pairs(all_slots.pairs(BroadPhase::kOctree), expected, "octree, 64 slots");
   EXPECT_EQ(one_slot_counters.box_pairs, all_slots.collision.counters().box_pairs);
   expect_same_pairs(one_slot.pairs(BroadPhase::kBrute), expected, "brute");
+  expect_same_pairs(one_slot.pairs(BroadPhase::kOctreeCompact), expected, "octree-compact");
+  EXPECT_EQ(one_slot.collision.counters().box_pairs, one_slot_counters.box_pairs);
+  expect_same_pairs(one_slot.pairs(BroadPhase::kBvh), expected, "bvh");
 }
 
 // 1024 bytes: the faces (216 x 16 bytes) and the one mask slot (16 KiB) are over it, the
@@ -219,7 +185,7 @@ TEST_F(GlCollisionTest, ASingleBodyHasNoPairs) {
   const WorldState world = assemble_world({test::crossing_grid(1, 0.0, {0, 0, 1}, {0, 0, 0})});
   ASSERT_TRUE(world.body_pairs.empty());
   Backends gl(context(), world);
-  for (BroadPhase method : {BroadPhase::kOctree, BroadPhase::kBrute}) {
+  for (BroadPhase method : kEveryMethod) {
     EXPECT_TRUE(gl.pairs(method).empty());
     const gpu::CollisionCounters counters = gl.collision.counters();
     EXPECT_EQ(counters.face_pairs, 0u);
@@ -243,10 +209,12 @@ TEST_F(GlCollisionTest, ASingleBodyHasNoPairs) {
 TEST_F(GlCollisionTest, NoneResetsTheLastPassResults) {
   const WorldState world = test::two_crossing_grids();
   Backends gl(context(), world);
-  ASSERT_FALSE(gl.pairs(BroadPhase::kOctree).empty());
+  ASSERT_FALSE(gl.pairs(BroadPhase::kBvh).empty());
   EXPECT_TRUE(gl.pairs(BroadPhase::kNone).empty());
   const gpu::CollisionCounters counters = gl.collision.counters();
-  EXPECT_EQ(counters.face_pairs + counters.box_pairs + counters.colliding_faces, 0u);
+  EXPECT_EQ(
+      counters.face_pairs + counters.box_pairs + counters.colliding_faces + counters.candidates,
+      0u);
   std::vector<std::uint32_t> flags;
   gl.collision.download_face_flags(flags);
   EXPECT_EQ(count_set(flags), 0u);

@@ -8,9 +8,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/collision/bvh.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
 #include "gl_test_context.h"
+#include "gpu/gl/collision_work_buffers.h"
 #include "gpu/gl/compute_program.h"
 
 namespace deformcd::gl {
@@ -27,12 +29,15 @@ struct ProbeOutput {
   std::vector<gpu::BodyPair> body_pairs;
   std::vector<gpu::FacePair> face_pairs;
   std::vector<gpu::CollisionCounters> counters;
-  // The BINDING_* macros in gpu::Binding order (kBindingCount of them), then
-  // LEAF_BOXES_PER_BODY.
+  std::vector<gpu::BvhNode> bvh_nodes;
+  std::vector<gpu::BodyBvh> body_bvhs;
+  // The BINDING_* macros in gpu::Binding order (kBindingCount of them), then the constants
+  // (kConstantCount).
   std::vector<std::uint32_t> bindings;
 };
 
-constexpr std::uint32_t kBindingCount = gpu::kBoxRows + 1;
+constexpr std::uint32_t kBindingCount = gpu::kCandidatePair + 1;
+constexpr std::uint32_t kConstantCount = 12;
 
 // Runs shaders/test/layout_probe.comp over `count` elements of each struct.
 ProbeOutput run_layout_probe(std::uint32_t count) {
@@ -42,12 +47,14 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   const Ssbo<gpu::Box> boxes(count);
   const Ssbo<gpu::BoxFace> box_faces(count);
   const Ssbo<gpu::ObjectInfo> objects(count);
-  const Ssbo<std::uint32_t> bindings(kBindingCount + 1);
+  const Ssbo<std::uint32_t> bindings(kBindingCount + kConstantCount);
   const Ssbo<gpu::BodyParams> body_params(count);
   const Ssbo<gpu::Tetra> tets(count);
   const Ssbo<gpu::BodyPair> body_pairs(count);
   const Ssbo<gpu::FacePair> face_pairs(count);
   const Ssbo<gpu::CollisionCounters> counters(count);
+  const Ssbo<gpu::BvhNode> bvh_nodes(count);
+  const Ssbo<gpu::BodyBvh> body_bvhs(count);
   springs.bind(0);
   faces.bind(1);
   boxes.bind(2);
@@ -59,11 +66,15 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   body_pairs.bind(8);
   face_pairs.bind(9);
   counters.bind(10);
+  bvh_nodes.bind(11);
+  body_bvhs.bind(12);
   program.set_uniform("u_count", count);
   program.dispatch_covering(count);
-  return {springs.download(),    faces.download(),       boxes.download(),   box_faces.download(),
-          objects.download(),    body_params.download(), tets.download(),    body_pairs.download(),
-          face_pairs.download(), counters.download(),    bindings.download()};
+  return {springs.download(),   faces.download(),      boxes.download(),
+          box_faces.download(), objects.download(),    body_params.download(),
+          tets.download(),      body_pairs.download(), face_pairs.download(),
+          counters.download(),  bvh_nodes.download(),  body_bvhs.download(),
+          bindings.download()};
 }
 
 std::uint32_t probe(std::uint32_t i, std::uint32_t k) {
@@ -141,7 +152,19 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
     EXPECT_EQ(c.face_pairs, probe(i, 0));
     EXPECT_EQ(c.box_pairs, probe(i, 1));
     EXPECT_EQ(c.colliding_faces, probe(i, 2));
-    EXPECT_EQ(c.pad, probe(i, 3));
+    EXPECT_EQ(c.candidates, probe(i, 3));
+
+    const gpu::BvhNode& n = out.bvh_nodes[i];
+    EXPECT_EQ(n.left, probe(i, 0));
+    EXPECT_EQ(n.right, probe(i, 1));
+    EXPECT_EQ(n.parent, probe(i, 2));
+    EXPECT_EQ(n.face, probe(i, 3));
+
+    const gpu::BodyBvh& tree = out.body_bvhs[i];
+    EXPECT_EQ(tree.root, probe(i, 0));
+    EXPECT_EQ(tree.node_count, probe(i, 1));
+    EXPECT_EQ(tree.depth, probe(i, 2));
+    EXPECT_EQ(tree.pad, probe(i, 3));
   }
 }
 
@@ -153,13 +176,26 @@ TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
       gpu::kBodyParams,     gpu::kNodeBody,        gpu::kSpringForce, gpu::kNodeSpringOffset,
       gpu::kNodeSpringList, gpu::kTetInfo,         gpu::kTetForce,    gpu::kNodeTetOffset,
       gpu::kNodeTetList,    gpu::kFaceBoxes,       gpu::kBodyPair,    gpu::kCollisionCounters,
-      gpu::kBoxRows};
+      gpu::kBoxRows,        gpu::kBvhNode,         gpu::kBvhBox,      gpu::kBodyBvh,
+      gpu::kCandidatePair};
   ASSERT_EQ(expected.size(), kBindingCount);
   std::vector<std::uint32_t> bindings = run_layout_probe(1).bindings;
-  ASSERT_EQ(bindings.size(), kBindingCount + 1);
-  EXPECT_EQ(bindings.back(), gpu::kLeafBoxesPerBody) << "LEAF_BOXES_PER_BODY";
-  bindings.pop_back();
+  ASSERT_EQ(bindings.size(), kBindingCount + kConstantCount);
+  const std::vector<std::uint32_t> constants(bindings.begin() + kBindingCount, bindings.end());
+  bindings.resize(kBindingCount);
   EXPECT_EQ(bindings, expected);
+  EXPECT_EQ(constants[0], gpu::kLeafBoxesPerBody) << "LEAF_BOXES_PER_BODY";
+  EXPECT_EQ(constants[1], gpu::kBvhInternal) << "BVH_INTERNAL";
+  EXPECT_EQ(constants[2], collision::kBvhMaxDepth) << "BVH_MAX_DEPTH";
+  EXPECT_EQ(constants[3], kDispatchArgsBinding) << "BINDING_DISPATCH_ARGS";
+  EXPECT_EQ(constants[4], kBoxPairListBinding) << "BINDING_BOX_PAIR_LIST";
+  EXPECT_EQ(constants[5], kBvhLevelsBinding) << "BINDING_BVH_LEVELS";
+  EXPECT_EQ(constants[6], kTouchingPairsBinding) << "BINDING_TOUCHING_PAIRS";
+  EXPECT_EQ(constants[7], kExpandArgsWord) << "DISPATCH_ARGS_EXPAND";
+  EXPECT_EQ(constants[8], kTouchingCountWord) << "DISPATCH_ARGS_TOUCHING";
+  EXPECT_EQ(constants[9], kNarrowArgsWord) << "DISPATCH_ARGS_NARROW";
+  EXPECT_EQ(constants[10], kTraverseArgsWord) << "DISPATCH_ARGS_TRAVERSE";
+  EXPECT_EQ(constants[11], kBvhLeavesBinding) << "BINDING_BVH_LEAVES";
 }
 
 }  // namespace

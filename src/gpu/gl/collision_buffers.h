@@ -1,6 +1,7 @@
 #pragma once
-// The buffers of GlCollision's passes, bound at the gpu::Binding points, and what the host
-// knows about them. Node positions (SSBO 0) are not here: they are the simulation's.
+// The buffers of GlCollision's passes, bound at the gpu::Binding points (the private work
+// buffers at collision_work_buffers.h's), and what the host knows about them. Node positions
+// (SSBO 0) are not here: they are the simulation's.
 
 #include <cstdint>
 #include <vector>
@@ -8,6 +9,7 @@
 #include <glm/vec2.hpp>
 
 #include "collision_dispatch_plan.h"
+#include "collision_work_buffers.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
 
@@ -26,12 +28,30 @@ struct CollisionBuffers {
   Ssbo<gpu::BodyPair> body_pairs;         // SSBO 22
   Ssbo<gpu::CollisionCounters> counters;  // SSBO 23: one
   Ssbo<glm::uvec2> box_rows;              // SSBO 24
+  Ssbo<gpu::BvhNode> bvh_nodes;           // SSBO 25
+  Ssbo<gpu::Box> bvh_boxes;               // SSBO 26: per BVH node
+  Ssbo<gpu::BodyBvh> body_bvhs;           // SSBO 27
+  Ssbo<glm::uvec2> candidates;            // SSBO 28: candidate_capacity slots
+  Ssbo<std::uint32_t> dispatch_args;      // 29: also the GL_DISPATCH_INDIRECT_BUFFER
+  Ssbo<glm::uvec2> box_pair_list;         // 30: box_pair_capacity slots
+  Ssbo<std::uint32_t> bvh_levels;         // 31: internal BVH nodes, deepest level first
+  Ssbo<gpu::BodyPair> touching_pairs;     // 32: room for every body pair
+  Ssbo<std::uint32_t> bvh_leaves;         // 33: per face, leaves in preorder
   std::uint32_t node_count = 0;           // nodes the faces index: SSBO 0 must hold them
   std::uint32_t face_count = 0;
   std::uint32_t box_count = 0;
   std::uint32_t pair_capacity = 0;
+  std::uint32_t bvh_node_count = 0;
+  std::vector<glm::uvec2> bvh_levels_ranges;  // (first, count) in bvh_levels, deepest first
+  std::uint32_t candidate_capacity = 0;
+  std::uint32_t box_pair_capacity = 0;
+  std::uint32_t max_box_rows = 0;  // largest row count of any leaf box
+  std::uint32_t body_pair_count = 0;
+  // Largest face count of the smaller body of a body pair: bvh_traverse.comp's x extent.
+  std::uint32_t max_query_faces = 0;
   std::vector<PairChunk> octree_chunks;  // rows; at most "mask slots" pairs each
-  std::vector<PairChunk> brute_chunks;   // faces; at most the device's z work groups each
+  // Faces; at most the device's z work groups each (also octree-compact's box-pair list's).
+  std::vector<PairChunk> brute_chunks;
 
   // Binds every buffer at its binding point (other passes may have rebound the points).
   void bind() const {
@@ -46,6 +66,15 @@ struct CollisionBuffers {
     body_pairs.bind(gpu::kBodyPair);
     counters.bind(gpu::kCollisionCounters);
     box_rows.bind(gpu::kBoxRows);
+    bvh_nodes.bind(gpu::kBvhNode);
+    bvh_boxes.bind(gpu::kBvhBox);
+    body_bvhs.bind(gpu::kBodyBvh);
+    candidates.bind(gpu::kCandidatePair);
+    dispatch_args.bind(kDispatchArgsBinding);
+    box_pair_list.bind(kBoxPairListBinding);
+    bvh_levels.bind(kBvhLevelsBinding);
+    touching_pairs.bind(kTouchingPairsBinding);
+    bvh_leaves.bind(kBvhLeavesBinding);
   }
 };
 

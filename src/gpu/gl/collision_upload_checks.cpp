@@ -1,8 +1,11 @@
 #include "collision_upload_checks.h"
 
+#include <algorithm>
 #include <string>
 
+#include "collision_work_buffers.h"
 #include "core/collision/broad_phase.h"
+#include "core/collision/bvh.h"
 #include "deformcd/error.h"
 #include "deformcd/gpu_layout.h"
 
@@ -87,15 +90,96 @@ void check_body_pairs(const WorldState& w) {
   }
 }
 
+// Body b's tree covers nodes [root, root + 2 x faces - 1) right after the previous body's,
+// in preorder (children after their parent, so that the refit's walks up end at the root),
+// each child naming its parent, each face of the body in exactly one leaf, and no deeper than
+// the traversal stack (the shaders' BVH_MAX_DEPTH).
+void check_bvh(const WorldState& w, std::uint32_t b, std::uint32_t root) {
+  const gpu::ObjectInfo& o = w.objects[b];
+  const gpu::BodyBvh& t = w.body_bvhs[b];
+  const std::string name = "body " + to_string(b) + "'s BVH";
+  if (t.root != root || t.node_count != 2 * std::uint64_t{o.face_count} - 1 ||
+      std::uint64_t{root} + t.node_count > w.bvh_nodes.size()) {
+    inconsistent(name + " has nodes [" + to_string(t.root) + ", +" + to_string(t.node_count) +
+                 "), not [" + to_string(root) + ", +" + to_string(2 * o.face_count - 1) +
+                 ") within the " + to_string(w.bvh_nodes.size()) + " nodes");
+  }
+  if (t.depth >= collision::kBvhMaxDepth) {
+    inconsistent(name + " has depth " + to_string(t.depth) + ", more than the traversal stack's " +
+                 to_string(collision::kBvhMaxDepth - 1));
+  }
+  std::vector<std::uint32_t> depth(t.node_count, 0);
+  std::vector<bool> face_seen(o.face_count, false);
+  std::uint32_t leaves = 0;
+  const std::uint32_t end = root + t.node_count;
+  for (std::uint32_t i = root; i < end; ++i) {
+    const gpu::BvhNode& n = w.bvh_nodes[i];
+    const std::string node = name + ": node " + to_string(i);
+    const bool parent_ok =
+        i == root ? n.parent == gpu::kBvhInternal : n.parent >= root && n.parent < i;
+    if (!parent_ok) {
+      inconsistent(node + " has parent " + to_string(n.parent) +
+                   ", not an earlier node of the tree (or none for the root)");
+    }
+    if (n.face != gpu::kBvhInternal) {
+      if (n.face < o.face_offset || n.face - o.face_offset >= o.face_count ||
+          face_seen[n.face - o.face_offset]) {
+        inconsistent(node + " is a leaf of face " + to_string(n.face) +
+                     ", not a face of the body listed once");
+      }
+      face_seen[n.face - o.face_offset] = true;
+      ++leaves;
+      continue;
+    }
+    if (n.left == n.right) inconsistent(node + " has the same node as both children");
+    for (std::uint32_t child : {n.left, n.right}) {
+      if (child <= i || child >= end || w.bvh_nodes[child].parent != i) {
+        inconsistent(node + " has child " + to_string(child) +
+                     ", not a later node of the tree naming it as parent");
+      }
+      depth[child - root] = depth[i - root] + 1;
+    }
+  }
+  // Every face in a leaf, 2 x faces - 1 nodes, each child claimed by the one parent it names:
+  // a binary tree from the root, every node reachable.
+  if (leaves != o.face_count) {
+    inconsistent(name + " has " + to_string(leaves) + " leaves for " + to_string(o.face_count) +
+                 " faces");
+  }
+  const std::uint32_t deepest = *std::max_element(depth.begin(), depth.end());
+  if (deepest > t.depth) {
+    inconsistent(name + " is " + to_string(deepest) + " deep, but its BodyBvh says " +
+                 to_string(t.depth));
+  }
+}
+
+void check_bvhs(const WorldState& w) {
+  if (w.body_bvhs.size() != w.body_count()) {
+    inconsistent("body_bvhs has " + to_string(w.body_bvhs.size()) + " entries, but there are " +
+                 to_string(w.body_count()) + " bodies");
+  }
+  std::uint32_t root = 0;
+  for (std::uint32_t b = 0; b < w.body_count(); ++b) {
+    check_bvh(w, b, root);
+    root += w.body_bvhs[b].node_count;
+  }
+  if (root != w.bvh_nodes.size()) {
+    inconsistent("bvh_nodes has " + to_string(w.bvh_nodes.size()) +
+                 " nodes, but the bodies' trees have " + to_string(root));
+  }
+}
+
 template <class T>
-BufferSize size_of(std::string_view name, gpu::Binding binding, std::uint64_t count) {
+BufferSize size_of(std::string_view name, std::uint32_t binding, std::uint64_t count) {
   return {name, binding, count, sizeof(T)};
 }
 
 }  // namespace
 
-std::vector<BufferSize> collision_buffer_sizes(const WorldState& w, std::uint64_t pair_capacity,
-                                               std::uint64_t mask_slots) {
+std::vector<BufferSize> collision_buffer_sizes(const WorldState& w,
+                                               const CollisionCapacities& capacities) {
+  const std::uint64_t pair_capacity = capacities.face_pairs;
+  const std::uint64_t mask_slots = capacities.mask_slots;
   constexpr std::uint64_t kMaskEntries = gpu::kLeafBoxesPerBody * gpu::kLeafBoxesPerBody;
   return {
       size_of<gpu::Box>("BoundingBox Information", gpu::kBoxInfo,
@@ -110,6 +194,16 @@ std::vector<BufferSize> collision_buffer_sizes(const WorldState& w, std::uint64_
       size_of<gpu::BodyPair>("Body Pair", gpu::kBodyPair, w.body_pairs.size()),
       size_of<gpu::CollisionCounters>("Collision Counters", gpu::kCollisionCounters, 1),
       size_of<glm::uvec2>("Box Rows", gpu::kBoxRows, w.box_rows.size()),
+      size_of<gpu::BvhNode>("BVH Node", gpu::kBvhNode, w.bvh_nodes.size()),
+      size_of<gpu::Box>("BVH Box", gpu::kBvhBox, w.bvh_nodes.size()),
+      size_of<gpu::BodyBvh>("Body BVH", gpu::kBodyBvh, w.body_bvhs.size()),
+      size_of<glm::uvec2>("Candidate Pair", gpu::kCandidatePair, capacities.candidates),
+      size_of<std::uint32_t>("Dispatch Arguments", kDispatchArgsBinding, kDispatchArgsWords),
+      size_of<glm::uvec2>("Box Pair List", kBoxPairListBinding, capacities.box_pairs),
+      size_of<std::uint32_t>("BVH Levels", kBvhLevelsBinding,
+                             w.bvh_nodes.size() - std::min(w.bvh_nodes.size(), w.faces.size())),
+      size_of<gpu::BodyPair>("Touching Pairs", kTouchingPairsBinding, w.body_pairs.size()),
+      size_of<std::uint32_t>("BVH Leaves", kBvhLeavesBinding, w.faces.size()),
   };
 }
 
@@ -129,6 +223,7 @@ void check_collision_consistency(const WorldState& w) {
     check_box_rows(w, b);
   }
   check_body_pairs(w);
+  check_bvhs(w);
 }
 
 }  // namespace deformcd::gl

@@ -45,6 +45,16 @@ std::uint32_t checked_check_interval(std::uint32_t passes) {
   return passes;
 }
 
+// The largest face count of the smaller body of any body pair.
+std::uint32_t largest_query_body(const WorldState& state) {
+  std::uint32_t most = 0;
+  for (const gpu::BodyPair& pair : state.body_pairs) {
+    most = std::max(most,
+                    std::min(state.objects[pair.a].face_count, state.objects[pair.b].face_count));
+  }
+  return most;
+}
+
 std::uint32_t largest_row_count(const std::vector<glm::uvec2>& box_rows) {
   std::uint32_t most = 0;
   for (const glm::uvec2& rows : box_rows)
@@ -79,6 +89,8 @@ GlCollision::GlCollision(const DeviceInfo& device, const GlSimulation& simulatio
       bb_pair_list_("collision/bb_pair_list.comp"),
       octree_candidates_("collision/octree_candidates.comp"),
       bvh_refit_("collision/bvh_refit.comp"),
+      bvh_refit_level_("collision/bvh_refit_level.comp"),
+      bvh_body_pairs_("collision/bvh_body_pairs.comp"),
       bvh_traverse_("collision/bvh_traverse.comp"),
       dispatch_args_("collision/dispatch_args.comp"),
       tri_tri_candidates_("collision/tri_tri_candidates.comp") {}
@@ -91,6 +103,8 @@ void GlCollision::upload(const WorldState& state) {
                      "GL collision");
   const auto box_count = static_cast<std::uint32_t>(gpu::kLeafBoxesPerBody * state.body_count());
   BvhRebuilder rebuilder(state, bvh_check_interval_);
+  BvhWorkOrder order =
+      plan_bvh_work_order(state.bvh_nodes, state.body_bvhs, state.objects, state.faces.size());
 
   // The new buffers are all allocated before the old ones are released: if GL runs out of
   // memory (GlError from BufferObject), the previous state stays intact.
@@ -114,15 +128,20 @@ void GlCollision::upload(const WorldState& state) {
       .candidates = Ssbo<glm::uvec2>(capacities.candidates),
       .dispatch_args = Ssbo<std::uint32_t>(kDispatchArgsWords),
       .box_pair_list = Ssbo<glm::uvec2>(capacities.box_pairs),
-      .bvh_visits = Ssbo<std::uint32_t>(std::max<std::size_t>(state.bvh_nodes.size(), 1)),
+      .bvh_levels = make_buffer(order.refit_order),
+      .touching_pairs = Ssbo<gpu::BodyPair>(std::max<std::size_t>(state.body_pairs.size(), 1)),
+      .bvh_leaves = make_buffer(order.leaves),
       .node_count = static_cast<std::uint32_t>(state.node_count()),
       .face_count = static_cast<std::uint32_t>(state.faces.size()),
       .box_count = box_count,
       .pair_capacity = static_cast<std::uint32_t>(capacities.face_pairs),
       .bvh_node_count = static_cast<std::uint32_t>(state.bvh_nodes.size()),
+      .bvh_levels_ranges = std::move(order.levels),
       .candidate_capacity = static_cast<std::uint32_t>(capacities.candidates),
       .box_pair_capacity = static_cast<std::uint32_t>(capacities.box_pairs),
       .max_box_rows = largest_row_count(state.box_rows),
+      .body_pair_count = static_cast<std::uint32_t>(state.body_pairs.size()),
+      .max_query_faces = largest_query_body(state),
       .octree_chunks = plan_pair_chunks(state.body_pairs, state.objects, mask_slots_,
                                         &gpu::ObjectInfo::box_face_count),
       .brute_chunks = plan_pair_chunks(state.body_pairs, state.objects, max_work_groups_[2],
@@ -133,6 +152,7 @@ void GlCollision::upload(const WorldState& state) {
   rebuilder_.emplace(std::move(rebuilder));
   bb_update_.set_uniform("u_box_count", box_count);
   bvh_refit_.set_uniform("u_node_count", buffers_->bvh_node_count);
+  bvh_body_pairs_.set_uniform("u_pair_count", buffers_->body_pair_count);
   set_capacity_uniforms(*buffers_);
   clear_to_zero(buffers_->face_flags);
   clear_to_zero(buffers_->counters);
@@ -147,7 +167,7 @@ void GlCollision::detect(BroadPhase method) {
   memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the last pass's shader writes land first
   clear_to_zero(b.face_flags);
   clear_to_zero(b.counters);
-  if (method == BroadPhase::kBvh) clear_to_zero(b.bvh_visits);
+  if (method == BroadPhase::kBvh) clear_to_zero(b.dispatch_args);  // the touching pairs' count
   last_method_ = method;
   pass_pending_ = true;
   run(method, b);
@@ -266,21 +286,21 @@ void GlCollision::check_dispatches(const CollisionBuffers& b) const {
   // bb_collision.comp's z extents are the octree chunks': checked with tri_tri_octree.comp's.
   check_chunks_fit(tri_tri_octree_.shader_name(), b.octree_chunks,
                    tri_tri_octree_.work_group_size(), max_work_groups_);
-  // bvh_traverse.comp and bb_pair_list.comp run over the brute chunks' z extents too, with x
-  // extents of the smaller body's faces and of 64 boxes.
+  // bb_pair_list.comp runs over the brute chunks' z extents too, with x extents of 64 boxes.
   check_chunks_fit(tri_tri_brute_.shader_name(), b.brute_chunks, tri_tri_brute_.work_group_size(),
                    max_work_groups_);
-  for (const PairChunk& chunk : b.brute_chunks)
-    check_x(bvh_traverse_, std::min(chunk.max_a, chunk.max_b), "faces");
-  // The indirect dispatches clamp x to the limit and loop; y covers the largest leaf box's rows.
-  const std::uint32_t groups_y =
-      groups_covering(b.max_box_rows, octree_candidates_.work_group_size()[1]);
-  if (groups_y > max_work_groups_[1]) {
+  check_x(bvh_body_pairs_, b.body_pair_count, "body pairs");
+  check_x(bvh_traverse_, b.max_query_faces, "faces of a query body");
+  // The indirect dispatches clamp their lists' axis to the limit and loop; octree_candidates'
+  // x covers the largest leaf box's rows.
+  const std::uint32_t row_groups =
+      groups_covering(b.max_box_rows, octree_candidates_.work_group_size()[0]);
+  if (row_groups > max_work_groups_[0]) {
     throw GlError("GL collision: '" + octree_candidates_.shader_name() + "' would need " +
-                  std::to_string(groups_y) + " work groups along y for a leaf box of " +
+                  std::to_string(row_groups) + " work groups along x for a leaf box of " +
                   std::to_string(b.max_box_rows) +
                   " rows, more than the device's GL_MAX_COMPUTE_WORK_GROUP_COUNT of " +
-                  std::to_string(max_work_groups_[1]));
+                  std::to_string(max_work_groups_[0]));
   }
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // Collision detection on the GPU: the paper's compute shaders 0 (BBUpdate), 1 (BBCollision) and
-// 2 (Triangle-Triangle Intersection) over the positions a GlSimulation holds, and the paper's
-// all-pairs baseline, for every pair of different bodies. Same pairs as the CPU backend
-// (src/cpu/cpu_collision.*), which runs the same algorithm on the same floats.
+// 2 (Triangle-Triangle Intersection) over the positions a GlSimulation holds, the paper's
+// all-pairs baseline, and two broad phases beyond the paper (octree-compact, bvh), for every
+// pair of different bodies. Same pairs as the CPU backend (src/cpu/cpu_collision.*), which runs
+// the same algorithms on the same floats.
 //
 // One pass (detect):
 //   reset    face flags (SSBO 5) and counters (SSBO 23) cleared with glClearBufferData;
@@ -12,9 +13,24 @@
 //            fills one 64 x 64 mask slot per pair, and tri_tri_octree.comp (N' x M' x chunk, the
 //            chunk's largest row counts) tests the row pairs whose boxes overlap, each face pair
 //            from the first overlapping box pair listing both faces only;
-//   brute    tri_tri_brute.comp (N x M x chunk) tests every face pair.
-// Intersecting pairs go to SSBO 10 at slots taken with atomicAdd; when they overflow its
-// capacity, download_face_pairs grows it and reruns the pass.
+//   brute    tri_tri_brute.comp (N x M x chunk) tests every face pair;
+//   octree-compact  bb_update.comp as the octree; bb_pair_list.comp (64 x 64 x chunk) appends
+//            the overlapping leaf-box pairs to a list; octree_candidates.comp (indirect: one work
+//            group per listed box pair) appends the face pairs the octree would test, and
+//            tri_tri_candidates.comp (indirect) tests those only;
+//   bvh      bvh_refit.comp refits every body's BVH leaves, bvh_refit_level.comp the internal
+//            nodes level by level, deepest first;
+//            bvh_body_pairs.comp lists the body pairs whose root boxes overlap; bvh_traverse.comp
+//            (indirect: the smaller body's tree nodes x listed pairs) queries the other body's
+//            tree with each leaf's box and appends the overlapping face pairs;
+//            tri_tri_candidates.comp (indirect) tests those only.
+// The indirect dispatches take their sizes from dispatch_args.comp, which reads the counts on
+// the GPU: nothing is read back inside a pass. Intersecting pairs go to SSBO 10, candidates to
+// SSBO 28 and listed box pairs to private SSBO 30, at slots taken with atomicAdd; what overflows
+// is counted, not written. complete_pass() reads the counters at the frame boundary and, when a
+// list overflowed, grows it and reruns the pass on the same positions, so every result read is
+// whole. Every bvh_check_interval completed bvh passes it also reads the refitted boxes back and
+// rebuilds on the host the trees that deformation has degraded (bvh_rebuilder.h).
 
 #include <array>
 #include <cstdint>
@@ -22,7 +38,10 @@
 #include <string_view>
 #include <vector>
 
+#include "bvh_rebuilder.h"
+#include "bvh_work_order.h"
 #include "collision_buffers.h"
+#include "collision_upload_checks.h"
 #include "compute_program.h"
 #include "core/collision/collision_backend.h"
 #include "deformcd/gl/context.h"
@@ -42,13 +61,24 @@ struct GlCollisionOptions {
   // capped at what the buffer limit allows. The buffer grows (x 1.5 the count) when a pass finds
   // more pairs.
   std::uint32_t initial_pair_capacity = 0;
+  // Candidate face pairs (SSBO 28, 8 bytes each) of the bvh and octree-compact broad phases. 0:
+  // max(4096, 16 x faces), capped at what the buffer limit allows. Grows (x 1.5 the count) when
+  // a pass appends more.
+  std::uint32_t initial_candidate_capacity = 0;
+  // Entries of octree-compact's list of overlapping leaf-box pairs (8 bytes each). 0: 4096 per
+  // body pair, at most 4096 x bodies. Grows (x 1.5 the count) when a pass finds more.
+  std::uint32_t initial_box_pair_capacity = 0;
+  // Completed bvh passes between two checks of the trees' quality (a read-back of the BVH
+  // boxes). Must be positive.
+  std::uint32_t bvh_check_interval = 30;
 };
 
 class GlCollision final : public collision::CollisionBackend {
  public:
-  // Makes `context` current and compiles the four shaders (GlError if that fails). The context
-  // and `simulation` must outlive this object; the context must be current on the calling thread
-  // for every call, destruction included. Throws Error when options.mask_slots is 0.
+  // Makes `context` current and compiles the shaders (GlError if that fails). The context and
+  // `simulation` must outlive this object; the context must be current on the calling thread
+  // for every call, destruction included. Throws Error when options.mask_slots or
+  // options.bvh_check_interval is 0.
   GlCollision(Context& context, const GlSimulation& simulation,
               const GlCollisionOptions& options = {});
 
@@ -58,34 +88,72 @@ class GlCollision final : public collision::CollisionBackend {
   // the shader) before allocating anything, then replaces the buffers; the previous ones are
   // kept when it throws. Flags and counters start at 0, the boxes empty.
   void upload(const WorldState& state) override;
-  // One pass over the simulation's current positions (SSBO 0, bound here). kNone only resets
-  // the flags and counters. Throws Error before upload(), or when the simulation holds fewer
-  // nodes than the faces index.
+  // One pass over the simulation's current positions (SSBO 0, bound here), queued without
+  // waiting for it. kNone only resets the flags and counters. Throws Error before upload(), or
+  // when the simulation holds fewer nodes than the faces index.
   void detect(BroadPhase method) override;
+  // Waits for the last pass; if a list overflowed, grows it and reruns the pass (at most 3
+  // times: a pass is deterministic in what it counts); after a bvh pass, maybe rebuilds trees.
+  // Does nothing when the last pass is already complete. Throws Error when reruns do not
+  // settle (the positions changed), GlError when a list cannot grow within the buffer limit.
+  void complete_pass() override;
+  // The reads complete the pass first.
   [[nodiscard]] gpu::CollisionCounters counters() override;
   void download_face_pairs(std::vector<gpu::FacePair>& out) override;
   void download_face_flags(std::vector<std::uint32_t>& out) override;
   void download_boxes(std::vector<gpu::Box>& out) override;
   [[nodiscard]] std::uint32_t gl_face_flag_buffer() const override;
 
-  // Face-pair slots in SSBO 10 now (0 before upload()).
+  // The BVH boxes (one per node, global indices) as the last bvh pass refitted them.
+  void download_bvh_boxes(std::vector<gpu::Box>& out);
+  // The BVH nodes as the GPU holds them (rebuilds replace a body's).
+  void download_bvh_nodes(std::vector<gpu::BvhNode>& out);
+  // Slots in SSBO 10 (face pairs), 28 (candidates) and the box-pair list now (0 before upload()).
   [[nodiscard]] std::uint32_t face_pair_capacity() const;
+  [[nodiscard]] std::uint32_t candidate_capacity() const;
+  [[nodiscard]] std::uint32_t box_pair_capacity() const;
+  // Trees rebuilt since upload() (0 before).
+  [[nodiscard]] std::uint32_t bvh_rebuilds() const;
 
  private:
   GlCollision(const DeviceInfo& device, const GlSimulation& simulation,
               const GlCollisionOptions& options);
   CollisionBuffers& buffers(const char* operation);
   [[nodiscard]] std::string_view limit_name() const;
-  [[nodiscard]] std::uint64_t initial_capacity(const WorldState& state) const;
+  [[nodiscard]] CollisionCapacities initial_capacities(const WorldState& state) const;
   // Throws GlError naming the first shader whose dispatch would exceed the device's limits.
-  void check_dispatches(std::uint32_t box_count, const std::vector<PairChunk>& octree_chunks,
-                        const std::vector<PairChunk>& brute_chunks) const;
+  void check_dispatches(const CollisionBuffers& b) const;
   void bind_positions(const CollisionBuffers& b) const;
-  void set_pair_capacity_uniforms(std::uint32_t capacity);
+  void set_capacity_uniforms(const CollisionBuffers& b);
+  // The passes (gl_collision_passes.cpp); detect() has bound the buffers and reset the outputs.
+  void run(BroadPhase method, const CollisionBuffers& b);
   void run_octree(const CollisionBuffers& b);
   void run_brute(const CollisionBuffers& b);
-  // Replaces SSBO 10 with one holding at least `pairs` face pairs.
-  void grow_face_pairs(CollisionBuffers& b, std::uint32_t pairs);
+  void run_octree_compact(const CollisionBuffers& b);
+  void run_bvh(const CollisionBuffers& b);
+  // dispatch_args.comp, then tri_tri_candidates.comp over the candidates, indirectly.
+  void run_candidate_narrow_phase(const CollisionBuffers& b);
+  // A list an indirect dispatch covers (dispatch_args.comp's uniforms).
+  struct IndirectList {
+    std::uint32_t source = 0;    // 0: counters.box_pairs, 1: counters.candidates, 2: touching pairs
+    std::uint32_t capacity = 0;  // entries stored
+    std::uint32_t count_axis = 0;    // 0: the list runs along x, 1: along y
+    std::uint32_t other_groups = 1;  // work groups along the other axis
+  };
+  // Writes the indirect arguments covering min(count, capacity) entries of `list` with work
+  // groups of `local_size` along its axis, at uint `word` of the dispatch-args buffer.
+  void write_dispatch_args(const IndirectList& list, std::uint32_t local_size, std::uint32_t word);
+  // Whether the last pass's counts `found` exceed a list's capacity (gl_collision_completion.cpp).
+  [[nodiscard]] bool overflowed(const CollisionBuffers& b,
+                                const gpu::CollisionCounters& found) const;
+  // Replaces each list that `found` overflowed by one 1.5 x the count (GlError past the limit).
+  void grow_overflowed(CollisionBuffers& b, const gpu::CollisionCounters& found);
+  // Every bvh_check_interval completed bvh passes: rebuilds the degraded trees.
+  void maintain_bvhs(CollisionBuffers& b);
+  // The simulation's current positions (SSBO 0), for rebuilds.
+  [[nodiscard]] std::vector<glm::vec4> download_positions(const CollisionBuffers& b) const;
+  // The largest element count of a buffer of `element_bytes` under the limit.
+  [[nodiscard]] std::uint64_t most_elements(std::uint64_t element_bytes) const;
 
   const GlSimulation& simulation_;
   std::uint64_t max_buffer_bytes_ = 0;
@@ -93,12 +161,25 @@ class GlCollision final : public collision::CollisionBackend {
   std::array<std::uint32_t, 3> max_work_groups_{};
   std::uint32_t mask_slots_ = 0;
   std::uint32_t initial_pair_capacity_ = 0;
+  std::uint32_t initial_candidate_capacity_ = 0;
+  std::uint32_t initial_box_pair_capacity_ = 0;
+  std::uint32_t bvh_check_interval_ = 1;
   ComputeProgram bb_update_;
   ComputeProgram bb_collision_;
   ComputeProgram tri_tri_octree_;
   ComputeProgram tri_tri_brute_;
+  ComputeProgram bb_pair_list_;
+  ComputeProgram octree_candidates_;
+  ComputeProgram bvh_refit_;
+  ComputeProgram bvh_refit_level_;
+  ComputeProgram bvh_body_pairs_;
+  ComputeProgram bvh_traverse_;
+  ComputeProgram dispatch_args_;
+  ComputeProgram tri_tri_candidates_;
   std::optional<CollisionBuffers> buffers_;
-  BroadPhase last_method_ = BroadPhase::kNone;  // what download_face_pairs reruns
+  std::optional<BvhRebuilder> rebuilder_;
+  BroadPhase last_method_ = BroadPhase::kNone;  // what complete_pass reruns
+  bool pass_pending_ = false;                   // detect() ran, complete_pass() did not since
 };
 
 }  // namespace deformcd::gl

@@ -1,0 +1,19 @@
+// The candidate face pairs (SSBO 28) that a broad phase hands to the narrow phase
+// (collision/tri_tri_candidates.comp): global face indices, face_a of the body pair's
+// lower-numbered body (the FacePair convention). A pair's slot comes from atomicAdd on
+// counters.candidates, which counts every append, those past the capacity included: a count
+// above u_candidate_capacity tells the host that the buffer overflowed (GlCollision::
+// complete_pass then grows it and reruns the pass). Nothing is written past the capacity.
+#include "collision/counters.glsl"
+#include "common/layout.glsl"
+
+layout(std430, binding = BINDING_CANDIDATE_PAIR) buffer CandidatePairs {
+  uvec2 candidate_pairs[];
+};
+
+uniform uint u_candidate_capacity;  // uvec2 slots in SSBO 28
+
+void append_candidate(uint face_a, uint face_b) {
+  const uint slot = atomicAdd(counters.candidates, 1u);
+  if (slot < u_candidate_capacity) candidate_pairs[slot] = uvec2(face_a, face_b);
+}
