@@ -7,33 +7,18 @@
 #include <string>
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include "deformcd/io.h"
 #include "support/mesh_fixtures.h"
+
+#include "support/cli_runner.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-CliRun run_cli(const std::string& args) {
-  CliRun r;
-  const std::string command = std::string(DEFORMCD_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    r.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using deformcd::test::CliRun;
+using deformcd::test::run_cli;
 
 class CliTest : public ::testing::Test {
  protected:

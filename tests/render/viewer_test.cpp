@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "deformcd/render/image.h"
 #include "gl/gl_test_context.h"
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "buffer_from.h"
 #include "core/collision/broad_phase.h"
 #include "deformcd/error.h"
 #include "gl_check.h"
@@ -15,15 +16,6 @@
 namespace deformcd::gl {
 
 namespace {
-
-// A buffer of at least one element: binding a zero-size buffer is an error on some drivers,
-// and an empty world still dispatches nothing that would read the placeholder.
-template <class T>
-Ssbo<T> make_buffer(const std::vector<T>& data) {
-  Ssbo<T> buffer(std::max<std::size_t>(data.size(), 1));
-  buffer.upload(std::span<const T>(data));
-  return buffer;
-}
 
 // Fills a buffer with zero bytes on the GPU. Shader writes issued before must have landed: the
 // caller issues GL_BUFFER_UPDATE_BARRIER_BIT first.

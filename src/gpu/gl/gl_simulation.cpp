@@ -6,6 +6,7 @@
 #include <span>
 #include <utility>
 
+#include "buffer_from.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/device_info.h"
 #include "gl_check.h"
@@ -14,15 +15,6 @@
 namespace deformcd::gl {
 
 namespace {
-
-// A buffer of at least one element: binding a zero-size buffer is an error on some drivers,
-// and an empty world still dispatches nothing that would read the placeholder.
-template <class T>
-Ssbo<T> make_buffer(const std::vector<T>& data) {
-  Ssbo<T> buffer(std::max<std::size_t>(data.size(), 1));
-  buffer.upload(std::span<const T>(data));
-  return buffer;
-}
 
 // Each substep launches one invocation per element in a single 1D dispatch.
 void check_fits_one_dispatch(const ComputeProgram& program, std::size_t invocations,
