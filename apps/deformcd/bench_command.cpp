@@ -20,7 +20,7 @@ namespace {
 
 struct BenchArgs {
   std::vector<std::string> scenes;
-  int frames = 90;
+  int frames = 45;
   std::vector<std::string> backends = {"gl", "cpu"};
   std::vector<std::string> methods = {"brute", "octree"};
   int repeat = 1;
