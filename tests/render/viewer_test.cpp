@@ -6,9 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "support/cli_runner.h"
 #include "deformcd/render/image.h"
 #include "gl/gl_test_context.h"
+#include "support/cli_runner.h"
 
 namespace fs = std::filesystem;
 
