@@ -2,53 +2,26 @@
 
 #include <epoxy/gl.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 
-#include <glm/gtc/type_ptr.hpp>
-
 #include "deformcd/error.h"
 #include "gpu/gl/gl_check.h"
-#include "gpu/gl/shader_log.h"
+#include "gpu/gl/program_building.h"
 #include "gpu/gl/shader_preprocessor.h"
 
 namespace deformcd::render {
 
 namespace {
 
-// The info log of a shader (glGetShaderiv, glGetShaderInfoLog) or program (the glGetProgram*).
-template <class GetParameter, class GetLog>
-std::string info_log(GLuint object, GetParameter get_parameter, GetLog get_log) {
-  GLint length = 0;
-  get_parameter(object, GL_INFO_LOG_LENGTH, &length);
-  if (length <= 0) return {};
-  std::string log(static_cast<std::size_t>(length), '\0');
-  GLsizei written = 0;
-  get_log(object, length, &written, log.data());
-  log.resize(static_cast<std::size_t>(written));
-  return log;
-}
-
 // A compiled shader object, deleted on scope exit (the program keeps the code once linked).
 class ShaderObject {
  public:
   ShaderObject(GLenum stage, std::string_view name, const gl::ShaderLibrary& library)
-      : source_(gl::preprocess_shader(name, library)) {
-    shader_ = DEFORMCD_GL_CHECK(glCreateShader(stage));
-    const char* text = source_.text.c_str();
-    DEFORMCD_GL_CHECK(glShaderSource(shader_, 1, &text, nullptr));
-    DEFORMCD_GL_CHECK(glCompileShader(shader_));
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader_, GL_COMPILE_STATUS, &ok);
-    if (ok != GL_TRUE) {
-      const std::string log =
-          gl::map_driver_log(info_log(shader_, glGetShaderiv, glGetShaderInfoLog), source_);
-      glDeleteShader(shader_);
-      throw GlError(std::string("compiling ") +
-                    (stage == GL_VERTEX_SHADER ? "vertex" : "fragment") + " shader '" +
-                    std::string(name) + "' failed:\n" + log);
-    }
-  }
+      : source_(gl::preprocess_shader(name, library)),
+        shader_(gl::compile_shader_stage(stage, stage == GL_VERTEX_SHADER ? "vertex" : "fragment",
+                                         name, source_)) {}
   ~ShaderObject() { glDeleteShader(shader_); }
   ShaderObject(const ShaderObject&) = delete;
   ShaderObject& operator=(const ShaderObject&) = delete;
@@ -80,16 +53,14 @@ GraphicsProgram::GraphicsProgram(std::string_view vertex, std::string_view fragm
     glDeleteProgram(std::exchange(program_, 0));
     throw;
   }
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    // Link errors (mismatched interfaces) are mostly about the fragment stage's inputs; the
-    // log's line numbers, if any, are mapped through its source.
-    const std::string log = gl::map_driver_log(
-        info_log(program_, glGetProgramiv, glGetProgramInfoLog), fragment_shader.source());
+  // Link errors (mismatched interfaces) are mostly about the fragment stage's inputs; the
+  // log's line numbers, if any, are mapped through its source.
+  if (const std::optional<std::string> log =
+          gl::link_failure_log(program_, fragment_shader.source())) {
     glDeleteProgram(std::exchange(program_, 0));
-    throw GlError("linking shaders '" + names_ + "' failed:\n" + log);
+    throw GlError("linking shaders '" + names_ + "' failed:\n" + *log);
   }
+  uniforms_ = gl::ProgramUniforms(program_, "shaders '" + names_ + "' have");
 }
 
 GraphicsProgram::~GraphicsProgram() {
@@ -100,43 +71,28 @@ void GraphicsProgram::use() const {
   DEFORMCD_GL_CHECK(glUseProgram(program_));
 }
 
-int GraphicsProgram::uniform_location(std::string_view name) {
-  if (auto it = uniform_locations_.find(name); it != uniform_locations_.end()) return it->second;
-  const std::string key(name);
-  const GLint location = DEFORMCD_GL_CHECK(glGetUniformLocation(program_, key.c_str()));
-  if (location < 0) {
-    throw GlError("shaders '" + names_ + "' have no active uniform '" + key +
-                  "' (misspelt, or unused and removed by the compiler)");
-  }
-  uniform_locations_.emplace(key, location);
-  return location;
-}
-
 void GraphicsProgram::set_uniform(std::string_view name, std::int32_t value) {
-  DEFORMCD_GL_CHECK(glProgramUniform1i(program_, uniform_location(name), value));
+  uniforms_.set(name, value);
 }
 
 void GraphicsProgram::set_uniform(std::string_view name, std::uint32_t value) {
-  DEFORMCD_GL_CHECK(glProgramUniform1ui(program_, uniform_location(name), value));
+  uniforms_.set(name, value);
 }
 
 void GraphicsProgram::set_uniform(std::string_view name, float value) {
-  DEFORMCD_GL_CHECK(glProgramUniform1f(program_, uniform_location(name), value));
+  uniforms_.set(name, value);
 }
 
 void GraphicsProgram::set_uniform(std::string_view name, const glm::vec3& value) {
-  DEFORMCD_GL_CHECK(
-      glProgramUniform3fv(program_, uniform_location(name), 1, glm::value_ptr(value)));
+  uniforms_.set(name, value);
 }
 
 void GraphicsProgram::set_uniform(std::string_view name, const glm::vec4& value) {
-  DEFORMCD_GL_CHECK(
-      glProgramUniform4fv(program_, uniform_location(name), 1, glm::value_ptr(value)));
+  uniforms_.set(name, value);
 }
 
 void GraphicsProgram::set_uniform(std::string_view name, const glm::mat4& value) {
-  DEFORMCD_GL_CHECK(glProgramUniformMatrix4fv(program_, uniform_location(name), 1, GL_FALSE,
-                                              glm::value_ptr(value)));
+  uniforms_.set(name, value);
 }
 
 }  // namespace deformcd::render

@@ -3,8 +3,6 @@
 // the drawing counterpart of gl::ComputeProgram, with the same error reporting.
 
 #include <cstdint>
-#include <functional>
-#include <map>
 #include <string>
 #include <string_view>
 
@@ -12,6 +10,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "gpu/gl/program_building.h"
 #include "gpu/gl/shader_library.h"
 
 namespace deformcd::render {
@@ -43,11 +42,9 @@ class GraphicsProgram {
   [[nodiscard]] const std::string& shader_names() const noexcept { return names_; }
 
  private:
-  int uniform_location(std::string_view name);
-
   std::uint32_t program_ = 0;
   std::string names_;
-  std::map<std::string, int, std::less<>> uniform_locations_;
+  gl::ProgramUniforms uniforms_{0, {}};
 };
 
 }  // namespace deformcd::render

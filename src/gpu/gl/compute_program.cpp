@@ -2,70 +2,32 @@
 
 #include <epoxy/gl.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 
-#include <glm/gtc/type_ptr.hpp>
-
 #include "deformcd/error.h"
 #include "gl_check.h"
-#include "shader_log.h"
+#include "program_building.h"
 #include "shader_preprocessor.h"
 
 namespace deformcd::gl {
 
-namespace {
-
-// The info log of a shader (glGetShaderiv, glGetShaderInfoLog) or program (the glGetProgram*).
-template <class GetParameter, class GetLog>
-std::string info_log(GLuint object, GetParameter get_parameter, GetLog get_log) {
-  GLint length = 0;
-  get_parameter(object, GL_INFO_LOG_LENGTH, &length);
-  if (length <= 0) return {};
-  std::string log(static_cast<std::size_t>(length), '\0');
-  GLsizei written = 0;
-  get_log(object, length, &written, log.data());
-  log.resize(static_cast<std::size_t>(written));
-  return log;
-}
-
-// Compiles `source`, returning the shader object. Throws GlError with the mapped log.
-GLuint compile(const std::string& name, const PreprocessedShader& source) {
-  const GLuint shader = DEFORMCD_GL_CHECK(glCreateShader(GL_COMPUTE_SHADER));
-  const char* text = source.text.c_str();
-  DEFORMCD_GL_CHECK(glShaderSource(shader, 1, &text, nullptr));
-  DEFORMCD_GL_CHECK(glCompileShader(shader));
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    const std::string log =
-        map_driver_log(info_log(shader, glGetShaderiv, glGetShaderInfoLog), source);
-    glDeleteShader(shader);
-    throw GlError("compiling compute shader '" + name + "' failed:\n" + log);
-  }
-  return shader;
-}
-
-}  // namespace
-
 ComputeProgram::ComputeProgram(std::string_view name, const ShaderLibrary& library)
     : shader_name_(name) {
   const PreprocessedShader source = preprocess_shader(name, library);
-  const GLuint shader = compile(shader_name_, source);
+  const GLuint shader = compile_shader_stage(GL_COMPUTE_SHADER, "compute", shader_name_, source);
   program_ = DEFORMCD_GL_CHECK(glCreateProgram());
   DEFORMCD_GL_CHECK(glAttachShader(program_, shader));
   DEFORMCD_GL_CHECK(glLinkProgram(program_));
   // The program keeps the compiled code; the shader object is no longer needed.
   DEFORMCD_GL_CHECK(glDetachShader(program_, shader));
   glDeleteShader(shader);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    const std::string log =
-        map_driver_log(info_log(program_, glGetProgramiv, glGetProgramInfoLog), source);
+  if (const std::optional<std::string> log = link_failure_log(program_, source)) {
     glDeleteProgram(std::exchange(program_, 0));
-    throw GlError("linking compute shader '" + shader_name_ + "' failed:\n" + log);
+    throw GlError("linking compute shader '" + shader_name_ + "' failed:\n" + *log);
   }
+  uniforms_ = ProgramUniforms(program_, "compute shader '" + shader_name_ + "' has");
   GLint size[3] = {0, 0, 0};
   DEFORMCD_GL_CHECK(glGetProgramiv(program_, GL_COMPUTE_WORK_GROUP_SIZE, size));
   for (GLuint axis = 0; axis < 3; ++axis) {
@@ -85,7 +47,7 @@ ComputeProgram::ComputeProgram(ComputeProgram&& other) noexcept
       shader_name_(std::move(other.shader_name_)),
       work_group_size_(other.work_group_size_),
       max_work_group_count_(other.max_work_group_count_),
-      uniform_locations_(std::move(other.uniform_locations_)) {}
+      uniforms_(std::move(other.uniforms_)) {}
 
 ComputeProgram& ComputeProgram::operator=(ComputeProgram&& other) noexcept {
   if (this != &other) {
@@ -94,7 +56,7 @@ ComputeProgram& ComputeProgram::operator=(ComputeProgram&& other) noexcept {
     shader_name_ = std::move(other.shader_name_);
     work_group_size_ = other.work_group_size_;
     max_work_group_count_ = other.max_work_group_count_;
-    uniform_locations_ = std::move(other.uniform_locations_);
+    uniforms_ = std::move(other.uniforms_);
   }
   return *this;
 }
@@ -124,38 +86,24 @@ void ComputeProgram::dispatch_covering(std::uint32_t invocations) const {
   if (groups > 0) dispatch(groups);
 }
 
-int ComputeProgram::uniform_location(std::string_view name) {
-  if (auto it = uniform_locations_.find(name); it != uniform_locations_.end()) return it->second;
-  const std::string key(name);
-  const GLint location = DEFORMCD_GL_CHECK(glGetUniformLocation(program_, key.c_str()));
-  if (location < 0) {
-    throw GlError("compute shader '" + shader_name_ + "' has no active uniform '" + key +
-                  "' (misspelt, or unused and removed by the compiler)");
-  }
-  uniform_locations_.emplace(key, location);
-  return location;
-}
-
 void ComputeProgram::set_uniform(std::string_view name, std::uint32_t value) {
-  DEFORMCD_GL_CHECK(glProgramUniform1ui(program_, uniform_location(name), value));
+  uniforms_.set(name, value);
 }
 
 void ComputeProgram::set_uniform(std::string_view name, std::int32_t value) {
-  DEFORMCD_GL_CHECK(glProgramUniform1i(program_, uniform_location(name), value));
+  uniforms_.set(name, value);
 }
 
 void ComputeProgram::set_uniform(std::string_view name, float value) {
-  DEFORMCD_GL_CHECK(glProgramUniform1f(program_, uniform_location(name), value));
+  uniforms_.set(name, value);
 }
 
 void ComputeProgram::set_uniform(std::string_view name, const glm::vec3& value) {
-  DEFORMCD_GL_CHECK(
-      glProgramUniform3fv(program_, uniform_location(name), 1, glm::value_ptr(value)));
+  uniforms_.set(name, value);
 }
 
 void ComputeProgram::set_uniform(std::string_view name, const glm::vec4& value) {
-  DEFORMCD_GL_CHECK(
-      glProgramUniform4fv(program_, uniform_location(name), 1, glm::value_ptr(value)));
+  uniforms_.set(name, value);
 }
 
 void storage_barrier() {

@@ -3,14 +3,13 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
-#include <map>
 #include <string>
 #include <string_view>
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "program_building.h"
 #include "shader_library.h"
 
 namespace deformcd::gl {
@@ -50,13 +49,11 @@ class ComputeProgram {
   [[nodiscard]] const std::string& shader_name() const noexcept { return shader_name_; }
 
  private:
-  int uniform_location(std::string_view name);
-
   std::uint32_t program_ = 0;
   std::string shader_name_;
   std::array<std::uint32_t, 3> work_group_size_{};
   std::array<std::uint32_t, 3> max_work_group_count_{};
-  std::map<std::string, int, std::less<>> uniform_locations_;
+  ProgramUniforms uniforms_{0, {}};
 };
 
 // Makes shader-storage writes of earlier dispatches visible to later ones: call between
