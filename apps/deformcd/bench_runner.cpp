@@ -15,20 +15,13 @@ std::string_view backend_label(BackendKind kind) {
   return kind == BackendKind::kGl ? "gl" : kind == BackendKind::kCpu ? "cpu" : "auto";
 }
 
-World make_world(const std::vector<BodyInit>& bodies, const StepSettings& settings,
-                 BackendKind backend, BroadPhase method, int threads) {
-  WorldOptions options;
-  options.backend = backend;
-  options.broadphase = method;
-  options.cpu_threads = threads;
-  options.measure_stage_times = true;
-  return World(bodies, settings, options);
-}
-
+// `world` gives the backend, threads and self-collision; the method and timing are set here.
 MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& settings,
-                  BackendKind backend, BroadPhase method, int frames, int threads,
+                  WorldOptions world_options, BroadPhase method, int frames,
                   const std::function<void()>& frame_done, std::string& device) {
-  World world = make_world(bodies, settings, backend, method, threads);
+  world_options.broadphase = method;
+  world_options.measure_stage_times = true;
+  World world(bodies, settings, world_options);
   device = world.device();
   MethodRun run;
   run.method = method;
@@ -114,15 +107,19 @@ std::vector<SceneBench> run_bench(const BenchOptions& o, const BenchProgress& pr
       bench.scene = o.scenes[s].string();
       bench.backend = std::string(backend_label(backend));
       bench.frames = frames;
+      WorldOptions world_options;
+      world_options.backend = backend;
+      world_options.cpu_threads = o.cpu_threads;
+      world_options.self_collision = scene.collision.self;
       for (BroadPhase method : o.methods) {
         // Warm-up: shader compilation on first dispatch, caches, thread pools.
         (void)measure(
-            bodies, settings, backend, method, std::min(o.warmup_frames, frames), o.cpu_threads,
-            [] {}, bench.device);
+            bodies, settings, world_options, method, std::min(o.warmup_frames, frames), [] {},
+            bench.device);
         std::vector<MethodRun> repeats;
         for (int r = 0; r < o.repeat; ++r) {
-          repeats.push_back(measure(bodies, settings, backend, method, frames, o.cpu_threads,
-                                    frame_done, bench.device));
+          repeats.push_back(
+              measure(bodies, settings, world_options, method, frames, frame_done, bench.device));
         }
         std::sort(repeats.begin(), repeats.end(),
                   [](const MethodRun& x, const MethodRun& y) { return x.total_s() < y.total_s(); });

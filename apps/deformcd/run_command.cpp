@@ -74,10 +74,7 @@ int run(const RunOptions& o) {
   if (!o.contacts_out.empty() && options.broadphase == BroadPhase::kNone) {
     throw Error("--contacts needs a broad phase (brute or octree), not 'none'");
   }
-  if (scene.collision.self) {
-    std::cerr << "deformcd: note: self-collision (collision.self) is not detected yet; only "
-                 "pairs of different bodies are\n";
-  }
+  options.self_collision = scene.collision.self;
   World world(make_scene_bodies(scene, load_model_argument, frames), step_settings(scene.settings),
               options);
   if (!world.notice().empty()) std::cerr << "deformcd: " << world.notice() << '\n';

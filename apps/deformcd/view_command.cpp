@@ -87,6 +87,7 @@ int view(const ViewOptions& o) {
   options.backend = BackendKind::kGl;
   options.gl_context = context.get();
   options.broadphase = state.broadphase;
+  options.self_collision = scene.scene.collision.self;
   options.measure_stage_times = true;
   World world(scene.bodies, step_settings(scene.scene.settings), options);
   if (!world.notice().empty()) std::cerr << "deformcd: " << world.notice() << '\n';

@@ -55,6 +55,9 @@ struct WorldOptions {
   int stability_check_interval = 10;
   /// Collision detection run after each frame's simulation; kNone skips it.
   BroadPhase broadphase = BroadPhase::kOctree;
+  /// Each body also collides with itself (faces sharing an edge are never a contact; faces
+  /// sharing a node are when they meet elsewhere too). Fixed for the world's life.
+  bool self_collision = false;
   /// Time each stage of step() (see last_frame_times()): the world waits for the backend
   /// (glFinish on GL) after the simulation and after the collision pass, before reading the
   /// clock. Off by default, since waiting keeps the CPU from queueing the next frame's work.
@@ -84,8 +87,9 @@ class World {
   World& operator=(const World&) = delete;
 
   /// Advances one frame (settings.substeps substeps of dt / substeps), then detects the
-  /// collisions between different bodies with the broad phase set (see broadphase()). Throws
-  /// SimulationError naming the body and the frame when the state becomes unstable.
+  /// collisions between different bodies (and within each body, with self_collision) with the
+  /// broad phase set (see broadphase()). Throws SimulationError naming the body and the frame
+  /// when the state becomes unstable.
   void step();
   /// Frames stepped so far.
   [[nodiscard]] int frame() const { return frame_; }

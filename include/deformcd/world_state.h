@@ -55,15 +55,24 @@ struct WorldState {
   std::vector<std::int32_t> node_spring_list;     ///< SSBO 16, 2 x springs entries
   /// SSBO 9: the BoundingBox Face List, body by body, and within a body box by box (Fig. 7).
   std::vector<gpu::BoxFace> box_faces;
-  std::vector<glm::uvec2> face_boxes;     ///< SSBO 21: per face, bit k set if leaf box k lists it
-  std::vector<glm::uvec2> box_rows;       ///< SSBO 24: per leaf box, first row in box_faces, count
-  std::vector<gpu::BodyPair> body_pairs;  ///< SSBO 22: every pair of different bodies, a < b
-  std::vector<gpu::BvhNode> bvh_nodes;    ///< SSBO 25: every body's BVH, body by body
-  std::vector<gpu::BodyBvh> body_bvhs;    ///< SSBO 27: per body
+  std::vector<glm::uvec2> face_boxes;  ///< SSBO 21: per face, bit k set if leaf box k lists it
+  std::vector<glm::uvec2> box_rows;    ///< SSBO 24: per leaf box, first row in box_faces, count
+  /// SSBO 22: every pair of different bodies (a < b), in (a, b) order; with self-collision
+  /// also (b, b) for each body, before (b, b + 1).
+  std::vector<gpu::BodyPair> body_pairs;
+  std::vector<gpu::BvhNode> bvh_nodes;  ///< SSBO 25: every body's BVH, body by body
+  std::vector<gpu::BodyBvh> body_bvhs;  ///< SSBO 27: per body
   std::vector<std::string> body_names;
 
   [[nodiscard]] std::size_t node_count() const { return positions.size(); }
   [[nodiscard]] std::size_t body_count() const { return objects.size(); }
+};
+
+/// Choices made when assembling a world.
+struct AssemblyOptions {
+  /// Each body also collides with itself: body_pairs lists (b, b), and every broad phase tests
+  /// the body's faces against each other (faces sharing an edge excepted).
+  bool self_collision = false;
 };
 
 /// Concatenates bodies into one world state: offsets indices, sets inverse masses (0 for fixed
@@ -71,6 +80,7 @@ struct WorldState {
 /// the force sum has one fixed order on every backend), and the collision lists (leaf boxes of
 /// each body's rest pose, see core/collision/leaf_boxes.h; all body pairs). Throws InputError for a
 /// fixed node index out of range or a body without surface faces.
-[[nodiscard]] WorldState assemble_world(const std::vector<BodyInit>& bodies);
+[[nodiscard]] WorldState assemble_world(const std::vector<BodyInit>& bodies,
+                                        const AssemblyOptions& options = {});
 
 }  // namespace deformcd

@@ -13,7 +13,10 @@ layout(std430, binding = BINDING_CANDIDATE_PAIR) buffer CandidatePairs {
 
 uniform uint u_candidate_capacity;  // uvec2 slots in SSBO 28
 
+// Only face_a < face_b is appended: within one body (self-collision) the broad phases meet
+// each pair in both orders, and the narrow phase keeps the first (cpu_narrow_phase.h).
 void append_candidate(uint face_a, uint face_b) {
+  if (face_a >= face_b) return;
   const uint slot = atomicAdd(counters.candidates, 1u);
   if (slot < u_candidate_capacity) candidate_pairs[slot] = uvec2(face_a, face_b);
 }

@@ -8,8 +8,8 @@
 // land in no particular order; a count above u_pair_capacity tells the host that the buffer
 // overflowed (it then grows the buffer and reruns the pass).
 #include "collision/counters.glsl"
+#include "collision/face_pair_intersection.glsl"
 #include "collision/surface.glsl"
-#include "collision/tri_tri_intersection.glsl"
 #include "common/layout.glsl"
 
 layout(std430, binding = BINDING_COLLISION_RESULT) buffer FaceFlags {
@@ -25,14 +25,12 @@ void flag_colliding_face(uint face) {
   if (atomicExchange(face_flags[face], 1u) == 0u) atomicAdd(counters.colliding_faces, 1u);
 }
 
-// Tests global faces face_a (of the body pair's body a) and face_b (of its body b), p and q in
-// the vertex order a, b, c as the C++ backend passes them.
+// Tests global faces face_a (of the body pair's body a) and face_b (of its body b) as the C++
+// backend does (cpu_narrow_phase.h): only face_a < face_b, which within one body
+// (self-collision) keeps one of the two orders the broad phases enumerate.
 void test_face_pair(uint face_a, uint face_b) {
-  const Face fa = faces[face_a];
-  const Face fb = faces[face_b];
-  vec3 p[3] = vec3[3](positions[fa.a].xyz, positions[fa.b].xyz, positions[fa.c].xyz);
-  vec3 q[3] = vec3[3](positions[fb.a].xyz, positions[fb.b].xyz, positions[fb.c].xyz);
-  const TriTriResult r = tri_tri_intersect(p, q);
+  if (face_a >= face_b) return;
+  const TriTriResult r = face_pair_intersect(faces[face_a], faces[face_b]);
   if (!r.intersect) return;
   flag_colliding_face(face_a);
   flag_colliding_face(face_b);

@@ -2,7 +2,8 @@
 // The paper's baseline ("original method"): every surface face of body a against every one of
 // body b, without boxes. Invocation (x, y, z) tests face x of body pair u_pair_first + z's body
 // a against face y of its body b. The host dispatches the chunk's largest N x M; invocations
-// past a pair's own faces return. counters.candidates counts the pairs tested.
+// past a pair's own faces return. counters.candidates counts the pairs tested. A body paired
+// with itself (self-collision) tests its pairs x < y (test_face_pair skips the others).
 #include "collision/narrow_phase.glsl"
 #include "common/layout.glsl"
 
@@ -29,7 +30,15 @@ void main() {
     const uvec2 origin = gl_WorkGroupID.xy * gl_WorkGroupSize.xy;
     const uint nx = a.face_count > origin.x ? min(a.face_count - origin.x, gl_WorkGroupSize.x) : 0u;
     const uint ny = b.face_count > origin.y ? min(b.face_count - origin.y, gl_WorkGroupSize.y) : 0u;
-    if (nx * ny > 0u) atomicAdd(counters.candidates, nx * ny);
+    uint tested = nx * ny;
+    if (pair.a == pair.b) {  // a body against itself: the pairs x < y only, as tested below
+      tested = 0u;
+      for (uint i = 0u; i < nx; ++i) {
+        const uint first_y = max(origin.y, origin.x + i + 1u);
+        tested += origin.y + ny > first_y ? origin.y + ny - first_y : 0u;
+      }
+    }
+    if (tested > 0u) atomicAdd(counters.candidates, tested);
   }
   if (x >= a.face_count || y >= b.face_count) return;
   test_face_pair(a.face_offset + x, b.face_offset + y);

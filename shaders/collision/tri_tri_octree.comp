@@ -46,6 +46,7 @@ void main() {
   if (x >= a.box_face_count || y >= b.box_face_count) return;
   const BoxFace row_a = box_faces[a.box_face_offset + x];
   const BoxFace row_b = box_faces[b.box_face_offset + y];
+  if (row_a.face >= row_b.face) return;  // one order of a body's own pairs (self-collision)
   if (!mask_says_overlap(slot, row_a.box, row_b.box)) return;
   if (!is_first_box_pair(face_boxes[row_a.face], face_boxes[row_b.face], row_a.box, row_b.box,
                          slot)) {

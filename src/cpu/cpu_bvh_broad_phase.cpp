@@ -32,6 +32,10 @@ void BvhBroadPhase::upload(const WorldState& state) {
   touching_.clear();
   touching_.reserve(state.body_pairs.size());
   queried_.assign(state.objects.size(), 0u);
+  self_pairs_.clear();
+  for (const gpu::BodyPair& pair : state.body_pairs) {
+    if (pair.a == pair.b) self_pairs_.push_back(pair);
+  }
 }
 
 void BvhBroadPhase::run(const std::vector<glm::vec4>& positions,
@@ -42,13 +46,15 @@ void BvhBroadPhase::run(const std::vector<glm::vec4>& positions,
   std::fill(queried_.begin(), queried_.end(), 0u);
   // Body level: sort and sweep over the root boxes, so that many bodies cost what their
   // nearby pairs cost. Every pair of different bodies is a candidate here (body_pairs lists
-  // them all); the sweep returns those whose roots touch, in (a, b) order.
+  // them all); the sweep returns those whose roots touch, in (a, b) order. A body colliding
+  // with itself (a pair (b, b) in body_pairs) is traversed against its own tree.
   (void)body_pairs;
   root_boxes_.resize(objects_.size());
   for (std::uint32_t body = 0; body < objects_.size(); ++body) {
     root_boxes_[body] = trees_.boxes()[trees_.tree(body).root];
   }
   touching_ = collision::overlapping_body_pairs(root_boxes_);
+  touching_.insert(touching_.end(), self_pairs_.begin(), self_pairs_.end());
   for (const gpu::BodyPair& pair : touching_)
     queried_[traversed_body(pair, objects_)] = 1u;
   // A tree nobody traverses may stay loose: its root box, all that is read of it, is exact.

@@ -2,7 +2,8 @@
 // The `bvh` broad phase on the CPU (beyond the paper): per body a BVH over its surface faces,
 // refitted every pass (cpu_bvh_trees.h); body pairs whose root boxes overlap are traversed, the
 // faces of the body with fewer faces each querying the tree of the other, and every face pair
-// whose boxes overlap goes straight to the exact triangle test.
+// whose boxes overlap goes straight to the exact triangle test. A body colliding with itself
+// queries its own tree with each of its faces (the narrow phase keeps one order of each pair).
 //
 // Exactness: tri_tri_intersect rejects a pair whose float bounding boxes are apart, and every
 // BVH box is the exact min/max of the same floats, so culling by closed-box overlap loses no
@@ -35,9 +36,10 @@ class BvhBroadPhase {
 
   BvhTrees trees_;
   std::vector<gpu::ObjectInfo> objects_;
-  std::vector<gpu::BodyPair> touching_;  // body pairs whose root boxes overlap, this pass
-  std::vector<gpu::Box> root_boxes_;     // per body, this pass
-  std::vector<std::uint8_t> queried_;    // per body: its tree is traversed this pass
+  std::vector<gpu::BodyPair> touching_;    // body pairs whose root boxes overlap, this pass
+  std::vector<gpu::BodyPair> self_pairs_;  // (b, b) for each body colliding with itself
+  std::vector<gpu::Box> root_boxes_;       // per body, this pass
+  std::vector<std::uint8_t> queried_;      // per body: its tree is traversed this pass
 };
 
 }  // namespace deformcd::cpu

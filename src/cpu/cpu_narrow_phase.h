@@ -10,7 +10,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
-#include "core/collision/tri_tri_intersection.h"
+#include "core/collision/face_pair_intersection.h"
 #include "deformcd/gpu_layout.h"
 
 namespace deformcd::cpu {
@@ -44,8 +44,11 @@ class PairCollector {
   tbb::enumerable_thread_specific<ThreadPairs> lists_;
 };
 
-// The exact triangle-triangle test over the positions of the current pass. face_a must be the
-// face of the lower-numbered body, as in FacePair.
+// The exact test of one face pair over the positions of the current pass
+// (collision::face_pair_intersect: faces sharing an edge are neighbours, not a contact; faces
+// sharing a node must meet elsewhere too). Face pairs are ordered, face_a < face_b: in a pair
+// of bodies face_a is the lower-numbered body's, and within one body (self-collision, which
+// broad phases enumerate both ways) the other order is skipped here, before it is counted.
 struct NarrowPhase {
   const glm::vec4* positions;
   const gpu::Face* faces;
@@ -53,14 +56,10 @@ struct NarrowPhase {
 
   // Tests the pair and appends it to `out` when the faces intersect; counts the test.
   void test(std::uint32_t face_a, std::uint32_t face_b, ThreadPairs& out) const {
+    if (face_a >= face_b) return;
     ++out.candidates;
-    const gpu::Face& fa = faces[face_a];
-    const gpu::Face& fb = faces[face_b];
-    const glm::vec3 ta[3] = {glm::vec3(positions[fa.a]), glm::vec3(positions[fa.b]),
-                             glm::vec3(positions[fa.c])};
-    const glm::vec3 tb[3] = {glm::vec3(positions[fb.a]), glm::vec3(positions[fb.b]),
-                             glm::vec3(positions[fb.c])};
-    const collision::TriTriResult hit = collision::tri_tri_intersect(ta, tb);
+    const collision::TriTriResult hit =
+        collision::face_pair_intersect(faces[face_a], faces[face_b], positions);
     if (!hit.intersect) return;
     // Several threads may flag one face; the value written is the same.
     std::atomic_ref<std::uint32_t>(flags[face_a]).store(1u, std::memory_order_relaxed);

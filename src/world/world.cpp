@@ -22,7 +22,7 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   if (!(settings.dt > 0.0f) || settings.substeps < 1) {
     throw Error("dt must be positive and substeps at least 1");
   }
-  const WorldState state = assemble_world(bodies);
+  const WorldState state = assemble_world(bodies, {.self_collision = options.self_collision});
   objects_ = state.objects;
   names_ = state.body_names;
   faces_ = state.faces;

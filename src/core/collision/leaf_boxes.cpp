@@ -64,7 +64,7 @@ LeafBoxLists build_leaf_box_lists(const std::vector<glm::vec4>& positions, const
   return lists;
 }
 
-void assemble_collision_lists(WorldState& state) {
+void assemble_collision_lists(WorldState& state, bool self_collision) {
   state.box_faces.clear();
   state.face_boxes.clear();
   state.body_pairs.clear();
@@ -92,7 +92,7 @@ void assemble_collision_lists(WorldState& state) {
   }
   const auto bodies = static_cast<std::uint32_t>(state.objects.size());
   for (std::uint32_t a = 0; a < bodies; ++a) {
-    for (std::uint32_t b = a + 1; b < bodies; ++b)
+    for (std::uint32_t b = self_collision ? a : a + 1; b < bodies; ++b)
       state.body_pairs.push_back({a, b});
   }
 }

@@ -43,9 +43,9 @@ struct LeafBoxLists {
                                                 const gpu::Face* faces, std::uint32_t face_count,
                                                 std::uint32_t face_offset);
 
-/// Fills state.box_faces, state.face_boxes, state.box_rows, state.body_pairs and each object's box
-/// fields (box_offset = 64 x body, box_count = 64, box_face_offset/count), from the current
-/// positions.
-void assemble_collision_lists(WorldState& state);
+/// Fills state.box_faces, state.face_boxes, state.box_rows, state.body_pairs (with (b, b) pairs
+/// when self_collision) and each object's box fields (box_offset = 64 x body, box_count = 64,
+/// box_face_offset/count), from the current positions.
+void assemble_collision_lists(WorldState& state, bool self_collision);
 
 }  // namespace deformcd::collision

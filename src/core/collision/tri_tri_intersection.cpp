@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "collision/tri_tri_primitives.h"
+
 // Tolerances and the uncertain zone. Nothing is compared with an absolute epsilon: every
 // tolerance is a dimensionless constant times the pair's own lengths, so scaling the pair scales
 // the decision with it (the reference code's 1e-6 on plane distances fails at mm and km scales).
@@ -25,30 +27,7 @@
 namespace deformcd::collision {
 namespace {
 
-float longest_edge2(const glm::vec3 t[3]) {
-  const glm::vec3 e0 = t[1] - t[0];
-  const glm::vec3 e1 = t[2] - t[1];
-  const glm::vec3 e2 = t[0] - t[2];
-  return std::max(glm::dot(e0, e0), std::max(glm::dot(e1, e1), glm::dot(e2, e2)));
-}
-
-float snap_to_zero(float v, float tolerance) {
-  return std::abs(v) <= tolerance ? 0.0f : v;
-}
-
-// True when all three values are strictly on one side (a triangle wholly off the plane).
-bool same_strict_side(const float d[3]) {
-  return (d[0] > 0.0f && d[1] > 0.0f && d[2] > 0.0f) || (d[0] < 0.0f && d[1] < 0.0f && d[2] < 0.0f);
-}
-
-bool same_strict_sign(float a, float b) {
-  return (a < 0.0f && b < 0.0f) || (a > 0.0f && b > 0.0f);
-}
-
-// Sign comparison rather than a product, which underflows at small scales.
-bool opposite_signs(float a, float b) {
-  return (a < 0.0f && b > 0.0f) || (a > 0.0f && b < 0.0f);
-}
+using namespace detail;
 
 // The part of triangle t on the other triangle's plane, as an interval of the parameter
 // dot(dir, x - origin) along the planes' intersection line, with the points at its ends. The
@@ -87,48 +66,12 @@ LineInterval line_interval(const glm::vec3 t[3], const float d[3], const glm::ve
   return r;
 }
 
-float orient2d(const glm::vec2& a, const glm::vec2& b, const glm::vec2& c) {
-  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
-
-// Closed segments ab and cd meet (within tolerance) in the projection plane.
-bool segments_meet_2d(const glm::vec2& a, const glm::vec2& b, const glm::vec2& c,
-                      const glm::vec2& d, float area_tol, float length_tol) {
-  const float o1 = snap_to_zero(orient2d(a, b, c), area_tol);
-  const float o2 = snap_to_zero(orient2d(a, b, d), area_tol);
-  const float o3 = snap_to_zero(orient2d(c, d, a), area_tol);
-  const float o4 = snap_to_zero(orient2d(c, d, b), area_tol);
-  if (o1 == 0.0f && o2 == 0.0f) {  // collinear: overlap of the 1D intervals on ab's main axis
-    const int k = std::abs(b.x - a.x) >= std::abs(b.y - a.y) ? 0 : 1;
-    return std::max(std::min(a[k], b[k]), std::min(c[k], d[k])) <=
-           std::min(std::max(a[k], b[k]), std::max(c[k], d[k])) + length_tol;
-  }
-  return !same_strict_sign(o1, o2) && !same_strict_sign(o3, o4);
-}
-
-// Point x inside or on the boundary of triangle t (either winding).
-bool point_in_triangle_2d(const glm::vec2& x, const glm::vec2 t[3], float area_tol) {
-  const float s0 = snap_to_zero(orient2d(t[0], t[1], x), area_tol);
-  const float s1 = snap_to_zero(orient2d(t[1], t[2], x), area_tol);
-  const float s2 = snap_to_zero(orient2d(t[2], t[0], x), area_tol);
-  const bool has_negative = s0 < 0.0f || s1 < 0.0f || s2 < 0.0f;
-  const bool has_positive = s0 > 0.0f || s1 > 0.0f || s2 > 0.0f;
-  return !(has_negative && has_positive);
-}
-
-// Coplanar triangles: project onto the coordinate plane where the normal n is largest (the
-// projection with the least shrinkage), then edge-edge crossings, then containment.
+// Coplanar triangles: project onto the coordinate plane where the normal n is largest, then
+// edge-edge crossings, then containment.
 bool coplanar_overlap(const glm::vec3 a[3], const glm::vec3 b[3], const glm::vec3& n, float size) {
-  const glm::vec3 m = glm::abs(n);
-  int u = 1;  // drop x
-  int v = 2;
-  if (m.y >= m.x && m.y >= m.z) {  // drop y
-    u = 0;
-    v = 2;
-  } else if (m.z >= m.x && m.z >= m.y) {  // drop z
-    u = 0;
-    v = 1;
-  }
+  int u = 0;
+  int v = 0;
+  projection_axes(n, u, v);
   glm::vec2 a2[3];
   glm::vec2 b2[3];
   for (int i = 0; i < 3; ++i) {  // relative to a[0]: keeps the projected values small

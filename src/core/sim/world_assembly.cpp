@@ -111,7 +111,7 @@ void build_node_tets(WorldState& w) {
 
 }  // namespace
 
-WorldState assemble_world(const std::vector<BodyInit>& bodies) {
+WorldState assemble_world(const std::vector<BodyInit>& bodies, const AssemblyOptions& options) {
   WorldState w;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     append_body(w, bodies[i], static_cast<std::uint32_t>(i));
@@ -121,7 +121,7 @@ WorldState assemble_world(const std::vector<BodyInit>& bodies) {
   w.tet_forces.assign(4 * w.tets.size(), glm::vec4(0.0f));
   build_node_springs(w);
   build_node_tets(w);
-  collision::assemble_collision_lists(w);
+  collision::assemble_collision_lists(w, options.self_collision);
   collision::assemble_bvhs(w);
   return w;
 }

@@ -83,9 +83,9 @@ void check_box_rows(const WorldState& w, std::uint32_t b) {
 void check_body_pairs(const WorldState& w) {
   for (std::size_t p = 0; p < w.body_pairs.size(); ++p) {
     const gpu::BodyPair pair = w.body_pairs[p];
-    if (!(pair.a < pair.b && pair.b < w.body_count())) {
+    if (!(pair.a <= pair.b && pair.b < w.body_count())) {
       inconsistent("body pair " + to_string(p) + " is (" + to_string(pair.a) + ", " +
-                   to_string(pair.b) + "), not a < b < " + to_string(w.body_count()));
+                   to_string(pair.b) + "), not a <= b < " + to_string(w.body_count()));
     }
   }
 }

@@ -1,0 +1,112 @@
+// The narrow phase of one pair of surface faces by their nodes, mirroring
+// src/core/collision/face_pair_intersection.{h,cpp} line for line (the why is there): faces
+// sharing an edge are never a contact; faces sharing one node are when the edge opposite it of
+// one meets the other; faces sharing no node take tri_tri_intersect. Change both together.
+#include "collision/surface.glsl"
+#include "collision/tri_tri_intersection.glsl"
+#include "common/layout.glsl"
+
+// SharedNodes: how many nodes faces a and b share, and the corner of the first in each.
+struct SharedNodes {
+  int count;
+  int corner_a;
+  int corner_b;
+};
+
+uint face_corner(Face f, int i) {
+  return i == 0 ? f.a : (i == 1 ? f.b : f.c);
+}
+
+SharedNodes shared_nodes(Face a, Face b) {
+  SharedNodes s = SharedNodes(0, 0, 0);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (face_corner(a, i) != face_corner(b, j)) continue;
+      if (s.count == 0) {
+        s.corner_a = i;
+        s.corner_b = j;
+      }
+      ++s.count;
+    }
+  }
+  return s;
+}
+
+// projection_axes (tri_tri_primitives.h).
+void tri_tri_projection_axes(vec3 n, out int u, out int v) {
+  const vec3 m = abs(n);
+  u = 1;  // drop x
+  v = 2;
+  if (m.y >= m.x && m.y >= m.z) {  // drop y
+    u = 0;
+    v = 2;
+  } else if (m.z >= m.x && m.z >= m.y) {  // drop z
+    u = 0;
+    v = 1;
+  }
+}
+
+// The projection of segment_triangle_meet: x relative to origin, coordinates u and v.
+vec2 tri_tri_project(vec3 x, vec3 origin, int u, int v) {
+  precise vec2 r = vec2(x[u] - origin[u], x[v] - origin[v]);
+  return r;
+}
+
+// segment_triangle_meet.
+bool segment_triangle_meet(vec3 s0, vec3 s1, vec3 t[3]) {
+  const float l2 = tri_tri_longest_edge2(t);
+  const vec3 n = tri_tri_cross(t[1] - t[0], t[2] - t[0]);
+  const float n_len = tri_tri_length(n);
+  precise float degenerate = kTriTriDegenerateTolerance * l2;
+  if (!(n_len > degenerate)) return false;
+  precise vec3 e = s1 - s0;
+  precise float size = sqrt(max(l2, tri_tri_dot(e, e)));
+  precise vec3 u = n / n_len;
+  precise float tol = (kTriTriTolerance + kTriTriRoundoff * l2 / n_len) * size;
+  const float d0 = tri_tri_snap_to_zero(tri_tri_dot(u, s0 - t[0]), tol);
+  const float d1 = tri_tri_snap_to_zero(tri_tri_dot(u, s1 - t[0]), tol);
+  if (tri_tri_same_strict_sign(d0, d1)) return false;
+
+  int pu = 0;
+  int pv = 0;
+  tri_tri_projection_axes(n, pu, pv);
+  vec2 t2[3] = vec2[3](tri_tri_project(t[0], t[0], pu, pv), tri_tri_project(t[1], t[0], pu, pv),
+                       tri_tri_project(t[2], t[0], pu, pv));
+  precise float area_tol = kTriTriTolerance * size * size;
+  if (d0 == 0.0 && d1 == 0.0) {  // in the plane: crossing an edge, or wholly inside
+    const vec2 a = tri_tri_project(s0, t[0], pu, pv);
+    const vec2 b = tri_tri_project(s1, t[0], pu, pv);
+    precise float length_tol = kTriTriTolerance * size;
+    bool meet = false;
+    for (int i = 0; i < 3; ++i) {
+      meet = meet || tri_tri_segments_meet_2d(a, b, t2[i], t2[(i + 1) % 3], area_tol, length_tol);
+    }
+    return meet || tri_tri_point_in_triangle_2d(a, t2, area_tol);
+  }
+  // One point on the plane: an end on it, or the crossing (d0 != d1 there).
+  precise float f = d0 / (d0 - d1);
+  precise vec3 crossing = s0 + e * f;
+  const vec3 x = d0 == 0.0 ? s0 : (d1 == 0.0 ? s1 : crossing);
+  return tri_tri_point_in_triangle_2d(tri_tri_project(x, t[0], pu, pv), t2, area_tol);
+}
+
+// tri_tri_intersect_sharing_vertex: p[0] == q[0].
+TriTriResult tri_tri_intersect_sharing_vertex(vec3 p[3], vec3 q[3]) {
+  if (!segment_triangle_meet(p[1], p[2], q) && !segment_triangle_meet(q[1], q[2], p)) {
+    return TriTriResult(false, false, vec3(0.0), vec3(0.0));
+  }
+  return tri_tri_intersect(p, q);
+}
+
+// face_pair_intersect, reading the positions from `positions` (collision/surface.glsl).
+TriTriResult face_pair_intersect(Face fa, Face fb) {
+  const SharedNodes common_nodes = shared_nodes(fa, fb);
+  if (common_nodes.count >= 2) return TriTriResult(false, false, vec3(0.0), vec3(0.0));
+  vec3 p[3];
+  vec3 q[3];
+  for (int i = 0; i < 3; ++i) {
+    p[i] = positions[face_corner(fa, (common_nodes.corner_a + i) % 3)].xyz;
+    q[i] = positions[face_corner(fb, (common_nodes.corner_b + i) % 3)].xyz;
+  }
+  return common_nodes.count == 1 ? tri_tri_intersect_sharing_vertex(p, q) : tri_tri_intersect(p, q);
+}

@@ -1,0 +1,96 @@
+#include "collision/face_pair_intersection.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include "collision/tri_tri_primitives.h"
+
+namespace deformcd::collision {
+
+namespace {
+
+std::uint32_t corner(const gpu::Face& f, int i) {
+  return i == 0 ? f.a : (i == 1 ? f.b : f.c);
+}
+
+// Triangle `face` with its vertices rotated so that corner `first` comes first (a rotation
+// keeps the winding).
+void load_rotated(const gpu::Face& face, int first, const glm::vec4* positions, glm::vec3 t[3]) {
+  for (int i = 0; i < 3; ++i)
+    t[i] = glm::vec3(positions[corner(face, (first + i) % 3)]);
+}
+
+}  // namespace
+
+SharedNodes shared_nodes(const gpu::Face& a, const gpu::Face& b) {
+  SharedNodes s;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (corner(a, i) != corner(b, j)) continue;
+      if (s.count == 0) {
+        s.corner_a = i;
+        s.corner_b = j;
+      }
+      ++s.count;
+    }
+  }
+  return s;
+}
+
+bool segment_triangle_meet(const glm::vec3& s0, const glm::vec3& s1, const glm::vec3 t[3]) {
+  using namespace detail;
+  const float l2 = longest_edge2(t);
+  const glm::vec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
+  const float n_len = glm::length(n);
+  if (!(n_len > kTriTriDegenerateTolerance * l2)) return false;
+  const glm::vec3 e = s1 - s0;
+  const float size = std::sqrt(std::max(l2, glm::dot(e, e)));
+  const glm::vec3 u = n / n_len;
+  // The plane tolerance of tri_tri_intersect, for the segment's ends.
+  const float tol = (kTriTriTolerance + kTriTriRoundoff * l2 / n_len) * size;
+  const float d0 = snap_to_zero(glm::dot(u, s0 - t[0]), tol);
+  const float d1 = snap_to_zero(glm::dot(u, s1 - t[0]), tol);
+  if (same_strict_sign(d0, d1)) return false;
+
+  int pu = 0;
+  int pv = 0;
+  projection_axes(n, pu, pv);
+  const auto project = [&](const glm::vec3& x) {  // relative to t[0]: small projected values
+    return glm::vec2(x[pu] - t[0][pu], x[pv] - t[0][pv]);
+  };
+  const glm::vec2 t2[3] = {project(t[0]), project(t[1]), project(t[2])};
+  const float area_tol = kTriTriTolerance * size * size;
+  if (d0 == 0.0f && d1 == 0.0f) {  // in the plane: crossing an edge, or wholly inside
+    const glm::vec2 a = project(s0);
+    const glm::vec2 b = project(s1);
+    const float length_tol = kTriTriTolerance * size;
+    bool meet = false;
+    for (int i = 0; i < 3; ++i)
+      meet = meet || segments_meet_2d(a, b, t2[i], t2[(i + 1) % 3], area_tol, length_tol);
+    return meet || point_in_triangle_2d(a, t2, area_tol);
+  }
+  // One point on the plane: an end on it, or the crossing (d0 != d1 there).
+  const glm::vec3 x = d0 == 0.0f ? s0 : (d1 == 0.0f ? s1 : s0 + e * (d0 / (d0 - d1)));
+  return point_in_triangle_2d(project(x), t2, area_tol);
+}
+
+TriTriResult tri_tri_intersect_sharing_vertex(const glm::vec3 p[3], const glm::vec3 q[3]) {
+  if (!segment_triangle_meet(p[1], p[2], q) && !segment_triangle_meet(q[1], q[2], p)) return {};
+  return tri_tri_intersect(p, q);
+}
+
+TriTriResult face_pair_intersect(const gpu::Face& fa, const gpu::Face& fb,
+                                 const glm::vec4* positions) {
+  const SharedNodes shared = shared_nodes(fa, fb);
+  if (shared.count >= 2) return {};
+  glm::vec3 p[3];
+  glm::vec3 q[3];
+  load_rotated(fa, shared.corner_a, positions, p);
+  load_rotated(fb, shared.corner_b, positions, q);
+  return shared.count == 1 ? tri_tri_intersect_sharing_vertex(p, q) : tri_tri_intersect(p, q);
+}
+
+}  // namespace deformcd::collision
