@@ -22,7 +22,7 @@ struct BenchArgs {
   std::vector<std::string> scenes;
   int frames = 45;
   std::vector<std::string> backends = {"gl", "cpu"};
-  std::vector<std::string> methods = {"brute", "octree"};
+  std::vector<std::string> methods = {"all"};
   int repeat = 1;
   int threads = 0;
   std::string json;
@@ -39,8 +39,14 @@ int bench(const BenchArgs& a) {
     if (kind == BackendKind::kAuto) throw Error("--backend takes gl and/or cpu, not auto");
     o.backends.push_back(kind);
   }
-  for (const std::string& m : a.methods)
-    o.methods.push_back(parse_broadphase(m));
+  for (const std::string& m : a.methods) {
+    if (m == "all") {  // the baseline first, then the paper's method, then ours
+      for (const std::string& name : broadphase_names())
+        o.methods.push_back(parse_broadphase(name));
+    } else {
+      o.methods.push_back(parse_broadphase(m));
+    }
+  }
   if (a.frames < 1) throw Error("--frames must be at least 1");
   o.frames = a.frames;
   o.repeat = a.repeat;
@@ -96,7 +102,8 @@ Command add_bench_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--methods", a->methods,
-                  "Broad phases, comma-separated; the first is the baseline V1")
+                  "Broad phases, comma-separated (brute, octree, octree-compact, bvh, or all); "
+                  "the first is the baseline V1")
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--repeat", a->repeat, "Runs per measurement; the median is reported")

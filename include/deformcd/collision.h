@@ -1,7 +1,8 @@
 #pragma once
 /// \file collision.h
 /// What collision detection reports: the broad phases a world can run, and the intersecting
-/// surface-face pairs between different bodies (the contacts) found each frame.
+/// surface-face pairs (the contacts) found each frame, between different bodies and, with
+/// WorldOptions::self_collision, within one body.
 
 #include <array>
 #include <cstdint>
@@ -42,7 +43,10 @@ struct ContactFace {
   std::array<std::uint32_t, 3> nodes{};  ///< the face's nodes, indices within the body
 };
 
-/// Two intersecting surface faces of different bodies; a.body < b.body.
+/// Two intersecting surface faces: of different bodies (a.body < b.body) or, with
+/// self-collision, of one body (a.body == b.body, a.face < b.face). Faces of one body that share
+/// an edge are never a contact; faces sharing one node are when they also meet elsewhere (then
+/// the segment starts or ends at that node).
 struct Contact {
   ContactFace a;
   ContactFace b;
@@ -57,8 +61,9 @@ struct CollisionCounts {
   std::uint64_t contacts = 0;         ///< intersecting face pairs
   std::uint64_t box_pairs = 0;        ///< overlapping leaf-box pairs (octree; 0 for brute)
   std::uint64_t colliding_faces = 0;  ///< faces in at least one contact
-  /// Face pairs given to the triangle test: N x M for brute, the first-box-pair rows for the
-  /// octree methods, the pairs whose own boxes overlap for bvh.
+  /// Face pairs given to the triangle test: N x M for brute (N (N - 1) / 2 for a body with
+  /// itself), the first-box-pair rows for the octree methods, the pairs whose own boxes overlap
+  /// for bvh.
   std::uint64_t candidates = 0;
 };
 

@@ -87,6 +87,27 @@ TEST_F(CollisionCli, ContactsFileHasOneSortedLinePerFrameAndIsTheSameForEveryBro
   EXPECT_TRUE(nlohmann::json::parse(brute.front())["contacts"].empty());
 }
 
+TEST_F(CollisionCli, SelfCollisionSceneReportsContactsWithinTheBody) {
+  // scenes/fold.json sets "collision": {"self": true}: the plate's faces against each other.
+  const CliRun r = run_cli("run " + scene("fold") + " --backend cpu --frames 6 --contacts " +
+                           path("fold.jsonl"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::vector<std::string> lines = lines_of(path("fold.jsonl"));
+  ASSERT_EQ(lines.size(), 7u);
+  std::size_t contacts = 0;
+  for (const std::string& text : lines) {
+    const nlohmann::json line = nlohmann::json::parse(text);
+    for (const nlohmann::json& c : line.at("contacts")) {
+      EXPECT_EQ(c["a"]["body"], 0);
+      EXPECT_EQ(c["b"]["body"], 0);
+      EXPECT_LT(c["a"]["face"].get<int>(), c["b"]["face"].get<int>());
+      ++contacts;
+    }
+  }
+  EXPECT_GT(contacts, 0u);  // the crease, from frame 1
+  EXPECT_TRUE(nlohmann::json::parse(lines.front())["contacts"].empty());  // flat at rest
+}
+
 TEST_F(CollisionCli, BadContactsPathFailsBeforeRunningAndLeavesNothing) {
   const CliRun r = run_cli("run " + scene("phase2") + " --backend cpu --frames 3 --contacts " +
                            path("missing_dir/out.jsonl"));
