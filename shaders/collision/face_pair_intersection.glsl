@@ -32,26 +32,6 @@ SharedNodes shared_nodes(Face a, Face b) {
   return s;
 }
 
-// projection_axes (tri_tri_primitives.h).
-void tri_tri_projection_axes(vec3 n, out int u, out int v) {
-  const vec3 m = abs(n);
-  u = 1;  // drop x
-  v = 2;
-  if (m.y >= m.x && m.y >= m.z) {  // drop y
-    u = 0;
-    v = 2;
-  } else if (m.z >= m.x && m.z >= m.y) {  // drop z
-    u = 0;
-    v = 1;
-  }
-}
-
-// The projection of segment_triangle_meet: x relative to origin, coordinates u and v.
-vec2 tri_tri_project(vec3 x, vec3 origin, int u, int v) {
-  precise vec2 r = vec2(x[u] - origin[u], x[v] - origin[v]);
-  return r;
-}
-
 // segment_triangle_meet.
 bool segment_triangle_meet(vec3 s0, vec3 s1, vec3 t[3]) {
   const float l2 = tri_tri_longest_edge2(t);
@@ -67,27 +47,13 @@ bool segment_triangle_meet(vec3 s0, vec3 s1, vec3 t[3]) {
   const float d1 = tri_tri_snap_to_zero(tri_tri_dot(u, s1 - t[0]), tol);
   if (tri_tri_same_strict_sign(d0, d1)) return false;
 
-  int pu = 0;
-  int pv = 0;
-  tri_tri_projection_axes(n, pu, pv);
-  vec2 t2[3] = vec2[3](tri_tri_project(t[0], t[0], pu, pv), tri_tri_project(t[1], t[0], pu, pv),
-                       tri_tri_project(t[2], t[0], pu, pv));
-  precise float area_tol = kTriTriTolerance * size * size;
-  if (d0 == 0.0 && d1 == 0.0) {  // in the plane: crossing an edge, or wholly inside
-    const vec2 a = tri_tri_project(s0, t[0], pu, pv);
-    const vec2 b = tri_tri_project(s1, t[0], pu, pv);
-    precise float length_tol = kTriTriTolerance * size;
-    bool meet = false;
-    for (int i = 0; i < 3; ++i) {
-      meet = meet || tri_tri_segments_meet_2d(a, b, t2[i], t2[(i + 1) % 3], area_tol, length_tol);
-    }
-    return meet || tri_tri_point_in_triangle_2d(a, t2, area_tol);
-  }
-  // One point on the plane: an end on it, or the crossing (d0 != d1 there).
+  // On the plane: both ends (crossing an edge, or wholly inside), else the one point on it, an
+  // end or the crossing (d0 != d1 there).
+  if (d0 == 0.0 && d1 == 0.0) return tri_tri_segment_in_plane_meets_triangle(s0, s1, t, n, size);
   precise float f = d0 / (d0 - d1);
   precise vec3 crossing = s0 + e * f;
   const vec3 x = d0 == 0.0 ? s0 : (d1 == 0.0 ? s1 : crossing);
-  return tri_tri_point_in_triangle_2d(tri_tri_project(x, t[0], pu, pv), t2, area_tol);
+  return tri_tri_segment_in_plane_meets_triangle(x, x, t, n, size);
 }
 
 // tri_tri_intersect_sharing_vertex: p[0] == q[0].

@@ -136,11 +136,11 @@ bool tri_tri_point_in_triangle_2d(vec2 x, vec2 t[3], float area_tol) {
   return !(has_negative && has_positive);
 }
 
-// coplanar_overlap.
-bool tri_tri_coplanar_overlap(vec3 a[3], vec3 b[3], vec3 n, float size) {
+// projection_axes.
+void tri_tri_projection_axes(vec3 n, out int u, out int v) {
   const vec3 m = abs(n);
-  int u = 1;  // drop x
-  int v = 2;
+  u = 1;  // drop x
+  v = 2;
   if (m.y >= m.x && m.y >= m.z) {  // drop y
     u = 0;
     v = 2;
@@ -148,6 +148,44 @@ bool tri_tri_coplanar_overlap(vec3 a[3], vec3 b[3], vec3 n, float size) {
     u = 0;
     v = 1;
   }
+}
+
+// The projection of segment_in_plane_meets_triangle: x relative to origin, coordinates u, v.
+vec2 tri_tri_project(vec3 x, vec3 origin, int u, int v) {
+  precise vec2 r = vec2(x[u] - origin[u], x[v] - origin[v]);
+  return r;
+}
+
+// segment_in_plane_meets_triangle.
+bool tri_tri_segment_in_plane_meets_triangle(vec3 s0, vec3 s1, vec3 t[3], vec3 n, float size) {
+  int u = 0;
+  int v = 0;
+  tri_tri_projection_axes(n, u, v);
+  vec2 t2[3] = vec2[3](tri_tri_project(t[0], t[0], u, v), tri_tri_project(t[1], t[0], u, v),
+                       tri_tri_project(t[2], t[0], u, v));
+  const vec2 a = tri_tri_project(s0, t[0], u, v);
+  const vec2 b = tri_tri_project(s1, t[0], u, v);
+  precise float area_tol = kTriTriTolerance * size * size;
+  precise float length_tol = kTriTriTolerance * size;
+  if (tri_tri_point_in_triangle_2d(a, t2, area_tol) || tri_tri_point_in_triangle_2d(b, t2, area_tol)) {
+    return true;
+  }
+  precise vec2 ab = b - a;
+  precise float ab2 = ab.x * ab.x + ab.y * ab.y;
+  precise float length_tol2 = length_tol * length_tol;
+  if (!(ab2 > length_tol2)) return false;
+  bool meet = false;
+  for (int i = 0; i < 3; ++i) {
+    meet = meet || tri_tri_segments_meet_2d(a, b, t2[i], t2[(i + 1) % 3], area_tol, length_tol);
+  }
+  return meet;
+}
+
+// coplanar_overlap.
+bool tri_tri_coplanar_overlap(vec3 a[3], vec3 b[3], vec3 n, float size) {
+  int u = 0;
+  int v = 0;
+  tri_tri_projection_axes(n, u, v);
   precise vec2 a2[3];
   precise vec2 b2[3];
   for (int i = 0; i < 3; ++i) {  // relative to a[0]: keeps the projected values small
@@ -245,6 +283,14 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
   precise float gap_tol = kTriTriTolerance * size * tri_tri_length(dir);
   precise float t_hi_closed = t_hi + gap_tol;
   if (t_lo > t_hi_closed) return result;
+  // A vertex snapped onto the other plane may lie up to tolerance / sin(angle) from the planes'
+  // line: each triangle's part on the other's plane must meet the other triangle there, in 2D.
+  const bool snapped = da[0] == 0.0 || da[1] == 0.0 || da[2] == 0.0 || db[0] == 0.0 ||
+                       db[1] == 0.0 || db[2] == 0.0;
+  if (snapped && (!tri_tri_segment_in_plane_meets_triangle(ib.x_min, ib.x_max, a, na, size) ||
+                  !tri_tri_segment_in_plane_meets_triangle(ia.x_min, ia.x_max, b, nb, size))) {
+    return result;
+  }
   result.intersect = true;
   const bool touching = t_lo > t_hi;  // a gap inside the tolerance: one contact point
   precise vec3 mid = 0.5 * (x_lo + x_hi);

@@ -152,7 +152,7 @@ class CollisionBackendSelf : public test_support::GlTest {};
 // The plate of scenes/fold.json folding into itself (self-collision: one body pair (0, 0), faces
 // sharing an edge skipped, faces sharing a node tested beyond it): every broad phase on GL
 // returns the CPU's pairs, segments bit for bit, and the same counts, the all-pairs baseline
-// included, at rest, at the first crease and through the fold.
+// included, at rest, while it bends (frame 3) and through the fold.
 TEST_F(CollisionBackendSelf, GlEqualsCpuOnTheFoldingPlate) {
   constexpr int kFrames = 40;
   SceneReplay replay(context(), "fold", 120);

@@ -55,26 +55,11 @@ bool segment_triangle_meet(const glm::vec3& s0, const glm::vec3& s1, const glm::
   const float d1 = snap_to_zero(glm::dot(u, s1 - t[0]), tol);
   if (same_strict_sign(d0, d1)) return false;
 
-  int pu = 0;
-  int pv = 0;
-  projection_axes(n, pu, pv);
-  const auto project = [&](const glm::vec3& x) {  // relative to t[0]: small projected values
-    return glm::vec2(x[pu] - t[0][pu], x[pv] - t[0][pv]);
-  };
-  const glm::vec2 t2[3] = {project(t[0]), project(t[1]), project(t[2])};
-  const float area_tol = kTriTriTolerance * size * size;
-  if (d0 == 0.0f && d1 == 0.0f) {  // in the plane: crossing an edge, or wholly inside
-    const glm::vec2 a = project(s0);
-    const glm::vec2 b = project(s1);
-    const float length_tol = kTriTriTolerance * size;
-    bool meet = false;
-    for (int i = 0; i < 3; ++i)
-      meet = meet || segments_meet_2d(a, b, t2[i], t2[(i + 1) % 3], area_tol, length_tol);
-    return meet || point_in_triangle_2d(a, t2, area_tol);
-  }
-  // One point on the plane: an end on it, or the crossing (d0 != d1 there).
+  // On the plane: both ends (crossing an edge, or wholly inside), else the one point on it, an
+  // end or the crossing (d0 != d1 there).
+  if (d0 == 0.0f && d1 == 0.0f) return segment_in_plane_meets_triangle(s0, s1, t, n, size);
   const glm::vec3 x = d0 == 0.0f ? s0 : (d1 == 0.0f ? s1 : s0 + e * (d0 / (d0 - d1)));
-  return point_in_triangle_2d(project(x), t2, area_tol);
+  return segment_in_plane_meets_triangle(x, x, t, n, size);
 }
 
 TriTriResult tri_tri_intersect_sharing_vertex(const glm::vec3 p[3], const glm::vec3 q[3]) {

@@ -177,6 +177,17 @@ TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]) {
   const glm::vec3 x_lo = lo_from_a ? ia.x_min : ib.x_min;
   const glm::vec3 x_hi = hi_from_a ? ia.x_max : ib.x_max;
   if (t_lo > t_hi + kTriTriTolerance * size * glm::length(dir)) return result;
+  // A vertex snapped onto the other plane was taken to lie on the planes' line, but it may lie
+  // up to tolerance / sin(angle) from it: near parallel planes, that spans the triangles, and
+  // two faces of a gently curved sheet 0.5 x their size apart were reported (found by the CGAL
+  // oracle on the folding plate). Then each triangle's part on the other's plane (a segment
+  // within tolerance of that plane) must meet the other triangle there, in 2D.
+  const bool snapped = da[0] == 0.0f || da[1] == 0.0f || da[2] == 0.0f || db[0] == 0.0f ||
+                       db[1] == 0.0f || db[2] == 0.0f;
+  if (snapped && (!segment_in_plane_meets_triangle(ib.x_min, ib.x_max, a, na, size) ||
+                  !segment_in_plane_meets_triangle(ia.x_min, ia.x_max, b, nb, size))) {
+    return result;
+  }
   result.intersect = true;
   const bool touching = t_lo > t_hi;  // a gap inside the tolerance: one contact point
   result.segment[0] = touching ? 0.5f * (x_lo + x_hi) : x_lo;

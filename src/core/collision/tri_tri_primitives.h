@@ -10,6 +10,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "tri_tri_intersection.h"
+
 namespace deformcd::collision::detail {
 
 inline float longest_edge2(const glm::vec3 t[3]) {
@@ -79,6 +81,32 @@ inline void projection_axes(const glm::vec3& n, int& u, int& v) {
     u = 0;
     v = 1;
   }
+}
+
+// Whether segment [s0, s1], lying on the plane of triangle t (normal n, within the tolerance),
+// meets t, in the projection that drops n's largest coordinate, with the tolerances of a pair of
+// size `size`. A segment shorter than the length tolerance is decided by its ends alone (the
+// collinear branch of segments_meet_2d needs a direction).
+inline bool segment_in_plane_meets_triangle(const glm::vec3& s0, const glm::vec3& s1,
+                                            const glm::vec3 t[3], const glm::vec3& n, float size) {
+  int u = 0;
+  int v = 0;
+  projection_axes(n, u, v);
+  const auto project = [&](const glm::vec3& x) {  // relative to t[0]: small projected values
+    return glm::vec2(x[u] - t[0][u], x[v] - t[0][v]);
+  };
+  const glm::vec2 t2[3] = {project(t[0]), project(t[1]), project(t[2])};
+  const glm::vec2 a = project(s0);
+  const glm::vec2 b = project(s1);
+  const float area_tol = kTriTriTolerance * size * size;
+  const float length_tol = kTriTriTolerance * size;
+  if (point_in_triangle_2d(a, t2, area_tol) || point_in_triangle_2d(b, t2, area_tol)) return true;
+  const glm::vec2 ab = b - a;
+  if (!(glm::dot(ab, ab) > length_tol * length_tol)) return false;
+  bool meet = false;
+  for (int i = 0; i < 3; ++i)
+    meet = meet || segments_meet_2d(a, b, t2[i], t2[(i + 1) % 3], area_tol, length_tol);
+  return meet;
 }
 
 }  // namespace deformcd::collision::detail
