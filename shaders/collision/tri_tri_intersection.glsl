@@ -110,12 +110,26 @@ float tri_tri_orient2d(vec2 a, vec2 b, vec2 c) {
   return r;
 }
 
+// within_extent_2d.
+bool tri_tri_within_extent_2d(vec2 a, vec2 b, vec2 c, float length_tol) {
+  precise float ab_x = b.x - a.x;
+  precise float ab_y = b.y - a.y;
+  const int k = abs(ab_x) >= abs(ab_y) ? 0 : 1;
+  precise float lo = min(a[k], b[k]) - length_tol;
+  precise float hi = max(a[k], b[k]) + length_tol;
+  return lo <= c[k] && c[k] <= hi;
+}
+
 // segments_meet_2d.
 bool tri_tri_segments_meet_2d(vec2 a, vec2 b, vec2 c, vec2 d, float area_tol, float length_tol) {
-  const float o1 = tri_tri_snap_to_zero(tri_tri_orient2d(a, b, c), area_tol);
-  const float o2 = tri_tri_snap_to_zero(tri_tri_orient2d(a, b, d), area_tol);
-  const float o3 = tri_tri_snap_to_zero(tri_tri_orient2d(c, d, a), area_tol);
-  const float o4 = tri_tri_snap_to_zero(tri_tri_orient2d(c, d, b), area_tol);
+  const float r1 = tri_tri_orient2d(a, b, c);
+  const float r2 = tri_tri_orient2d(a, b, d);
+  const float r3 = tri_tri_orient2d(c, d, a);
+  const float r4 = tri_tri_orient2d(c, d, b);
+  const float o1 = tri_tri_snap_to_zero(r1, area_tol);
+  const float o2 = tri_tri_snap_to_zero(r2, area_tol);
+  const float o3 = tri_tri_snap_to_zero(r3, area_tol);
+  const float o4 = tri_tri_snap_to_zero(r4, area_tol);
   if (o1 == 0.0 && o2 == 0.0) {  // collinear: overlap of the 1D intervals on ab's main axis
     precise float ab_x = b.x - a.x;
     precise float ab_y = b.y - a.y;
@@ -123,7 +137,21 @@ bool tri_tri_segments_meet_2d(vec2 a, vec2 b, vec2 c, vec2 d, float area_tol, fl
     precise float hi = min(max(a[k], b[k]), max(c[k], d[k])) + length_tol;
     return max(min(a[k], b[k]), min(c[k], d[k])) <= hi;
   }
-  return !tri_tri_same_strict_sign(o1, o2) && !tri_tri_same_strict_sign(o3, o4);
+  // |r3|, |r4| > area_tol with opposite signs: no division by zero.
+  if (tri_tri_opposite_signs(o3, o4)) {
+    precise float f = r3 / (r3 - r4);
+    precise vec2 x = a + (b - a) * f;
+    return tri_tri_within_extent_2d(c, d, x, length_tol);
+  }
+  if (tri_tri_opposite_signs(o1, o2)) {
+    precise float f = r1 / (r1 - r2);
+    precise vec2 x = c + (d - c) * f;
+    return tri_tri_within_extent_2d(a, b, x, length_tol);
+  }
+  return (o1 == 0.0 && tri_tri_within_extent_2d(a, b, c, length_tol)) ||
+         (o2 == 0.0 && tri_tri_within_extent_2d(a, b, d, length_tol)) ||
+         (o3 == 0.0 && tri_tri_within_extent_2d(c, d, a, length_tol)) ||
+         (o4 == 0.0 && tri_tri_within_extent_2d(c, d, b, length_tol));
 }
 
 // point_in_triangle_2d.

@@ -1,16 +1,22 @@
 #pragma once
-// A bound on the float narrow phase's false contacts: whatever its tolerances snap, they move
-// no vertex farther than the plane tolerance, nor a point farther than the 2D orientation
-// tolerance from an edge's line, so a pair it reports as touching while CGAL says apart must lie
-// within that distance of touching. zone_measure (support/tri_tri_zone.h) does not check this:
-// for nearly parallel, nearly coplanar pairs it returns the planes' distance, however far apart
-// the triangles are within their planes.
+// What a disagreement between the float narrow phase and CGAL's exact answer may be, measured
+// on the pair's own geometry rather than on the algorithm's intermediate values:
+//  - a contact CGAL does not see: whatever the tolerances snap, they move no vertex farther than
+//    the plane tolerance, nor a point farther than the 2D orientation tolerance from an edge's
+//    line, so the pair must lie within that distance of touching (separation_measure);
+//  - an intersection the float test misses: the pair must lie within the tolerance of apart
+//    (apart_measure), or in zone_measure's uncertain zone.
+// zone_measure (support/tri_tri_zone.h) alone does neither for nearly parallel, nearly coplanar
+// pairs: it returns the planes' distance or the 2D configuration's margin, however far apart the
+// triangles lie within their planes (false contacts 0.5 x the size apart passed), and however
+// little a vertex must move to part them (nearly parallel crossings, a vertex snapped).
 
 #include <CGAL/squared_distance_3.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -59,6 +65,42 @@ inline double separation_measure(const Tri& p, const Tri& q) {
   const double size = std::sqrt(size2);
   unit = std::max(unit, std::sqrt(3.0) * size / std::sqrt(shortest2));
   return triangle_distance(p, q) / (size * unit);
+}
+
+/// How far one triangle must move along the other's normal to lie strictly on one side of the
+/// other's plane, the smaller over the two, in zone_measure's units for a vertex near a plane
+/// (distance / ((|n| + (roundoff / tolerance) L^2) S), the algorithm's plane tolerance over
+/// kTriTriTolerance). Pushed by a little more than that, the triangles are exactly apart: below
+/// kZone, an intersection CGAL sees is one the float test may miss, e.g. nearly parallel faces
+/// crossing, whose line of intersection a vertex within the tolerance of the plane moves far.
+inline double apart_measure(const Tri& p, const Tri& q) {
+  const auto pd = zone_detail::to_double(p);
+  const auto qd = zone_detail::to_double(q);
+  const double lp2 = zone_detail::longest_edge2(pd);
+  const double lq2 = zone_detail::longest_edge2(qd);
+  const double size = std::sqrt(std::max(lp2, lq2));
+  double best = 1e300;
+  for (const auto& [t, o, o2] : {std::tuple{&pd, &qd, lq2}, std::tuple{&qd, &pd, lp2}}) {
+    const glm::dvec3 n = glm::cross((*o)[1] - (*o)[0], (*o)[2] - (*o)[0]);
+    const double unit = zone_detail::plane_scale(n, o2) * size;
+    double above = 0.0;  // the push that puts t wholly below the plane, and above it
+    double below = 0.0;
+    for (const glm::dvec3& x : *t) {
+      const double d = glm::dot(n, x - (*o)[0]) / unit;
+      above = std::max(above, d);
+      below = std::max(below, -d);
+    }
+    best = std::min({best, above, below});
+  }
+  return best;
+}
+
+/// The measure a disagreement must keep below kZone, `cgal` being CGAL's answer: for a contact
+/// CGAL does not see, separation_measure; for an intersection the float test misses, the smaller
+/// of zone_measure and apart_measure. p and q must not be near-degenerate.
+inline double disagreement_measure(const Tri& p, const Tri& q, bool cgal) {
+  if (!cgal) return separation_measure(p, q);
+  return std::min(zone_measure(p, q), apart_measure(p, q));
 }
 
 }  // namespace deformcd::test

@@ -2,8 +2,11 @@
 // force and octree broad phase) against every face pair CGAL's do_intersect with exact
 // predicates says intersects, on the same float positions. Poses: the phase 1 and phase 2 pairs
 // overlapping, near touching and grazing, and each model against a shifted and a
-// rotated copy of itself. Every disagreement must lie in the narrow phase's uncertain zone
-// (support/tri_tri_zone.h), and every contact's segment must lie on both triangles.
+// rotated copy of itself. Every disagreement must lie in the narrow phase's uncertain zone: a
+// contact CGAL does not see within what the tolerances can bridge of touching, an intersection
+// the world misses within the tolerance of apart or in zone_measure's zone
+// (support/triangle_separation.h, support/tri_tri_zone.h); and every contact's segment must lie
+// on both triangles.
 
 #include <CGAL/squared_distance_3.h>
 
@@ -26,6 +29,7 @@
 #include "deformcd/world.h"
 #include "support/contact_compare.h"
 #include "support/tri_tri_zone.h"
+#include "support/triangle_separation.h"
 
 namespace fs = std::filesystem;
 
@@ -192,6 +196,10 @@ struct Tally {
   std::size_t ours = 0;          // contacts of the world (float)
   std::size_t in_zone = 0;       // disagreements inside the uncertain zone
   std::size_t outside_zone = 0;  // disagreements outside it: errors
+  // The largest measure (support/triangle_separation.h) of a disagreement in the zone: a contact
+  // CGAL does not see, an intersection the world misses.
+  double worst_false_contact = 0.0;
+  double worst_missed = 0.0;
   std::size_t coplanar = 0;
   // Over the non-coplanar contacts: the largest check_segment error, and error / allowed.
   double worst_segment = 0.0;
@@ -206,13 +214,19 @@ Tally compare(const std::vector<Contact>& contacts, const test::ExactPairs& exac
   t.exact = exact.pairs.size();
   t.ours = contacts.size();
   auto disagree = [&](std::uint32_t fa, std::uint32_t fb, bool cgal) {
-    const double zone = test::zone_measure(a.triangles[fa], b.triangles[fb]);
-    if (zone < test::kZone) {
+    const Tri& ta = a.triangles[fa];
+    const Tri& tb = b.triangles[fb];
+    const double measure = test::disagreement_measure(ta, tb, cgal);
+    if (measure < test::kZone) {
       ++t.in_zone;
+      double& worst = cgal ? t.worst_missed : t.worst_false_contact;
+      worst = std::max(worst, measure);
     } else if (++t.outside_zone <= 5) {
       ADD_FAILURE() << "faces " << fa << " x " << fb << ": CGAL " << cgal << ", ours " << !cgal
-                    << ", zone measure " << zone << " (zone " << test::kZone << "), triangles"
-                    << describe(a.triangles[fa], b.triangles[fb]);
+                    << ", measure " << measure << " (zone " << test::kZone << "; zone measure "
+                    << test::zone_measure(ta, tb) << ", separation measure "
+                    << test::separation_measure(ta, tb) << ", apart measure "
+                    << test::apart_measure(ta, tb) << "), triangles" << describe(ta, tb);
     }
   };
   std::size_t e = 0;
@@ -324,8 +338,10 @@ TEST_P(ModelCollisionsAgainstCgal, DisagreeOnlyInTheUncertainZone) {
   std::cout << GetParam().name << ": faces " << a.triangles.size() << " x " << b.triangles.size()
             << ", CGAL tested " << exact.tested << ", intersecting CGAL " << t.exact << ", float "
             << t.ours << " (coplanar " << t.coplanar << "), disagree in zone " << t.in_zone
-            << ", outside zone " << t.outside_zone << ", segment distance: worst / size "
-            << t.worst_segment << ", worst / allowed " << t.worst_segment_ratio << "\n";
+            << " (largest measure: contacts CGAL does not see " << t.worst_false_contact
+            << ", intersections missed " << t.worst_missed << "), outside zone " << t.outside_zone
+            << ", segment distance: worst / size " << t.worst_segment << ", worst / allowed "
+            << t.worst_segment_ratio << "\n";
   RecordProperty("cgal_intersecting", static_cast<int>(t.exact));
   RecordProperty("disagree_in_zone", static_cast<int>(t.in_zone));
   EXPECT_EQ(t.outside_zone, 0u);

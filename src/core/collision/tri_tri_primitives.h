@@ -43,19 +43,44 @@ inline float orient2d(const glm::vec2& a, const glm::vec2& b, const glm::vec2& c
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-// Closed segments ab and cd meet (within tolerance) in the projection plane.
+// Whether c, within the tolerance of line ab, lies within segment ab's extent on ab's main
+// axis (within length_tol).
+inline bool within_extent_2d(const glm::vec2& a, const glm::vec2& b, const glm::vec2& c,
+                             float length_tol) {
+  const int k = std::abs(b.x - a.x) >= std::abs(b.y - a.y) ? 0 : 1;
+  return std::min(a[k], b[k]) - length_tol <= c[k] && c[k] <= std::max(a[k], b[k]) + length_tol;
+}
+
+// Closed segments ab and cd meet (within tolerance) in the projection plane. Where one segment's
+// ends lie strictly on either side of the other's line, the crossing of the lines must lie within
+// the other segment's extent; otherwise an end within the tolerance of the other's line must lie
+// within the other's extent. An end near the other's line is not enough: nearly collinear
+// segments a gap apart along the line have ends within the tolerance of each other's line (the
+// lines cross far from both), which reported coplanar faces 0.2 x their size apart as meeting.
 inline bool segments_meet_2d(const glm::vec2& a, const glm::vec2& b, const glm::vec2& c,
                              const glm::vec2& d, float area_tol, float length_tol) {
-  const float o1 = snap_to_zero(orient2d(a, b, c), area_tol);
-  const float o2 = snap_to_zero(orient2d(a, b, d), area_tol);
-  const float o3 = snap_to_zero(orient2d(c, d, a), area_tol);
-  const float o4 = snap_to_zero(orient2d(c, d, b), area_tol);
+  const float r1 = orient2d(a, b, c);
+  const float r2 = orient2d(a, b, d);
+  const float r3 = orient2d(c, d, a);
+  const float r4 = orient2d(c, d, b);
+  const float o1 = snap_to_zero(r1, area_tol);
+  const float o2 = snap_to_zero(r2, area_tol);
+  const float o3 = snap_to_zero(r3, area_tol);
+  const float o4 = snap_to_zero(r4, area_tol);
   if (o1 == 0.0f && o2 == 0.0f) {  // collinear: overlap of the 1D intervals on ab's main axis
     const int k = std::abs(b.x - a.x) >= std::abs(b.y - a.y) ? 0 : 1;
     return std::max(std::min(a[k], b[k]), std::min(c[k], d[k])) <=
            std::min(std::max(a[k], b[k]), std::max(c[k], d[k])) + length_tol;
   }
-  return !same_strict_sign(o1, o2) && !same_strict_sign(o3, o4);
+  // |r3|, |r4| > area_tol with opposite signs: no division by zero, the ratio in [0, 1].
+  if (opposite_signs(o3, o4))
+    return within_extent_2d(c, d, a + (b - a) * (r3 / (r3 - r4)), length_tol);
+  if (opposite_signs(o1, o2))
+    return within_extent_2d(a, b, c + (d - c) * (r1 / (r1 - r2)), length_tol);
+  return (o1 == 0.0f && within_extent_2d(a, b, c, length_tol)) ||
+         (o2 == 0.0f && within_extent_2d(a, b, d, length_tol)) ||
+         (o3 == 0.0f && within_extent_2d(c, d, a, length_tol)) ||
+         (o4 == 0.0f && within_extent_2d(c, d, b, length_tol));
 }
 
 // Point x inside or on the boundary of triangle t (either winding).
