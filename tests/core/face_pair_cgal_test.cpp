@@ -219,15 +219,6 @@ struct Counts {
   double worst_in_zone = 0.0;  // the largest measure of a disagreement in the zone
 };
 
-std::string describe(const Pair& pair) {
-  std::ostringstream text;
-  text.precision(9);
-  for (const Tri& t : pair)
-    for (const vec3& v : t)
-      text << " (" << v.x << ", " << v.y << ", " << v.z << ")";
-  return text.str();
-}
-
 // Which of the independent exact oracles to run on a pair besides the rule.
 struct Crosschecks {
   bool intersection = false;
@@ -245,7 +236,7 @@ void compare(const Pair& pair, Crosschecks checks, Counts& counts) {
   if ((beyond != exact || mesh != exact) && ++counts.oracle_mismatch <= 5) {
     ADD_FAILURE() << "exact oracles disagree: opposite-edge rule " << exact
                   << ", triangle intersection beyond v " << beyond << ", mesh " << mesh << ", pair"
-                  << describe(pair);
+                  << test::describe_pair(pair[0], pair[1]);
   }
   const bool ours = tri_tri_intersect_sharing_vertex(pair[0].data(), pair[1].data()).intersect;
   if (ours == exact) {
@@ -258,7 +249,8 @@ void compare(const Pair& pair, Crosschecks checks, Counts& counts) {
                   << ", measure " << oracle.measure()
                   << " (p's edge meets q: " << oracle.p_edge_meets_q << ", measure "
                   << oracle.p_edge_measure << "; q's edge meets p: " << oracle.q_edge_meets_p
-                  << ", measure " << oracle.q_edge_measure << "), pair" << describe(pair);
+                  << ", measure " << oracle.q_edge_measure << "), pair"
+                  << test::describe_pair(pair[0], pair[1]);
   }
 }
 

@@ -353,15 +353,6 @@ struct Counts {
   double worst_apart = 0.0;
 };
 
-std::string describe(const Pair& pair) {
-  std::ostringstream text;
-  text << std::hexfloat;
-  for (const Tri& t : pair)
-    for (const vec3& v : t)
-      text << " {" << v.x << ", " << v.y << ", " << v.z << "}";
-  return text.str();
-}
-
 void compare(const Pair& pair, Counts& counts) {
   const Kernel::Triangle_3 cp = to_cgal(pair[0]);
   const Kernel::Triangle_3 cq = to_cgal(pair[1]);
@@ -385,7 +376,7 @@ void compare(const Pair& pair, Counts& counts) {
                   << ", zone measure " << zone_measure(pair[0], pair[1]) << ", separation measure "
                   << test::separation_measure(pair[0], pair[1]) << ", apart measure "
                   << test::apart_measure(pair[0], pair[1]) << " (zone " << kZone << "), pair"
-                  << describe(pair);
+                  << test::describe_pair(pair[0], pair[1]);
   }
 }
 

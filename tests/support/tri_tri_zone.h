@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -26,6 +28,16 @@ inline constexpr double kZone = 2.0 * collision::kTriTriTolerance;
 
 inline CgalKernel::Point_3 to_cgal(const glm::vec3& v) {  // float -> double is exact
   return {static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z)};
+}
+
+/// Triangles p and q in hexadecimal floats (exact, to paste into a failing case).
+inline std::string describe_pair(const Tri& p, const Tri& q) {
+  std::ostringstream text;
+  text << std::hexfloat;
+  for (const Tri* t : {&p, &q})
+    for (const glm::vec3& v : *t)
+      text << " {" << v.x << ", " << v.y << ", " << v.z << "}";
+  return text.str();
 }
 
 inline CgalKernel::Triangle_3 to_cgal(const Tri& t) {

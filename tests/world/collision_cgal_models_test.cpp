@@ -182,15 +182,6 @@ SegmentCheck check_segment(const Contact& c, const Tri& ta, const Tri& tb) {
   return {std::sqrt(worst2 / size2), kSegmentTolerance + 2.0 * plane_tolerance / sine};
 }
 
-std::string describe(const Tri& ta, const Tri& tb) {
-  std::ostringstream text;
-  text.precision(9);
-  for (const Tri* t : {&ta, &tb})
-    for (const glm::vec3& v : *t)
-      text << " (" << v.x << ", " << v.y << ", " << v.z << ")";
-  return text.str();
-}
-
 struct Tally {
   std::size_t exact = 0;         // intersecting per CGAL
   std::size_t ours = 0;          // contacts of the world (float)
@@ -226,7 +217,7 @@ Tally compare(const std::vector<Contact>& contacts, const test::ExactPairs& exac
                     << ", measure " << measure << " (zone " << test::kZone << "; zone measure "
                     << test::zone_measure(ta, tb) << ", separation measure "
                     << test::separation_measure(ta, tb) << ", apart measure "
-                    << test::apart_measure(ta, tb) << "), triangles" << describe(ta, tb);
+                    << test::apart_measure(ta, tb) << "), triangles" << test::describe_pair(ta, tb);
     }
   };
   std::size_t e = 0;
@@ -255,7 +246,7 @@ Tally compare(const std::vector<Contact>& contacts, const test::ExactPairs& exac
                       << ") - (" << c.segment[1].x << ", " << c.segment[1].y << ", "
                       << c.segment[1].z << ") lies " << check.error
                       << " x size off the triangles (allowed " << check.allowed << ")"
-                      << describe(ta, tb);
+                      << test::describe_pair(ta, tb);
       }
     }
   }

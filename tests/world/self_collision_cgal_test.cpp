@@ -109,15 +109,6 @@ CgalSelfIntersections cgal_self_intersections(const Surface& s) {
   return out;
 }
 
-std::string describe(const Tri& ta, const Tri& tb) {
-  std::ostringstream text;
-  text.precision(9);
-  for (const Tri* t : {&ta, &tb})
-    for (const glm::vec3& v : *t)
-      text << " (" << v.x << ", " << v.y << ", " << v.z << ")";
-  return text.str();
-}
-
 struct Tally {
   std::size_t exact = 0;         // CGAL's pairs (edge neighbours dropped)
   std::size_t ours = 0;          // the world's self-contacts
@@ -153,7 +144,7 @@ void check_disagreement(const Surface& s, FacePair pair, bool cgal, Tally& t) {
                          std::sqrt(std::max(
                              test::zone_detail::longest_edge2(test::zone_detail::to_double(ta)),
                              test::zone_detail::longest_edge2(test::zone_detail::to_double(tb))))
-                  << ", triangles" << describe(ta, tb);
+                  << ", triangles" << test::describe_pair(ta, tb);
   }
 }
 
