@@ -5,8 +5,14 @@
 #   scripts/make_models.sh                 build the tools, regenerate everything, print the table
 #   scripts/make_models.sh --search NAME   grid-search TetGen settings for one model (slow; prints
 #                                          the best settings, writes nothing to assets/)
-# Options: --build-dir DIR (default build/tools), --out DIR (default assets/models),
-#          --no-build (use the make_models and deformcd already built in the build dir).
+#   scripts/make_models.sh --fine          the finer versions of the four models for the scaling
+#                                          benchmark (NAME_20k, NAME_50k, NAME_100k: exactly
+#                                          20,000 / 50,000 / 100,000 surface faces) into
+#                                          assets/models/fine/ (not committed: 3-17 MB each)
+# Options: --build-dir DIR (default build/tools), --out DIR (default assets/models, with --fine
+#          assets/models/fine), --no-build (use the make_models and deformcd already built in the
+#          build dir), --models A,B (with --fine: only these models), --sizes 20k,100k (with
+#          --fine: only these sizes; any NNk).
 #
 # Pipeline per model: tools/make_models (CGAL) repairs the source surface, fills its holes,
 # decimates it by edge collapse to exactly the paper's surface-face count and normalizes it
@@ -20,6 +26,8 @@ build_dir="$root/build/tools"
 out_dir="$root/assets/models"
 search_model=""
 build=1
+fine=0
+out_given=0
 
 # name      source file              faces policy quality max_volume  paper: nodes tets
 models=(
@@ -28,6 +36,14 @@ models=(
   "dragon    ChineseDragon-10kv.off   2020  gh     1.18    0.000229    1418  5399"
   "lion      lion.off                 5156  lt     1.38    0.0003      4233  17889"
 )
+
+# --fine: sources coarser than a size are Loop-subdivided by make_models first. TetGen keeps the
+# surface and only bounds the radius-edge ratio (its default 2.0), no volume bound: few interior
+# nodes (about 0.18 per surface face), so simulating the 100k models stays affordable; it is the
+# surface that collision detection works on.
+fine_sizes="20k,50k,100k"
+fine_models="armadillo,bunny,dragon,lion"
+fine_quality=2.0
 
 # Grid of --search: quality from..to by step, max volume log-spaced over [hi, lo] (plus unset).
 declare -A search_grid=(
@@ -42,10 +58,13 @@ die() { echo "make_models.sh: $*" >&2; exit 1; }
 while (($# > 0)); do
   case "$1" in
     --build-dir) build_dir=$(realpath -m "$2"); shift 2 ;;
-    --out) out_dir=$(realpath -m "$2"); shift 2 ;;
+    --out) out_dir=$(realpath -m "$2"); out_given=1; shift 2 ;;
     --search) search_model="$2"; shift 2 ;;
+    --fine) fine=1; shift ;;
+    --models) fine_models="$2"; shift 2 ;;
+    --sizes) fine_sizes="$2"; shift 2 ;;
     --no-build) build=0; shift ;;
-    -h|--help) sed -n '2,16p' "${BASH_SOURCE[0]}"; exit 0 ;;
+    -h|--help) sed -n '2,24p' "${BASH_SOURCE[0]}"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
@@ -132,6 +151,40 @@ search() {
 
 if [[ -n "$search_model" ]]; then
   search "$search_model"
+  exit 0
+fi
+
+# --- fine models (scaling benchmark) -------------------------------------------------------------
+make_fine_models() {
+  ((out_given)) || out_dir="$root/assets/models/fine"
+  mkdir -p "$out_dir/surfaces"
+  local table="| model | surface faces | nodes | tetrahedra | springs | seconds (CGAL + TetGen) |
+|---|---|---|---|---|---|"
+  local name size faces
+  for name in ${fine_models//,/ }; do
+    local source policy
+    model_entry "$name" >/dev/null  # dies on an unknown name (a $(...) below would not)
+    read -r name source _ policy _ <<<"$(model_entry "$name")"
+    for size in ${fine_sizes//,/ }; do
+      [[ "$size" =~ ^([0-9]+)k$ ]] || die "--sizes: '$size' is not NNk (e.g. 20k)"
+      faces=$((BASH_REMATCH[1] * 1000))
+      local surface="$out_dir/surfaces/${name}_$size.off" start=$SECONDS
+      "$make_models" "$work/data/meshes/$source" -o "$surface" --faces "$faces" --policy "$policy"
+      "$deformcd" tetra "$surface" -o "$out_dir/${name}_$size" --preserve-surface \
+        --quality "$fine_quality"
+      "$deformcd" info "$out_dir/${name}_$size" --json >"$work/info.json"
+      [[ "$(json_int faces "$work/info.json")" == "$faces" ]] ||
+        die "${name}_$size: $(json_int faces "$work/info.json") surface faces, expected $faces"
+      table+="
+| ${name}_$size | $faces | $(json_int nodes "$work/info.json") | $(json_int tetrahedra "$work/info.json") | $(json_int springs "$work/info.json") | $((SECONDS - start)) |"
+    done
+  done
+  echo
+  echo "$table"
+}
+
+if ((fine)); then
+  make_fine_models
   exit 0
 fi
 

@@ -13,7 +13,7 @@ namespace deformcd::bench {
 struct ContactFrames {
   WorldState state;                               ///< the scene's world (rest lists, faces)
   std::vector<std::vector<glm::vec4>> positions;  ///< per contact frame, all nodes
-  std::vector<std::size_t> contacts;              ///< per contact frame, found by brute
+  std::vector<std::size_t> contacts;              ///< per contact frame (face pairs)
 };
 
 /// Steps scene `name` (scenes/NAME.json) through `frames` frames on the CPU and keeps the frames

@@ -1,6 +1,6 @@
-// make_models: source surface -> repaired, decimated, normalized closed surface (OFF) ready for
-// `deformcd tetra --preserve-surface`. Developer tool; links CGAL (GPL/LGPL), never shipped
-// with the library. scripts/make_models.sh runs it for the paper's four models.
+// make_models: source surface -> repaired, (refined,) decimated, normalized closed surface (OFF)
+// ready for `deformcd tetra --preserve-surface`. Developer tool; links CGAL (GPL/LGPL), never
+// shipped with the library. scripts/make_models.sh runs it for the paper's four models.
 
 #include <exception>
 #include <filesystem>
@@ -14,6 +14,7 @@
 #include "surface_decimation.h"
 #include "surface_output.h"
 #include "surface_repair.h"
+#include "surface_subdivision.h"
 
 namespace {
 
@@ -47,11 +48,16 @@ int run(const Options& o) {
   print_repair(summary);
   std::cout << "  source:     " << describe(summary.result) << '\n';
 
-  const std::size_t collapses = decimate(mesh, o.faces, policy);
+  // Sources coarser than the target (the finer scaling models) are refined first.
+  if (const int passes = subdivide_to_at_least(mesh, o.faces); passes > 0) {
+    std::cout << "  subdivided: " << passes << " Loop pass" << (passes > 1 ? "es" : "") << ", "
+              << mesh.number_of_faces() << " faces\n";
+  }
+  const std::size_t edges_removed = decimate(mesh, o.faces, policy);
   normalize_to_unit_box(mesh);
   const SurfaceReport report = inspect(mesh);
-  std::cout << "  decimated:  " << describe(report) << " (" << collapses << " collapses, policy "
-            << o.policy << ")\n";
+  std::cout << "  decimated:  " << describe(report) << " (" << edges_removed
+            << " edges removed, policy " << o.policy << ")\n";
   if (mesh.number_of_faces() != o.faces) {
     throw deformcd::Error(o.input.string() + ": decimation stopped at " +
                           std::to_string(mesh.number_of_faces()) + " faces, not " +

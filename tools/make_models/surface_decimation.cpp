@@ -23,10 +23,10 @@ std::size_t decimate(Mesh& mesh, std::size_t target_faces, CollapsePolicy policy
   // A closed triangle mesh has E = 3F/2 and CGAL's stop predicate counts edges; it stops as
   // soon as fewer than the threshold remain, hence the +1.
   const SMS::Count_stop_predicate<Mesh> stop(target_faces * 3 / 2 + 1);
-  int collapses = 0;
+  int edges_removed = 0;
   if (policy == CollapsePolicy::lindstrom_turk) {
     const SMS::Bounded_normal_change_placement<SMS::LindstromTurk_placement<Mesh>> placement;
-    collapses = SMS::edge_collapse(
+    edges_removed = SMS::edge_collapse(
         mesh, stop,
         CGAL::parameters::get_cost(SMS::LindstromTurk_cost<Mesh>()).get_placement(placement));
   } else {
@@ -34,11 +34,11 @@ std::size_t decimate(Mesh& mesh, std::size_t target_faces, CollapsePolicy policy
     Policies policies(mesh);
     const SMS::Bounded_normal_change_placement<Policies::Get_placement> placement(
         policies.get_placement());
-    collapses = SMS::edge_collapse(
+    edges_removed = SMS::edge_collapse(
         mesh, stop, CGAL::parameters::get_cost(policies.get_cost()).get_placement(placement));
   }
   mesh.collect_garbage();
-  return static_cast<std::size_t>(collapses);
+  return static_cast<std::size_t>(edges_removed);
 }
 
 }  // namespace make_models

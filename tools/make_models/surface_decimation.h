@@ -19,7 +19,7 @@ CollapsePolicy parse_collapse_policy(const std::string& name);
 /// Collapses edges until `mesh` has at most `target_faces` triangles. Every collapse of an
 /// interior edge removes two triangles and three edges, so a closed mesh reaches an even target
 /// exactly (when enough edges remain collapsible). Placements that would flip a triangle's
-/// normal are refused. Returns the number of collapses performed.
+/// normal are refused. Returns the number of edges removed (CGAL's count: three per collapse).
 std::size_t decimate(Mesh& mesh, std::size_t target_faces, CollapsePolicy policy);
 
 }  // namespace make_models
