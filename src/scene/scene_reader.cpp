@@ -128,8 +128,13 @@ BodySpec read_body(JsonFields f, const fs::path& folder) {
   b.model = fs::path(*model).is_absolute() ? fs::path(*model) : folder / *model;
   b.model = b.model.lexically_normal();
   if (!model_exists(b.model)) {
+    // The finer models of the scaling benchmark are generated, not shipped (about 100 MB).
+    const std::string hint =
+        b.model.parent_path().filename() == "fine"
+            ? "; the fine models are generated, not shipped: run scripts/make_models.sh --fine"
+            : "";
     f.fail("model",
-           "no such model: '" + b.model.string() + "' (neither a file nor a TetGen prefix)");
+           "no such model: '" + b.model.string() + "' (neither a file nor a TetGen prefix)" + hint);
   }
   b.name = f.string("name").value_or(b.model.filename().string());
   b.position = f.vec3("position").value_or(b.position);

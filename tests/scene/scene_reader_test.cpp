@@ -102,6 +102,14 @@ TEST_F(SceneReaderTest, UnknownBroadPhaseListsTheValidOnes) {
       << msg;
 }
 
+TEST_F(SceneReaderTest, MissingFineModelSaysHowToGenerateIt) {
+  const std::string msg = error_of(R"({"bodies": [{"model": "models/fine/lion_100k"}]})");
+  EXPECT_NE(msg.find("/bodies/0/model: no such model"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("run scripts/make_models.sh --fine"), std::string::npos) << msg;
+  EXPECT_EQ(error_of(R"({"bodies": [{"model": "models/sphere"}]})").find("make_models"),
+            std::string::npos);
+}
+
 TEST_F(SceneReaderTest, MissingModelFileIsNamed) {
   const std::string msg = error_of(R"({"bodies": [{"model": "models/sphere"}]})");
   EXPECT_NE(msg.find("/bodies/0/model: no such model"), std::string::npos) << msg;
