@@ -1,8 +1,8 @@
 // GL and CPU collision backends on the same positions: the shipped phase scenes replayed on the
 // CPU, and at every frame the same world state handed to both collision backends, which must
 // return the same face pairs (segments bit for bit: the GLSL narrow phase mirrors the C++), the
-// same flags and the same counts, with every broad phase; and every broad phase the same pairs
-// as the octree.
+// same flags and the same counts, with every broad phase (the paper's octree every third frame);
+// and every broad phase the same pairs as the octree.
 
 #include <algorithm>
 #include <filesystem>
@@ -114,6 +114,9 @@ TEST_P(CollisionBackendAgreement, GlEqualsCpuOnEveryFrame) {
     const Pass cpu_octree = run(replay.cpu_collision, BroadPhase::kOctree);
     frames_in_contact += cpu_octree.pairs.empty() ? 0 : 1;
     for (BroadPhase method : {BroadPhase::kOctree, BroadPhase::kOctreeCompact, BroadPhase::kBvh}) {
+      // The paper's octree launches N' x M' invocations (seconds a frame on llvmpipe): every
+      // third frame, the middle of the contact included.
+      if (method == BroadPhase::kOctree && f % 3 != 0) continue;
       const std::string where =
           std::string(GetParam()) + " " + std::string(broadphase_name(method)) + frame;
       const Pass cpu =
