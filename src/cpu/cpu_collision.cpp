@@ -134,7 +134,8 @@ void CpuCollision::octree_pair(const gpu::BodyPair& pair, const NarrowPhase& nar
       kRowGrain);
 }
 
-// The paper's baseline: every face of body a against every face of body b.
+// The paper's baseline: every face of body a against every face of body b (for a body against
+// itself, the narrow phase keeps the pairs x < y).
 void CpuCollision::brute_pair(const gpu::BodyPair& pair, const NarrowPhase& narrow) {
   const gpu::ObjectInfo& a = objects_[pair.a];
   const gpu::ObjectInfo& b = objects_[pair.b];

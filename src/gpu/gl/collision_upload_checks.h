@@ -26,7 +26,7 @@ struct CollisionCapacities {
 // Throws Error naming the first array or element that does not fit: a face with a node out of
 // range, an object whose faces or rows lie outside the arrays or whose leaf boxes are not the
 // 64 at 64 x body, a leaf box whose rows lie outside its body's or list another box or a face
-// of another body (or one whose face_boxes bit is not set), a body pair that is not a < b <
+// of another body (or one whose face_boxes bit is not set), a body pair that is not a <= b <
 // bodies, a BVH that is not a tree over its body's faces in preorder right after the previous
 // body's (a child before its parent, a parent that does not name it, a face missing or listed
 // twice), or deeper than its BodyBvh says or than the traversal stack holds.

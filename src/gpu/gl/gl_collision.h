@@ -2,8 +2,8 @@
 // Collision detection on the GPU: the paper's compute shaders 0 (BBUpdate), 1 (BBCollision) and
 // 2 (Triangle-Triangle Intersection) over the positions a GlSimulation holds, the paper's
 // all-pairs baseline, and two broad phases beyond the paper (octree-compact, bvh), for every
-// pair of different bodies. Same pairs as the CPU backend (src/cpu/cpu_collision.*), which runs
-// the same algorithms on the same floats.
+// pair of different bodies and, with self-collision, each body with itself. Same pairs as the CPU
+// backend (src/cpu/cpu_collision.*), which runs the same algorithms on the same floats.
 //
 // One pass (detect):
 //   reset    face flags (SSBO 5) and counters (SSBO 23) cleared with glClearBufferData;
