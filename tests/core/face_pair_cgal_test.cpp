@@ -102,15 +102,7 @@ class SharedVertexPairs {
   // v or not.
   Pair coplanar_fan() {
     Pair pair = general();
-    const bool diagonal = coin_(rng_);
-    for (Tri& t : pair) {
-      for (vec3& x : t) {
-        if (diagonal)
-          x.y = x.x;
-        else
-          x.z = 0.0f;
-      }
-    }
+    test::flatten_to_exact_plane(pair[0], pair[1], coin_(rng_));
     return pair;
   }
 

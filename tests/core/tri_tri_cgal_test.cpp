@@ -112,15 +112,7 @@ class PairGenerator {
   // Both in an exactly representable plane: z = 0 or y = x.
   Pair coplanar() {
     Pair pair{triangle(), triangle()};
-    const bool diagonal = coin_(rng_);
-    for (Tri& t : pair) {
-      for (vec3& x : t) {
-        if (diagonal)
-          x.y = x.x;
-        else
-          x.z = 0.0f;
-      }
-    }
+    test::flatten_to_exact_plane(pair[0], pair[1], coin_(rng_));
     return pair;
   }
 

@@ -30,6 +30,19 @@ inline CgalKernel::Point_3 to_cgal(const glm::vec3& v) {  // float -> double is 
   return {static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z)};
 }
 
+/// Moves p and q into a plane that float represents exactly: y = x when `diagonal`, else z = 0,
+/// so that they are coplanar exactly (random coplanar pairs for the oracles).
+inline void flatten_to_exact_plane(Tri& p, Tri& q, bool diagonal) {
+  for (Tri* t : {&p, &q}) {
+    for (glm::vec3& x : *t) {
+      if (diagonal)
+        x.y = x.x;
+      else
+        x.z = 0.0f;
+    }
+  }
+}
+
 /// Triangles p and q in hexadecimal floats (exact, to paste into a failing case).
 inline std::string describe_pair(const Tri& p, const Tri& q) {
   std::ostringstream text;
