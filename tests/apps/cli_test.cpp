@@ -12,6 +12,7 @@
 #include "support/mesh_fixtures.h"
 
 #include "support/cli_runner.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -22,19 +23,11 @@ using deformcd::test::run_cli;
 
 class CliTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("deformcd_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   void write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;
   }
-  fs::path dir_;
+  deformcd::test::TempDir dir_;
 };
 
 TEST_F(CliTest, InfoJsonReportsCounts) {
@@ -93,7 +86,7 @@ TEST_F(CliTest, TetraOnOpenSurfaceFailsAndWritesNothing) {
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("open.off"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("boundary edge"), std::string::npos) << r.output;
-  for (const auto& entry : fs::directory_iterator(dir_)) {
+  for (const auto& entry : fs::directory_iterator(dir_.path())) {
     EXPECT_EQ(entry.path().filename(), "open.off") << "left behind: " << entry.path();
   }
 }

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -35,16 +36,8 @@ std::vector<std::string> lines_of(const fs::path& file) {
 
 class CollisionCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("deformcd_collision_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  deformcd::test::TempDir dir_;
 };
 
 TEST_F(CollisionCli, ContactsFileHasOneSortedLinePerFrameAndIsTheSameForEveryBroadPhase) {
@@ -113,7 +106,7 @@ TEST_F(CollisionCli, BadContactsPathFailsBeforeRunningAndLeavesNothing) {
                            path("missing_dir/out.jsonl"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("missing_dir/out.jsonl"), std::string::npos) << r.output;
-  EXPECT_TRUE(fs::is_empty(dir_));
+  EXPECT_TRUE(fs::is_empty(dir_.path()));
 }
 
 TEST_F(CollisionCli, UnknownBroadPhaseListsTheValidOnes) {

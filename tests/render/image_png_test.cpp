@@ -8,6 +8,7 @@
 
 #include "deformcd/error.h"
 #include "deformcd/render/image.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -30,15 +31,7 @@ RgbaImage gradient(int width, int height) {
 
 class PngFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("deformcd_png_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  test::TempDir dir_;
 };
 
 TEST(Png, EncodeDecodeRoundTripsEveryPixel) {
@@ -75,7 +68,7 @@ TEST_F(PngFiles, WriteThenReadGivesTheSameImageAndNoTemporaries) {
   EXPECT_EQ(back.height, 30);
   EXPECT_EQ(back.pixels, image.pixels);
   int entries = 0;
-  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir_))
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir_.path()))
     ++entries;
   EXPECT_EQ(entries, 1);
 }
@@ -88,7 +81,7 @@ TEST_F(PngFiles, WritingIntoAMissingDirectoryNamesTheFileAndLeavesNothing) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
   }
-  EXPECT_TRUE(fs::is_empty(dir_));
+  EXPECT_TRUE(fs::is_empty(dir_.path()));
 }
 
 TEST_F(PngFiles, ReadingAMissingFileNamesIt) {

@@ -13,6 +13,7 @@
 #include "gl/gl_test_context.h"
 #include "pixel_checks.h"
 #include "support/cli_runner.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -24,14 +25,6 @@ using test::run_cli;
 
 class RenderCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("deformcd_render_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   [[nodiscard]] std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
   // True when the run failed only because this machine has no GL 4.3 (then the test skips, or
@@ -40,7 +33,7 @@ class RenderCli : public ::testing::Test {
     return r.status == 1 && r.output.find("needs an OpenGL 4.3 context") != std::string::npos;
   }
 
-  fs::path dir_;
+  test::TempDir dir_;
 };
 
 // Phase 2 (bunny and dragon), the smaller scene: the renderer itself is checked on phase 1 in
@@ -82,7 +75,7 @@ TEST_F(RenderCli, AFileInTheWayOfOutIsAClearErrorAndNothingIsWritten) {
   std::stringstream text;
   text << in.rdbuf();
   EXPECT_EQ(text.str(), "keep me");
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_.path()), fs::directory_iterator()), 1);
 }
 
 TEST_F(RenderCli, VideoWithoutFfmpegOnPathFailsClearlyBeforeWritingAnything) {

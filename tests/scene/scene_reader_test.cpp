@@ -7,6 +7,7 @@
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "support/mesh_fixtures.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -16,14 +17,9 @@ namespace {
 class SceneReaderTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("deformcd_scene_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
     fs::create_directories(dir_ / "models");
     write_tetgen(test::unit_cube(), dir_ / "models" / "cube");
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   fs::path write(const std::string& text) const {
     const fs::path file = dir_ / "scene.json";
@@ -38,7 +34,7 @@ class SceneReaderTest : public ::testing::Test {
     }
     return "";
   }
-  fs::path dir_;
+  test::TempDir dir_;
 };
 
 TEST_F(SceneReaderTest, ReadsEveryKey) {
