@@ -14,6 +14,7 @@
 #include "core/collision/broad_phase.h"
 #include "core/collision/tri_tri_intersection.h"
 #include "cpu/cpu_simulation.h"
+#include "support/face_box_overlaps.h"
 #include "support/world_fixtures.h"
 
 namespace deformcd::cpu {
@@ -103,26 +104,6 @@ std::string difference(const std::vector<gpu::FacePair>& x, const std::vector<gp
   return "";
 }
 
-// Face pairs of different bodies whose exact bounding boxes overlap.
-std::uint64_t face_box_overlaps(const WorldState& w) {
-  const auto box = [&](std::uint32_t face) {
-    gpu::Box b = collision::empty_box();
-    for (std::uint32_t n : {w.faces[face].a, w.faces[face].b, w.faces[face].c})
-      collision::grow_box(b, glm::vec3(w.positions[n]));
-    return b;
-  };
-  std::uint64_t count = 0;
-  for (const gpu::BodyPair& bp : w.body_pairs) {
-    const gpu::ObjectInfo& a = w.objects[bp.a];
-    const gpu::ObjectInfo& b = w.objects[bp.b];
-    for (std::uint32_t i = a.face_offset; i < a.face_offset + a.face_count; ++i) {
-      for (std::uint32_t j = b.face_offset; j < b.face_offset + b.face_count; ++j)
-        count += collision::boxes_overlap(box(i), box(j)) ? 1u : 0u;
-    }
-  }
-  return count;
-}
-
 // Mirrors the nodes of `body` below its middle height through its middle x plane, then those
 // left of it through its middle z plane: quarters turn inside out (their surfaces crossing the
 // others'), so the siblings of a tree built on the unfolded shape overlap everywhere.
@@ -201,7 +182,7 @@ TEST(CpuCollision, CandidatesCountTheTriangleTestsRun) {
   // The same first-box-pair rule picks the same tests; only the sweep that finds them differs.
   EXPECT_EQ(compact.counters.candidates, octree.counters.candidates);
   // One face per leaf: the bvh tests exactly the pairs whose own boxes overlap.
-  EXPECT_EQ(bvh.counters.candidates, face_box_overlaps(w));
+  EXPECT_EQ(bvh.counters.candidates, test::face_box_overlaps(w));
   EXPECT_LT(bvh.counters.candidates, octree.counters.candidates);
   EXPECT_LT(octree.counters.candidates, brute.counters.candidates);
   EXPECT_GE(bvh.counters.candidates, bvh.counters.face_pairs);

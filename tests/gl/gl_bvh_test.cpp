@@ -18,6 +18,7 @@
 #include "deformcd/error.h"
 #include "gl_test_context.h"
 #include "gpu/gl/gl_collision.h"
+#include "support/face_box_overlaps.h"
 
 namespace deformcd::gl {
 namespace {
@@ -38,27 +39,6 @@ WorldState deform(Backends& gl, WorldState world, int substeps) {
   test::run_substeps(gl.simulation, test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}), substeps);
   gl.simulation.download_positions(world.positions);
   return world;
-}
-
-gpu::Box face_box(const WorldState& w, std::uint32_t face) {
-  gpu::Box b = collision::empty_box();
-  for (std::uint32_t n : {w.faces[face].a, w.faces[face].b, w.faces[face].c})
-    collision::grow_box(b, glm::vec3(w.positions[n]));
-  return b;
-}
-
-// Face pairs of different bodies whose boxes overlap: what the bvh broad phase hands on.
-std::uint32_t overlapping_face_boxes(const WorldState& w) {
-  std::uint32_t count = 0;
-  for (const gpu::BodyPair& pair : w.body_pairs) {
-    const gpu::ObjectInfo& a = w.objects[pair.a];
-    const gpu::ObjectInfo& b = w.objects[pair.b];
-    for (std::uint32_t fa = a.face_offset; fa < a.face_offset + a.face_count; ++fa) {
-      for (std::uint32_t fb = b.face_offset; fb < b.face_offset + b.face_count; ++fb)
-        count += collision::boxes_overlap(face_box(w, fa), face_box(w, fb)) ? 1u : 0u;
-    }
-  }
-  return count;
 }
 
 std::array<std::uint32_t, 8> bits(const gpu::Box& b) {
@@ -103,7 +83,7 @@ TEST_F(GlBvhTest, CandidatesAreThePairsEachBroadPhaseTests) {
     return gl.collision.counters().candidates;
   };
   const std::uint32_t bvh = candidates(BroadPhase::kBvh);
-  EXPECT_EQ(bvh, overlapping_face_boxes(world));
+  EXPECT_EQ(bvh, test::face_box_overlaps(world));
   const std::uint32_t octree = candidates(BroadPhase::kOctree);
   EXPECT_EQ(candidates(BroadPhase::kOctreeCompact), octree);
   std::uint32_t all = 0;
