@@ -66,13 +66,17 @@ TriTriResult tri_tri_intersect_sharing_vertex(vec3 p[3], vec3 q[3]) {
 
 // face_pair_intersect, reading the positions from `positions` (collision/surface.glsl).
 TriTriResult face_pair_intersect(Face fa, Face fb) {
+  const TriTriResult none = TriTriResult(false, false, vec3(0.0), vec3(0.0));
+  vec3 p[3] = vec3[3](positions[fa.a].xyz, positions[fa.b].xyz, positions[fa.c].xyz);
+  vec3 q[3] = vec3[3](positions[fb.a].xyz, positions[fb.b].xyz, positions[fb.c].xyz);
+  // The exact box test first (most pairs): faces sharing a node have touching boxes.
+  if (!tri_tri_boxes_touch(p, q)) return none;
   const SharedNodes common_nodes = shared_nodes(fa, fb);
-  if (common_nodes.count >= 2) return TriTriResult(false, false, vec3(0.0), vec3(0.0));
-  vec3 p[3];
-  vec3 q[3];
+  if (common_nodes.count >= 2) return none;
+  if (common_nodes.count == 0) return tri_tri_intersect(p, q);
   for (int i = 0; i < 3; ++i) {
     p[i] = positions[face_corner(fa, (common_nodes.corner_a + i) % 3)].xyz;
     q[i] = positions[face_corner(fb, (common_nodes.corner_b + i) % 3)].xyz;
   }
-  return common_nodes.count == 1 ? tri_tri_intersect_sharing_vertex(p, q) : tri_tri_intersect(p, q);
+  return tri_tri_intersect_sharing_vertex(p, q);
 }

@@ -69,13 +69,20 @@ TriTriResult tri_tri_intersect_sharing_vertex(const glm::vec3 p[3], const glm::v
 
 TriTriResult face_pair_intersect(const gpu::Face& fa, const gpu::Face& fb,
                                  const glm::vec4* positions) {
+  glm::vec3 p[3] = {glm::vec3(positions[fa.a]), glm::vec3(positions[fa.b]),
+                    glm::vec3(positions[fa.c])};
+  glm::vec3 q[3] = {glm::vec3(positions[fb.a]), glm::vec3(positions[fb.b]),
+                    glm::vec3(positions[fb.c])};
+  // Most pairs a broad phase hands on (all of them for brute force) have boxes apart: that
+  // exact test first, as tri_tri_intersect would, before looking for shared nodes (faces that
+  // share one have touching boxes, so no answer changes).
+  if (!detail::boxes_touch(p, q)) return {};
   const SharedNodes shared = shared_nodes(fa, fb);
   if (shared.count >= 2) return {};
-  glm::vec3 p[3];
-  glm::vec3 q[3];
+  if (shared.count == 0) return tri_tri_intersect(p, q);
   load_rotated(fa, shared.corner_a, positions, p);
   load_rotated(fb, shared.corner_b, positions, q);
-  return shared.count == 1 ? tri_tri_intersect_sharing_vertex(p, q) : tri_tri_intersect(p, q);
+  return tri_tri_intersect_sharing_vertex(p, q);
 }
 
 }  // namespace deformcd::collision

@@ -91,19 +91,6 @@ bool coplanar_overlap(const glm::vec3 a[3], const glm::vec3 b[3], const glm::vec
          point_in_triangle_2d(b2[0], a2, area_tol);
 }
 
-// Whether the closed bounding boxes of p and q share a point. min/max do not round, so this is
-// exact on the float coordinates.
-bool boxes_touch(const glm::vec3 p[3], const glm::vec3 q[3]) {
-  for (int c = 0; c < 3; ++c) {
-    const float p_min = std::min(std::min(p[0][c], p[1][c]), p[2][c]);
-    const float p_max = std::max(std::max(p[0][c], p[1][c]), p[2][c]);
-    const float q_min = std::min(std::min(q[0][c], q[1][c]), q[2][c]);
-    const float q_max = std::max(std::max(q[0][c], q[1][c]), q[2][c]);
-    if (p_max < q_min || q_max < p_min) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]) {

@@ -93,6 +93,19 @@ inline bool point_in_triangle_2d(const glm::vec2& x, const glm::vec2 t[3], float
   return !(has_negative && has_positive);
 }
 
+// Whether the closed bounding boxes of p and q share a point. min/max do not round, so this is
+// exact on the float coordinates.
+inline bool boxes_touch(const glm::vec3 p[3], const glm::vec3 q[3]) {
+  for (int c = 0; c < 3; ++c) {
+    const float p_min = std::min(std::min(p[0][c], p[1][c]), p[2][c]);
+    const float p_max = std::max(std::max(p[0][c], p[1][c]), p[2][c]);
+    const float q_min = std::min(std::min(q[0][c], q[1][c]), q[2][c]);
+    const float q_max = std::max(std::max(q[0][c], q[1][c]), q[2][c]);
+    if (p_max < q_min || q_max < p_min) return false;
+  }
+  return true;
+}
+
 // The two coordinates kept when projecting onto the coordinate plane where the normal n is
 // largest (the projection with the least shrinkage).
 inline void projection_axes(const glm::vec3& n, int& u, int& v) {
