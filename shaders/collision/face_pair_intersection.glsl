@@ -2,6 +2,10 @@
 // src/core/collision/face_pair_intersection.{h,cpp} line for line (the why is there): faces
 // sharing an edge are never a contact; faces sharing one node are when the edge opposite it of
 // one meets the other; faces sharing no node take tri_tri_intersect. Change both together.
+// The same operations on the same values as the C++, but each costly function called from one
+// place (tri_tri_intersect_sharing_vertex folded into face_pair_intersect, loops over the two
+// directions): llvmpipe compiles every call in full and runs divergent branches under a mask,
+// so each extra copy slows every invocation (GL brute force, phase 2: 880 -> 500 ms a frame).
 #include "collision/surface.glsl"
 #include "collision/tri_tri_intersection.glsl"
 #include "common/layout.glsl"
@@ -48,20 +52,16 @@ bool segment_triangle_meet(vec3 s0, vec3 s1, vec3 t[3]) {
   if (tri_tri_same_strict_sign(d0, d1)) return false;
 
   // On the plane: both ends (crossing an edge, or wholly inside), else the one point on it, an
-  // end or the crossing (d0 != d1 there).
-  if (d0 == 0.0 && d1 == 0.0) return tri_tri_segment_in_plane_meets_triangle(s0, s1, t, n, size);
-  precise float f = d0 / (d0 - d1);
-  precise vec3 crossing = s0 + e * f;
-  const vec3 x = d0 == 0.0 ? s0 : (d1 == 0.0 ? s1 : crossing);
-  return tri_tri_segment_in_plane_meets_triangle(x, x, t, n, size);
-}
-
-// tri_tri_intersect_sharing_vertex: p[0] == q[0].
-TriTriResult tri_tri_intersect_sharing_vertex(vec3 p[3], vec3 q[3]) {
-  if (!segment_triangle_meet(p[1], p[2], q) && !segment_triangle_meet(q[1], q[2], p)) {
-    return TriTriResult(false, false, vec3(0.0), vec3(0.0));
+  // end or the crossing (d0 != d1 there). One call: llvmpipe compiles each call in full.
+  vec3 x0 = s0;
+  vec3 x1 = s1;
+  if (d0 != 0.0 || d1 != 0.0) {
+    precise float f = d0 / (d0 - d1);
+    precise vec3 crossing = s0 + e * f;
+    x0 = d0 == 0.0 ? s0 : (d1 == 0.0 ? s1 : crossing);
+    x1 = x0;
   }
-  return tri_tri_intersect(p, q);
+  return tri_tri_segment_in_plane_meets_triangle(x0, x1, t, n, size);
 }
 
 // face_pair_intersect, reading the positions from `positions` (collision/surface.glsl).
@@ -73,10 +73,27 @@ TriTriResult face_pair_intersect(Face fa, Face fb) {
   if (!tri_tri_boxes_touch(p, q)) return none;
   const SharedNodes common_nodes = shared_nodes(fa, fb);
   if (common_nodes.count >= 2) return none;
-  if (common_nodes.count == 0) return tri_tri_intersect(p, q);
-  for (int i = 0; i < 3; ++i) {
-    p[i] = positions[face_corner(fa, (common_nodes.corner_a + i) % 3)].xyz;
-    q[i] = positions[face_corner(fb, (common_nodes.corner_b + i) % 3)].xyz;
+  if (common_nodes.count == 1) {
+    const int a0 = common_nodes.corner_a;
+    const int b0 = common_nodes.corner_b;
+    p = vec3[3](positions[face_corner(fa, a0)].xyz, positions[face_corner(fa, (a0 + 1) % 3)].xyz,
+                positions[face_corner(fa, (a0 + 2) % 3)].xyz);
+    q = vec3[3](positions[face_corner(fb, b0)].xyz, positions[face_corner(fb, (b0 + 1) % 3)].xyz,
+                positions[face_corner(fb, (b0 + 2) % 3)].xyz);
+    // p's opposite edge against q, then q's against p, from one call site.
+    bool meet = false;
+    for (int k = 0; k < 2 && !meet; ++k) {
+      vec3 t[3];
+      if (k == 0) {
+        t = q;
+      } else {
+        t = p;
+      }
+      meet = segment_triangle_meet(k == 0 ? p[1] : q[1], k == 0 ? p[2] : q[2], t);
+    }
+    if (!meet) return none;
   }
-  return tri_tri_intersect_sharing_vertex(p, q);
+  // One call site of tri_tri_intersect (tri_tri_intersect_sharing_vertex inlined): llvmpipe
+  // compiles each call in full, and a second copy made brute force 3x slower.
+  return tri_tri_intersect(p, q);
 }

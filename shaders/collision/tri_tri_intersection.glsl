@@ -315,9 +315,17 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
   // line: each triangle's part on the other's plane must meet the other triangle there, in 2D.
   const bool snapped = da[0] == 0.0 || da[1] == 0.0 || da[2] == 0.0 || db[0] == 0.0 ||
                        db[1] == 0.0 || db[2] == 0.0;
-  if (snapped && (!tri_tri_segment_in_plane_meets_triangle(ib.x_min, ib.x_max, a, na, size) ||
-                  !tri_tri_segment_in_plane_meets_triangle(ia.x_min, ia.x_max, b, nb, size))) {
-    return result;
+  // b's part against a, then a's against b (one call site: llvmpipe compiles each call in full).
+  for (int k = 0; snapped && k < 2; ++k) {
+    vec3 t[3];
+    if (k == 0) {
+      t = a;
+    } else {
+      t = b;
+    }
+    const vec3 s0 = k == 0 ? ib.x_min : ia.x_min;
+    const vec3 s1 = k == 0 ? ib.x_max : ia.x_max;
+    if (!tri_tri_segment_in_plane_meets_triangle(s0, s1, t, k == 0 ? na : nb, size)) return result;
   }
   result.intersect = true;
   const bool touching = t_lo > t_hi;  // a gap inside the tolerance: one contact point
