@@ -11,7 +11,7 @@
 
 #include "cpu/cpu_simulation.h"
 #include "deformcd/io.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 #ifdef DEFORMCD_HAS_GL
 #include "deformcd/gl/context.h"
 #include "gpu/gl/gl_simulation.h"
@@ -21,7 +21,7 @@ namespace {
 
 using namespace deformcd;
 
-WorldState model_world(const std::string& name) {
+SimulationState model_world(const std::string& name) {
   BodyOptions options;
   options.stiffness = 1.0e4;
   BodyInit init;
@@ -32,10 +32,10 @@ WorldState model_world(const std::string& name) {
   // A small squash so that every spring and tetrahedron carries a force.
   for (glm::vec4& p : init.body.positions)
     p.y *= 0.95f;
-  return assemble_world({init});
+  return assemble_simulation({init});
 }
 
-void run(benchmark::State& state, sim::SimulationBackend& backend, const WorldState& world) {
+void run(benchmark::State& state, sim::SimulationBackend& backend, const SimulationState& world) {
   backend.upload(world);
   const sim::SubstepConstants constants{1.0e-3f, glm::vec3(0.0f, -9.81f, 0.0f), 0.9998f};
   backend.substep(constants);  // warm-up: shader compilation, first touch of the buffers

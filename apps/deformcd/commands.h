@@ -20,6 +20,10 @@ Command add_tetra_command(CLI::App& app);
 /// [--contacts FILE] [--positions-out FILE]`.
 Command add_run_command(CLI::App& app);
 
+/// `deformcd collide A.off B.stl ... [--self] [--backend gl|cpu|auto] [--broadphase METHOD]
+/// [--threads T] [--json FILE]`.
+Command add_collide_command(CLI::App& app);
+
 /// `deformcd bench SCENE... [--frames N] [--backend gl,cpu] [--methods brute,octree]
 /// [--repeat R] [--json FILE] [--csv FILE] [--plot FILE.png]`.
 Command add_bench_command(CLI::App& app);

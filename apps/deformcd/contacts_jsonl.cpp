@@ -33,7 +33,12 @@ void append_point(std::string& out, const glm::vec3& p) {
 }  // namespace
 
 std::string contacts_json_line(int frame, const std::vector<Contact>& contacts) {
-  std::string out = "{\"frame\":" + std::to_string(frame) + ",\"contacts\":[";
+  return "{\"frame\":" + std::to_string(frame) + ",\"contacts\":" + contacts_json_array(contacts) +
+         "}\n";
+}
+
+std::string contacts_json_array(const std::vector<Contact>& contacts) {
+  std::string out = "[";
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
     if (i > 0) out += ',';
@@ -51,7 +56,7 @@ std::string contacts_json_line(int frame, const std::vector<Contact>& contacts) 
     append_point(out, c.segment[1]);
     out += "]}";
   }
-  out += "]}\n";
+  out += "]";
   return out;
 }
 

@@ -16,4 +16,7 @@ namespace deformcd::app {
 /// One line, ending in '\n'.
 [[nodiscard]] std::string contacts_json_line(int frame, const std::vector<Contact>& contacts);
 
+/// The JSON array of the contacts, as in a line: [{"a":...,"b":...,"segment":...}, ...].
+[[nodiscard]] std::string contacts_json_array(const std::vector<Contact>& contacts);
+
 }  // namespace deformcd::app

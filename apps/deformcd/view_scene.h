@@ -9,7 +9,7 @@
 #include "deformcd/body.h"
 #include "deformcd/collision.h"
 #include "deformcd/scene.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 
 namespace deformcd::app {
 

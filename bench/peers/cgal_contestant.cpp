@@ -18,40 +18,40 @@ using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t>;
 
 class CgalContestant final : public PeerContestant {
  public:
-  explicit CgalContestant(const WorldState& state) : state_(state) {}
+  explicit CgalContestant(const std::vector<CollisionMesh>& meshes)
+      : meshes_{meshes[0], meshes[1]} {}
 
-  std::size_t detect(const std::vector<glm::vec4>& positions) override {
-    std::vector<Kernel::Triangle_3> triangles(state_.faces.size());
+  std::size_t detect(const FramePositions& positions) override {
+    std::vector<Kernel::Triangle_3> triangles[2];
     std::vector<Box> boxes[2];
-    for (int b = 0; b < 2; ++b) {
-      const gpu::ObjectInfo& o = state_.objects[b];
-      boxes[b].reserve(o.face_count);
-      for (std::uint32_t f = o.face_offset; f < o.face_offset + o.face_count; ++f) {
-        const gpu::Face& face = state_.faces[f];
-        const auto point = [&](std::uint32_t n) {
-          return Kernel::Point_3(positions[n].x, positions[n].y, positions[n].z);
-        };
-        triangles[f] = Kernel::Triangle_3(point(face.a), point(face.b), point(face.c));
-        boxes[b].emplace_back(triangles[f].bbox(), f);
+    for (int m = 0; m < 2; ++m) {
+      const std::vector<glm::vec3>& p = positions[m];
+      const auto point = [&](std::uint32_t v) { return Kernel::Point_3(p[v].x, p[v].y, p[v].z); };
+      triangles[m].reserve(meshes_[m].triangles.size());
+      boxes[m].reserve(meshes_[m].triangles.size());
+      for (const Triangle& t : meshes_[m].triangles) {
+        triangles[m].emplace_back(point(t[0]), point(t[1]), point(t[2]));
+        boxes[m].emplace_back(triangles[m].back().bbox(),
+                              static_cast<std::uint32_t>(triangles[m].size() - 1));
       }
     }
     std::size_t found = 0;
-    CGAL::box_intersection_d(boxes[0].begin(), boxes[0].end(), boxes[1].begin(), boxes[1].end(),
-                             [&](const Box& a, const Box& b) {
-                               if (CGAL::do_intersect(triangles[a.info()], triangles[b.info()]))
-                                 ++found;
-                             });
+    CGAL::box_intersection_d(
+        boxes[0].begin(), boxes[0].end(), boxes[1].begin(), boxes[1].end(),
+        [&](const Box& a, const Box& b) {
+          if (CGAL::do_intersect(triangles[0][a.info()], triangles[1][b.info()])) ++found;
+        });
     return found;
   }
 
  private:
-  const WorldState& state_;
+  CollisionMesh meshes_[2];
 };
 
 }  // namespace
 
-std::unique_ptr<PeerContestant> make_cgal_contestant(const WorldState& state) {
-  return std::make_unique<CgalContestant>(state);
+std::unique_ptr<PeerContestant> make_cgal_contestant(const std::vector<CollisionMesh>& meshes) {
+  return std::make_unique<CgalContestant>(meshes);
 }
 
 }  // namespace deformcd::bench

@@ -1,33 +1,34 @@
 #include "contact_frames.h"
 
-#include "cpu/cpu_collision.h"
-#include "cpu/cpu_simulation.h"
+#include <algorithm>
+
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
+#include "deformcd/world.h"
 
 namespace deformcd::bench {
 
 ContactFrames contact_frames(const std::string& name, int frames, int keep) {
   const Scene scene = read_scene(std::string(DEFORMCD_SOURCE_DIR) + "/scenes/" + name + ".json");
+  World world(make_scene_bodies(scene, read_tetgen, frames), step_settings(scene.settings),
+              {.backend = BackendKind::kCpu, .broadphase = BroadPhase::kBvh});
+  if (world.body_count() < 2) throw Error("a peer comparison needs two bodies");
   ContactFrames out;
-  out.state = assemble_world(make_scene_bodies(scene, read_tetgen, frames));
-  const StepSettings settings = step_settings(scene.settings);
-  const float h = settings.dt / static_cast<float>(settings.substeps);
-  const sim::SubstepConstants constants{h, settings.gravity,
-                                        std::exp(-settings.velocity_damping * h)};
-  cpu::CpuSimulation sim;
-  sim.upload(out.state);
-  cpu::CpuCollision collision(sim);
-  collision.upload(out.state);
-  std::vector<std::vector<glm::vec4>> all;
+  for (std::size_t b = 0; b < 2; ++b) {
+    CollisionMesh mesh = world.detector().mesh(b);
+    mesh.self_collision = false;
+    out.meshes.push_back(std::move(mesh));
+  }
+  std::vector<FramePositions> all;
   std::vector<std::size_t> counts;
   for (int f = 0; f < frames; ++f) {
-    for (int s = 0; s < settings.substeps; ++s)
-      sim.substep(constants);
-    collision.detect(BroadPhase::kBvh);  // the fastest; every method finds the same pairs
-    const std::uint32_t found = collision.counters().face_pairs;
+    world.step();
+    const std::vector<Contact> contacts = world.contacts();
+    const auto found = static_cast<std::size_t>(
+        std::count_if(contacts.begin(), contacts.end(),
+                      [](const Contact& c) { return c.a.body == 0 && c.b.body == 1; }));
     if (found == 0) continue;
-    all.push_back(sim.state().positions);
+    all.push_back({world.positions(0), world.positions(1)});
     counts.push_back(found);
   }
   const std::size_t n = all.size();

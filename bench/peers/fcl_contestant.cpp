@@ -15,30 +15,26 @@ using Model = fcl::BVHModel<fcl::AABBd>;
 
 class FclContestant final : public PeerContestant {
  public:
-  explicit FclContestant(const WorldState& state) : state_(state) {
-    for (int b = 0; b < 2; ++b) {
-      const gpu::ObjectInfo& o = state.objects[b];
+  FclContestant(const std::vector<CollisionMesh>& meshes, const FramePositions& rest) {
+    for (int m = 0; m < 2; ++m) {
       std::vector<fcl::Triangle> triangles;
-      for (std::uint32_t f = o.face_offset; f < o.face_offset + o.face_count; ++f) {
-        const gpu::Face& face = state.faces[f];
-        triangles.emplace_back(face.a - o.node_offset, face.b - o.node_offset,
-                               face.c - o.node_offset);
-      }
+      for (const Triangle& t : meshes[m].triangles)
+        triangles.emplace_back(t[0], t[1], t[2]);
       auto model = std::make_shared<Model>();
       model->beginModel();
-      model->addSubModel(points(state.positions, b), triangles);
+      model->addSubModel(points(rest[m]), triangles);
       model->endModel();
-      models_[b] = model;
-      objects_[b] = std::make_unique<fcl::CollisionObjectd>(model);
+      models_[m] = model;
+      objects_[m] = std::make_unique<fcl::CollisionObjectd>(model);
     }
   }
 
-  std::size_t detect(const std::vector<glm::vec4>& positions) override {
-    for (int b = 0; b < 2; ++b) {
-      models_[b]->beginUpdateModel();
-      models_[b]->updateSubModel(points(positions, b));
-      models_[b]->endUpdateModel(true, true);  // refit, bottom-up
-      objects_[b]->computeAABB();
+  std::size_t detect(const FramePositions& positions) override {
+    for (int m = 0; m < 2; ++m) {
+      models_[m]->beginUpdateModel();
+      models_[m]->updateSubModel(points(positions[m]));
+      models_[m]->endUpdateModel(true, true);  // refit, bottom-up
+      objects_[m]->computeAABB();
     }
     fcl::CollisionRequestd request(100000000, true);  // every contact, with contact points
     fcl::CollisionResultd result;
@@ -47,25 +43,23 @@ class FclContestant final : public PeerContestant {
   }
 
  private:
-  std::vector<fcl::Vector3d> points(const std::vector<glm::vec4>& positions, int body) const {
-    const gpu::ObjectInfo& o = state_.objects[body];
+  static std::vector<fcl::Vector3d> points(const std::vector<glm::vec3>& positions) {
     std::vector<fcl::Vector3d> out;
-    out.reserve(o.node_count);
-    for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
-      out.emplace_back(positions[i].x, positions[i].y, positions[i].z);
-    }
+    out.reserve(positions.size());
+    for (const glm::vec3& p : positions)
+      out.emplace_back(p.x, p.y, p.z);
     return out;
   }
 
-  const WorldState& state_;
   std::shared_ptr<Model> models_[2];
   std::unique_ptr<fcl::CollisionObjectd> objects_[2];
 };
 
 }  // namespace
 
-std::unique_ptr<PeerContestant> make_fcl_contestant(const WorldState& state) {
-  return std::make_unique<FclContestant>(state);
+std::unique_ptr<PeerContestant> make_fcl_contestant(const std::vector<CollisionMesh>& meshes,
+                                                    const FramePositions& rest) {
+  return std::make_unique<FclContestant>(meshes, rest);
 }
 
 }  // namespace deformcd::bench

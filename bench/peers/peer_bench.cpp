@@ -3,7 +3,10 @@
 // (scripts/make_models.sh --fine), of scenes/scaling/phase1_50k (about 50k faces per body);
 // positions replayed on the CPU backend, each contestant finding every intersecting
 // surface-triangle pair between the two bodies.
-//   deformcd/<method>: the CPU backend's collision pass (box update or refit included).
+//   deformcd-<method>: a public deformcd::Detector (CPU backend) over the two meshes, reading the
+//        caller's xyz arrays in place: each frame's positions are written into them (untimed, as
+//        the caller's simulation would), then detect() and contacts() are timed (box update or
+//        refit included). "/threads:1" runs it on one thread, "/threads:all" on every core.
 //   fcl: FCL 0.7 BVHModel<AABB> per body, refitted each frame (beginUpdateModel /
 //        updateSubModel / endUpdateModel), collide() with exhaustive contacts.
 //   cgal: CGAL box_intersection_d over the faces' boxes, then do_intersect on Triangle_3 (Epick).
@@ -21,8 +24,7 @@
 #include <vector>
 
 #include "contact_frames.h"
-#include "cpu/cpu_collision.h"
-#include "cpu/cpu_simulation.h"
+#include "deformcd/detector.h"
 #include "deformcd/error.h"
 #include "deformcd/scene.h"
 #include "peer_contestants.h"
@@ -50,30 +52,32 @@ void report(benchmark::State& state, const bench::ContactFrames& f, std::size_t 
   for (std::size_t c : f.contacts)
     state.counters["replay_contacts"] += static_cast<double>(c);
   state.counters["frames"] = static_cast<double>(f.positions.size());
-  state.counters["faces"] = static_cast<double>(f.state.faces.size());
+  state.counters["faces"] = static_cast<double>(f.face_count());
   // Wall time per frame (one iteration covers every frame): frames per second, inverted.
   state.counters["per_frame"] = benchmark::Counter(
       static_cast<double>(f.positions.size()),
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void deformcd_method(benchmark::State& state, const std::string& scene, BroadPhase method) {
+void deformcd_method(benchmark::State& state, const std::string& scene, BroadPhase method,
+                     int threads) {
   const bench::ContactFrames& f = frames_of(scene);
-  WorldState w = f.state;
-  cpu::CpuSimulation sim;
-  cpu::CpuCollision collision(sim);
-  sim.upload(w);
-  collision.upload(w);
+  Detector detector(f.meshes,
+                    {.backend = BackendKind::kCpu, .broadphase = method, .threads = threads});
+  // The caller's arrays, read in place by every detect().
+  bench::FramePositions current = f.positions.front();
+  for (std::size_t m = 0; m < current.size(); ++m)
+    detector.set_positions(m, std::span<const glm::vec3>(current[m]));
+  detector.prepare();
   std::size_t found = 0;
   for (auto _ : state) {
-    for (const std::vector<glm::vec4>& positions : f.positions) {
+    for (const bench::FramePositions& positions : f.positions) {
       state.PauseTiming();
-      w.positions = positions;
-      sim.upload(w);
+      for (std::size_t m = 0; m < current.size(); ++m)
+        std::copy(positions[m].begin(), positions[m].end(), current[m].begin());
       state.ResumeTiming();
-      collision.detect(method);
-      collision.complete_pass();
-      found += collision.counters().face_pairs;
+      detector.detect();
+      found += detector.counts().contacts;
     }
   }
   report(state, f, found);
@@ -81,10 +85,11 @@ void deformcd_method(benchmark::State& state, const std::string& scene, BroadPha
 
 void peer(benchmark::State& state, const std::string& scene, const std::string& name) {
   const bench::ContactFrames& f = frames_of(scene);
-  std::unique_ptr<bench::PeerContestant> contestant = bench::make_peer(name, f.state);
+  std::unique_ptr<bench::PeerContestant> contestant =
+      bench::make_peer(name, f.meshes, f.positions.front());
   std::size_t found = 0;
   for (auto _ : state) {
-    for (const std::vector<glm::vec4>& positions : f.positions)
+    for (const bench::FramePositions& positions : f.positions)
       found += contestant->detect(positions);
   }
   report(state, f, found);
@@ -122,11 +127,14 @@ void register_all() {
   for (const ComparedScene& scene : scenes) {
     if (!available(scene)) continue;
     for (BroadPhase method : scene.methods) {
-      const std::string name =
-          "contact_frame/" + scene.name + "/deformcd-" + std::string(broadphase_name(method));
-      benchmark::RegisterBenchmark(name.c_str(), deformcd_method, scene.name, method)
-          ->Unit(benchmark::kMillisecond)
-          ->UseRealTime();
+      for (int threads : {1, 0}) {
+        const std::string name = "contact_frame/" + scene.name + "/deformcd-" +
+                                 std::string(broadphase_name(method)) +
+                                 (threads == 1 ? "/threads:1" : "/threads:all");
+        benchmark::RegisterBenchmark(name.c_str(), deformcd_method, scene.name, method, threads)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
+      }
     }
     for (const std::string& p : bench::peer_names()) {
       const std::string name = "contact_frame/" + scene.name + "/" + p;

@@ -5,10 +5,11 @@
 namespace deformcd::bench {
 
 #ifdef DEFORMCD_HAS_FCL
-std::unique_ptr<PeerContestant> make_fcl_contestant(const WorldState& state);
+std::unique_ptr<PeerContestant> make_fcl_contestant(const std::vector<CollisionMesh>& meshes,
+                                                    const FramePositions& rest);
 #endif
 #ifdef DEFORMCD_HAS_CGAL
-std::unique_ptr<PeerContestant> make_cgal_contestant(const WorldState& state);
+std::unique_ptr<PeerContestant> make_cgal_contestant(const std::vector<CollisionMesh>& meshes);
 #endif
 
 std::vector<std::string> peer_names() {
@@ -22,13 +23,15 @@ std::vector<std::string> peer_names() {
   return names;
 }
 
-std::unique_ptr<PeerContestant> make_peer(const std::string& name, const WorldState& state) {
-  if (state.objects.size() < 2) throw Error("a peer comparison needs two bodies");
+std::unique_ptr<PeerContestant> make_peer(const std::string& name,
+                                          const std::vector<CollisionMesh>& meshes,
+                                          const FramePositions& rest) {
+  if (meshes.size() < 2 || rest.size() < 2) throw Error("a peer comparison needs two meshes");
 #ifdef DEFORMCD_HAS_FCL
-  if (name == "fcl") return make_fcl_contestant(state);
+  if (name == "fcl") return make_fcl_contestant(meshes, rest);
 #endif
 #ifdef DEFORMCD_HAS_CGAL
-  if (name == "cgal") return make_cgal_contestant(state);
+  if (name == "cgal") return make_cgal_contestant(meshes);
 #endif
   throw Error("peer '" + name + "' is not in this build");
 }

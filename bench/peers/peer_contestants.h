@@ -1,28 +1,29 @@
 #pragma once
-// The peer libraries of the comparison, behind one small interface: given every node position
-// of a frame, find the intersecting surface-triangle pairs between body 0 and body 1.
+// The peer libraries of the comparison, behind one small interface: given each mesh's vertex
+// positions of a frame, find the intersecting triangle pairs between mesh 0 and mesh 1.
 
 #include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "deformcd/world_state.h"
+#include "contact_frames.h"
 
 namespace deformcd::bench {
 
 class PeerContestant {
  public:
   virtual ~PeerContestant() = default;
-  /// Intersecting face pairs between the first two bodies at these node positions.
-  virtual std::size_t detect(const std::vector<glm::vec4>& positions) = 0;
+  /// Intersecting triangle pairs between mesh 0 and mesh 1 at these positions.
+  virtual std::size_t detect(const FramePositions& positions) = 0;
 };
 
 /// The peers this build has ("fcl", "cgal"), each only when found at configure time.
 [[nodiscard]] std::vector<std::string> peer_names();
 
-/// The peer `name` set up for `state`'s first two bodies (topology, rest positions).
+/// The peer `name` set up for the two meshes, its structures built on `rest`.
 [[nodiscard]] std::unique_ptr<PeerContestant> make_peer(const std::string& name,
-                                                        const WorldState& state);
+                                                        const std::vector<CollisionMesh>& meshes,
+                                                        const FramePositions& rest);
 
 }  // namespace deformcd::bench

@@ -23,7 +23,8 @@ enum Binding : std::uint32_t {
   kCollisionResult = 5,  ///< uint per face: nonzero when the face collides
   kFaceNormal = 6,       ///< glm::vec4 per surface face (unit normal, w = 0)
   kFaceInfo = 7,         ///< Face per surface face
-  kObjectInfo = 8,       ///< ObjectInfo per body
+  kObjectInfo = 8,       ///< ObjectInfo per body (simulation passes)
+  kMeshInfo = 8,         ///< MeshInfo per mesh (collision passes; each pass binds its own)
   kBoxFaceList = 9,      ///< BoxFace rows, box by box
   kFacePair = 10,        ///< intersecting face pairs
   kBoxMask = 11,         ///< int per (box A, box B)
@@ -65,14 +66,34 @@ struct Spring {
 static_assert(sizeof(Spring) == 16);
 static_assert(offsetof(Spring, rest_length) == 8);
 
-/// 16 bytes. A surface triangle, outward-oriented (counter-clockwise seen from outside).
+/// 16 bytes. A surface triangle, outward-oriented (counter-clockwise seen from outside). In a
+/// world's arrays the vertex indices are global (into every body's nodes); in a collision
+/// detector's they are local to the mesh, and body is the mesh.
 struct Face {
   std::uint32_t a;
   std::uint32_t b;
   std::uint32_t c;
-  std::uint32_t body;  ///< index of the body the face belongs to
+  std::uint32_t body;  ///< index of the body (mesh) the face belongs to
 };
 static_assert(sizeof(Face) == 16);
+
+/// 32 bytes. One mesh of a collision detector: where its triangles and leaf-box rows lie in
+/// the shared arrays and where its vertex positions are read (the faces' vertex indices are
+/// local to the mesh).
+struct MeshInfo {
+  std::uint32_t vertex_count;
+  std::uint32_t face_offset;
+  std::uint32_t face_count;
+  std::uint32_t box_face_offset;  ///< first row of the mesh's BoundingBox Face List
+  std::uint32_t box_face_count;
+  /// GL: vertex i's x, y, z are floats position_offset + i x position_stride (+ 1, + 2) of the
+  /// position buffer bound at kNodePosition. Unused on the CPU, which reads the caller's arrays.
+  std::uint32_t position_offset;
+  std::uint32_t position_stride;
+  std::uint32_t pad;
+};
+static_assert(sizeof(MeshInfo) == 32);
+static_assert(offsetof(MeshInfo, position_offset) == 20);
 
 /// 32 bytes. An axis-aligned box; w components are padding.
 struct Box {

@@ -15,7 +15,7 @@
 #include <functional>
 
 #include "deformcd/body.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 
 namespace deformcd {
 

@@ -17,10 +17,12 @@
 
 #include <glm/vec3.hpp>
 
+#include "deformcd/backend.h"
 #include "deformcd/collision.h"
+#include "deformcd/detector.h"
 #include "deformcd/error.h"
 #include "deformcd/gpu_layout.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 
 namespace deformcd {
 
@@ -30,31 +32,23 @@ class Context;
 namespace sim {
 class SimulationBackend;
 }
-namespace collision {
-class CollisionBackend;
+namespace cpu {
+class Executor;
 }
-
-/// Which backend steps a world.
-enum class BackendKind {
-  kAuto,  ///< GL when a 4.3 context can be had, else the CPU (with a notice)
-  kGl,    ///< OpenGL 4.3 compute shaders; throws GlError when unavailable
-  kCpu,   ///< multithreaded CPU (oneTBB)
-};
-
-/// "auto", "gl" or "cpu"; throws Error listing the valid names otherwise.
-[[nodiscard]] BackendKind parse_backend(std::string_view name);
 
 struct WorldOptions {
   BackendKind backend = BackendKind::kAuto;
   /// GL context to run in (e.g. gl::adopt_current_context() in an application that renders
   /// with OpenGL itself). When null, the world creates a headless one.
   gl::Context* gl_context = nullptr;
-  /// CPU threads; 0 uses every core.
+  /// CPU threads (of the simulation and the collision detection); 0 uses every core. Results
+  /// do not depend on it.
   int cpu_threads = 0;
   /// Frames between stability checks (each reads velocities back from a GL backend).
   int stability_check_interval = 10;
-  /// Collision detection run after each frame's simulation; kNone skips it.
-  BroadPhase broadphase = BroadPhase::kOctree;
+  /// Collision detection run after each frame's simulation; kNone skips it. Every broad phase
+  /// finds the same contacts; kBvh is the fastest by far.
+  BroadPhase broadphase = BroadPhase::kBvh;
   /// Each body also collides with itself (faces sharing an edge are never a contact; faces
   /// sharing a node are when they meet elsewhere too). Fixed for the world's life.
   bool self_collision = false;
@@ -120,6 +114,9 @@ class World {
   [[nodiscard]] BroadPhase broadphase() const { return broadphase_; }
   /// Switches the broad phase from the next step() on (e.g. a viewer's key).
   void set_broadphase(BroadPhase method) { broadphase_ = method; }
+  /// The collision detector over the bodies' surfaces (mesh i = body i, its triangles the
+  /// body's surface faces, its positions the simulation's, read in place).
+  [[nodiscard]] const Detector& detector() const { return *detector_; }
   /// Runs collision detection now on the current positions with broadphase() (as step() does
   /// after the simulation), e.g. after set_broadphase() or for the initial pose.
   void detect_collisions();
@@ -127,7 +124,7 @@ class World {
   /// for the pass.
   [[nodiscard]] CollisionCounts collision_counts() const;
   /// The intersecting face pairs of the last collision pass, sorted by (a.body, a.face, b.body,
-  /// b.face), a.body < b.body; the same on every backend and broad phase.
+  /// b.face), a.body <= b.body; the same on every backend and broad phase.
   [[nodiscard]] std::vector<Contact> contacts() const;
   /// Per surface face of every body (body i's faces start at object(i).face_offset): 1 when the
   /// face was in a contact in the last pass, else 0.
@@ -146,13 +143,13 @@ class World {
 
  private:
   void check_stability();
-  // Lets the collision backend finish the last pass (rerunning it after an overflow).
-  void complete_collision_pass() const;
   [[nodiscard]] int suggested_substeps() const;
 
+  // Destroyed last to first: the detector and the simulation before the context they run in.
   std::unique_ptr<gl::Context> owned_context_;
+  std::shared_ptr<cpu::Executor> executor_;
   std::unique_ptr<sim::SimulationBackend> backend_;
-  std::unique_ptr<collision::CollisionBackend> collision_;
+  std::unique_ptr<Detector> detector_;
   StepSettings settings_;
   int check_interval_;
   int frame_ = 0;
@@ -161,12 +158,10 @@ class World {
   std::vector<float> body_sizes_;  // bounding-box diagonal at the start, for the blow-up test
   double max_stable_substep_ = 0.0;
   std::string notice_;
-  BroadPhase broadphase_ = BroadPhase::kOctree;
+  BroadPhase broadphase_ = BroadPhase::kBvh;
   bool measure_stage_times_ = false;
   FrameTimes last_times_;
-  bool detected_ = false;
-  mutable bool pass_pending_ = false;  // a pass was issued and not yet completed  // whether a
-                                       // collision pass has run (its results are there)
+  bool detected_ = false;  // the last step ran a collision pass: its results are there
   std::vector<gpu::Face> faces_;
 };
 

@@ -4,8 +4,8 @@
 //
 // An including shader that calls is_first_box_pair must define
 //   bool mask_says_overlap(uint mask_slot, uint box_a, uint box_b);
-// (the C++ template's `overlap(i, j)`): whether leaf box box_a of the body pair's body a and
-// box_b of its body b overlap, read from the box mask of that body pair.
+// (the C++ template's `overlap(i, j)`): whether leaf box box_a of the mesh pair's mesh a and
+// box_b of its mesh b overlap, read from the box mask of that mesh pair.
 #include "common/layout.glsl"
 
 // A box that contains nothing and overlaps nothing (a leaf box that lists no face). The value

@@ -1,6 +1,6 @@
 // BVH queries: the leaves collision::query_bvh (src/core/collision/bvh.h) finds, depth first
 // with a fixed stack of BVH_MAX_DEPTH + 1 entries, which holds any tree of depth <=
-// BVH_MAX_DEPTH (the host checks every body's depth before upload). The boxes are the refitted ones
+// BVH_MAX_DEPTH (the host checks every mesh's depth before upload). The boxes are the refitted ones
 // (collision/bvh_refit.comp).
 //
 // An including shader must define

@@ -1,5 +1,5 @@
 #version 430
-// BVH refit, first step: one invocation per BVH node of every body, of which the leaves work:
+// BVH refit, first step: one invocation per BVH node of every mesh, of which the leaves work:
 // each writes its box from its face's current vertices. collision/bvh_refit_level.comp then
 // fills the internal nodes level by level, deepest first. The boxes are min/max of the same
 // floats as collision::refit_bvh (core/collision/bvh.cpp): bit for bit the host's boxes.
@@ -22,7 +22,7 @@ layout(std430, binding = BINDING_BVH_BOX) writeonly buffer BvhBoxes {
   Box bvh_boxes[];
 };
 
-uniform uint u_node_count;  // BVH nodes of all bodies
+uniform uint u_node_count;  // BVH nodes of all meshes
 
 // broad_phase.glsl declares it for is_first_box_pair, which this shader does not call.
 bool mask_says_overlap(uint mask_slot, uint box_a, uint box_b) { return false; }
@@ -33,9 +33,10 @@ void main() {
   const uint face = bvh_nodes[node].face;
   if (face == BVH_INTERNAL) return;  // bvh_refit_level.comp's
   const Face f = faces[face];
+  const uvec2 at = vertex_layout(f.body);
   Box box = empty_box();
-  grow_box(box, positions[f.a].xyz);
-  grow_box(box, positions[f.b].xyz);
-  grow_box(box, positions[f.c].xyz);
+  grow_box(box, vertex_at(at, f.a));
+  grow_box(box, vertex_at(at, f.b));
+  grow_box(box, vertex_at(at, f.c));
   bvh_boxes[node] = box;
 }

@@ -1,7 +1,7 @@
 #version 430
 // BVH refit, one level: after collision/bvh_refit.comp wrote the leaves and the deeper levels'
 // dispatches their internal nodes, one invocation per internal node of this depth (of every
-// body) writes its box as the union of its children's. The internal nodes are listed by depth,
+// mesh) writes its box as the union of its children's. The internal nodes are listed by depth,
 // deepest first (SSBO 31, built on the host); this level is entries [u_first, u_first +
 // u_count). Each invocation writes only its own node; its children were written by earlier
 // dispatches.

@@ -10,7 +10,7 @@
 #include "collision/tri_tri_intersection.glsl"
 #include "common/layout.glsl"
 
-// SharedNodes: how many nodes faces a and b share, and the corner of the first in each.
+// SharedNodes: how many vertices faces a and b share, and the corner of the first in each.
 struct SharedNodes {
   int count;
   int corner_a;
@@ -23,6 +23,8 @@ uint face_corner(Face f, int i) {
 
 SharedNodes shared_nodes(Face a, Face b) {
   SharedNodes s = SharedNodes(0, 0, 0);
+  // Vertex indices are local to a mesh: faces of different meshes share none.
+  if (a.body != b.body) return s;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       if (face_corner(a, i) != face_corner(b, j)) continue;
@@ -64,11 +66,20 @@ bool segment_triangle_meet(vec3 s0, vec3 s1, vec3 t[3]) {
   return tri_tri_segment_in_plane_meets_triangle(x0, x1, t, n, size);
 }
 
-// face_pair_intersect, reading the positions from `positions` (collision/surface.glsl).
+// Corner `first + i` (mod 3) of face f, for i = 0, 1, 2: load_rotated.
+vec3[3] load_rotated(Face f, int first) {
+  const uvec2 at = vertex_layout(f.body);
+  return vec3[3](vertex_at(at, face_corner(f, first)),
+                 vertex_at(at, face_corner(f, (first + 1) % 3)),
+                 vertex_at(at, face_corner(f, (first + 2) % 3)));
+}
+
+// face_pair_intersect, reading the positions with vertex_position (collision/surface.glsl).
 TriTriResult face_pair_intersect(Face fa, Face fb) {
   const TriTriResult none = TriTriResult(false, false, vec3(0.0), vec3(0.0));
-  vec3 p[3] = vec3[3](positions[fa.a].xyz, positions[fa.b].xyz, positions[fa.c].xyz);
-  vec3 q[3] = vec3[3](positions[fb.a].xyz, positions[fb.b].xyz, positions[fb.c].xyz);
+  // face_vertices: corners a, b, c.
+  vec3 p[3] = load_rotated(fa, 0);
+  vec3 q[3] = load_rotated(fb, 0);
   // The exact box test first (most pairs): faces sharing a node have touching boxes.
   if (!tri_tri_boxes_touch(p, q)) return none;
   const SharedNodes common_nodes = shared_nodes(fa, fb);
@@ -76,10 +87,8 @@ TriTriResult face_pair_intersect(Face fa, Face fb) {
   if (common_nodes.count == 1) {
     const int a0 = common_nodes.corner_a;
     const int b0 = common_nodes.corner_b;
-    p = vec3[3](positions[face_corner(fa, a0)].xyz, positions[face_corner(fa, (a0 + 1) % 3)].xyz,
-                positions[face_corner(fa, (a0 + 2) % 3)].xyz);
-    q = vec3[3](positions[face_corner(fb, b0)].xyz, positions[face_corner(fb, (b0 + 1) % 3)].xyz,
-                positions[face_corner(fb, (b0 + 2) % 3)].xyz);
+    p = load_rotated(fa, a0);
+    q = load_rotated(fb, b0);
     // p's opposite edge against q, then q's against p, from one call site.
     bool meet = false;
     for (int k = 0; k < 2 && !meet; ++k) {

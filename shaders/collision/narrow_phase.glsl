@@ -25,8 +25,8 @@ void flag_colliding_face(uint face) {
   if (atomicExchange(face_flags[face], 1u) == 0u) atomicAdd(counters.colliding_faces, 1u);
 }
 
-// Tests global faces face_a (of the body pair's body a) and face_b (of its body b) as the C++
-// backend does (cpu_narrow_phase.h): only face_a < face_b, which within one body
+// Tests global faces face_a (of the mesh pair's mesh a) and face_b (of its mesh b) as the C++
+// backend does (cpu_narrow_phase.h): only face_a < face_b, which within one mesh
 // (self-collision) keeps one of the two orders the broad phases enumerate.
 void test_face_pair(uint face_a, uint face_b) {
   if (face_a >= face_b) return;

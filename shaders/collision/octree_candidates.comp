@@ -36,14 +36,14 @@ layout(std430, binding = BINDING_BOX_PAIR_LIST) readonly buffer BoxPairList {
 
 uniform uint u_box_pair_capacity;  // uvec2 slots in SSBO 30
 
-uint g_body_a;  // the bodies of the box pair being expanded
-uint g_body_b;
+uint g_mesh_a;  // the meshes of the box pair being expanded
+uint g_mesh_b;
 
 // The octree's mask, recomputed: the mask entry (i, j) is exactly this test of the same boxes.
-// mask_slot is unused: the body pair is the current box pair's.
+// mask_slot is unused: the mesh pair is the current box pair's.
 bool mask_says_overlap(uint mask_slot, uint box_a, uint box_b) {
-  return boxes_overlap(boxes[LEAF_BOXES_PER_BODY * g_body_a + box_a],
-                       boxes[LEAF_BOXES_PER_BODY * g_body_b + box_b]);
+  return boxes_overlap(boxes[LEAF_BOXES_PER_BODY * g_mesh_a + box_a],
+                       boxes[LEAF_BOXES_PER_BODY * g_mesh_b + box_b]);
 }
 
 void main() {
@@ -54,8 +54,8 @@ void main() {
     const uvec2 rows_i = box_rows[pair.x];
     if (r >= rows_i.y) continue;
     const uvec2 rows_j = box_rows[pair.y];
-    g_body_a = pair.x / LEAF_BOXES_PER_BODY;
-    g_body_b = pair.y / LEAF_BOXES_PER_BODY;
+    g_mesh_a = pair.x / LEAF_BOXES_PER_BODY;
+    g_mesh_b = pair.y / LEAF_BOXES_PER_BODY;
     const uint box_i = pair.x % LEAF_BOXES_PER_BODY;
     const uint box_j = pair.y % LEAF_BOXES_PER_BODY;
     const uint face_a = box_faces[rows_i.x + r].face;

@@ -6,7 +6,8 @@
 // Binding points are macros, not consts: GLSL 4.30 wants integer literals in layout(binding=).
 // Numbered as in the paper's Table 1 (deformcd::gpu::Binding).
 
-#define BINDING_NODE_POSITION 0     // vec4 per node (xyz, w = inverse mass, 0 = fixed)
+#define BINDING_NODE_POSITION 0     // vec4 per node (xyz, w = inverse mass, 0 = fixed); in
+                                    // collision passes, float words (MeshInfo.position_*)
 #define BINDING_NODE_VELOCITY 1     // vec4 per node (xyz, w = 0)
 #define BINDING_SPRING_INFO 2       // Spring per spring
 #define BINDING_NODE_FORCE 3        // vec4 per node
@@ -14,7 +15,8 @@
 #define BINDING_COLLISION_RESULT 5  // uint per face: nonzero when the face collides
 #define BINDING_FACE_NORMAL 6       // vec4 per surface face (unit normal, w = 0)
 #define BINDING_FACE_INFO 7         // Face per surface face
-#define BINDING_OBJECT_INFO 8       // ObjectInfo per body
+#define BINDING_OBJECT_INFO 8       // ObjectInfo per body (simulation passes)
+#define BINDING_MESH_INFO 8         // MeshInfo per mesh (collision passes)
 #define BINDING_BOX_FACE_LIST 9     // BoxFace rows, box by box
 #define BINDING_FACE_PAIR 10        // intersecting face pairs
 #define BINDING_BOX_MASK 11         // int per (box A, box B)
@@ -54,12 +56,27 @@ struct Spring {
   float stiffness;    // N/m
 };
 
-// 16 bytes. A surface triangle, outward-oriented (counter-clockwise seen from outside).
+// 16 bytes. A surface triangle, outward-oriented (counter-clockwise seen from outside). In a
+// collision detector's arrays the vertex indices are local to the mesh, and body is the mesh.
 struct Face {
   uint a;
   uint b;
   uint c;
-  uint body;  // index of the body the face belongs to
+  uint body;  // index of the body (mesh) the face belongs to
+};
+
+// 32 bytes. One mesh of a collision detector: where its triangles and leaf-box rows lie in the
+// shared arrays and where its vertex positions are read: vertex i's x, y, z are the floats
+// position_offset + i x position_stride (+ 1, + 2) of the buffer at BINDING_NODE_POSITION.
+struct MeshInfo {
+  uint vertex_count;
+  uint face_offset;
+  uint face_count;
+  uint box_face_offset;  // first row of the mesh's BoundingBox Face List
+  uint box_face_count;
+  uint position_offset;  // in floats
+  uint position_stride;  // in floats
+  uint pad;
 };
 
 // 32 bytes. An axis-aligned box; w components are padding.

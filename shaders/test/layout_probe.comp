@@ -21,6 +21,7 @@ layout(std430, binding = 9) buffer FacePairs { FacePair face_pairs[]; };
 layout(std430, binding = 10) buffer Counters { CollisionCounters counters[]; };
 layout(std430, binding = 11) buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, binding = 12) buffer BodyBvhs { BodyBvh body_bvhs[]; };
+layout(std430, binding = 13) buffer MeshInfos { MeshInfo meshes[]; };
 
 uniform uint u_count;
 
@@ -103,6 +104,15 @@ void main() {
   body_bvhs[i].depth = probe(i, 2u);
   body_bvhs[i].pad = probe(i, 3u);
 
+  meshes[i].vertex_count = probe(i, 0u);
+  meshes[i].face_offset = probe(i, 1u);
+  meshes[i].face_count = probe(i, 2u);
+  meshes[i].box_face_offset = probe(i, 3u);
+  meshes[i].box_face_count = probe(i, 4u);
+  meshes[i].position_offset = probe(i, 5u);
+  meshes[i].position_stride = probe(i, 6u);
+  meshes[i].pad = probe(i, 7u);
+
   if (i == 0u) {
     bindings[0] = BINDING_NODE_POSITION;
     bindings[1] = BINDING_NODE_VELOCITY;
@@ -146,5 +156,7 @@ void main() {
     bindings[38] = DISPATCH_ARGS_NARROW;
     bindings[39] = DISPATCH_ARGS_TRAVERSE;
     bindings[40] = BINDING_BVH_LEAVES;
+    bindings[41] = BINDING_MESH_INFO;
+    bindings[42] = BINDING_NON_FINITE;
   }
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The `bvh` broad phase on the CPU (beyond the paper): per body a BVH over its surface faces,
+// The `bvh` broad phase on the CPU (beyond the paper): per mesh a BVH over its faces,
 // refitted every pass (cpu_bvh_trees.h); body pairs whose root boxes overlap are traversed, the
 // faces of the body with fewer faces each querying the tree of the other, and every face pair
 // whose boxes overlap goes straight to the exact triangle test. A body colliding with itself
@@ -19,27 +19,27 @@ namespace deformcd::cpu {
 
 class BvhBroadPhase {
  public:
-  void upload(const WorldState& state);
+  // Takes the meshes, their pairs and trees (built on `pose`).
+  void upload(const collision::CollisionData& data, collision::VertexPositions pose);
   // One pass: refits the trees, rebuilds the degraded ones about to be traversed, and tests
-  // the face pairs of `body_pairs` whose boxes overlap.
-  void run(const std::vector<glm::vec4>& positions, const std::vector<gpu::Face>& faces,
-           const std::vector<gpu::BodyPair>& body_pairs, const NarrowPhase& narrow,
-           PairCollector& out);
+  // the face pairs of the mesh pairs whose boxes overlap.
+  void run(collision::VertexPositions positions, const std::vector<gpu::Face>& faces,
+           const NarrowPhase& narrow, PairCollector& out);
 
   [[nodiscard]] const BvhTrees& trees() const { return trees_; }
 
  private:
   // The faces of `query_body` against the tree of `tree_body`.
   void traverse(const gpu::BodyPair& pair, std::uint32_t query_body, std::uint32_t tree_body,
-                const std::vector<glm::vec4>& positions, const std::vector<gpu::Face>& faces,
+                collision::VertexPositions positions, const std::vector<gpu::Face>& faces,
                 const NarrowPhase& narrow, PairCollector& out) const;
 
   BvhTrees trees_;
-  std::vector<gpu::ObjectInfo> objects_;
-  std::vector<gpu::BodyPair> touching_;    // body pairs whose root boxes overlap, this pass
-  std::vector<gpu::BodyPair> self_pairs_;  // (b, b) for each body colliding with itself
-  std::vector<gpu::Box> root_boxes_;       // per body, this pass
-  std::vector<std::uint8_t> queried_;      // per body: its tree is traversed this pass
+  std::vector<gpu::MeshInfo> meshes_;
+  std::vector<gpu::BodyPair> pairs_;     // the mesh pairs to test, sorted
+  std::vector<gpu::BodyPair> touching_;  // mesh pairs to traverse this pass
+  std::vector<gpu::Box> root_boxes_;     // per mesh, this pass
+  std::vector<std::uint8_t> queried_;    // per mesh: its tree is traversed this pass
 };
 
 }  // namespace deformcd::cpu

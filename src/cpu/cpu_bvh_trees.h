@@ -1,70 +1,50 @@
 #pragma once
-// Every body's BVH on the CPU, kept fitted to the deforming surface: the boxes are refitted
-// every pass, in parallel across bodies and across the subtrees of a big body, and a body's tree
-// is rebuilt from its current shape when refitting has loosened it too much.
-//
-// When to rebuild: the summed surface area of a tree's internal boxes over its root's
-// (collision::bvh_area_ratio) estimates the cost of a query (the surface area heuristic: a
-// query box hits a node about in proportion to its area). Right after a build that ratio is
-// what the median split does for the current shape; as the body deforms, siblings grow into
-// each other and the ratio climbs. A tree is rebuilt when its ratio exceeds kBvhRebuildFactor
-// x the ratio right after its last build, and only when it is about to be traversed (a tree
-// that is not is only read at its root, which is exact however loose the rest).
-//
-// Why 1.5: measured on the shipped scenes (2 cores), rebuilding a 5k-face body costs about
-// 2 ms, as much as a whole bvh pass in contact, of which traversal is about 60%; at a 1.5x
-// looser tree the extra traversal repays a rebuild within a few frames of contact, while a
-// factor near 1 would rebuild on every wobble (the ratio moves by a few % as the shipped
-// bodies squash and spring back) for no measurable gain. The ratio costs about a tenth of a
-// refit, so it is measured every pass.
+// Every mesh's BVH on the CPU, kept fitted to the deforming surface: the boxes are refitted
+// every pass, in parallel across meshes and across the subtrees of a big mesh, and a mesh's
+// tree is rebuilt from its current shape when refitting has loosened it too much. When to
+// rebuild is the shared policy of collision::BvhUpkeep (core/collision/bvh_upkeep.h), which
+// also holds the trees' topology; the CPU measures each tree's area ratio every pass (about a
+// tenth of a refit) and rebuilds a degraded tree only when it is about to be traversed.
 
 #include <cstdint>
 #include <vector>
 
-#include <glm/vec4.hpp>
-
-#include "core/collision/bvh.h"
+#include "core/collision/bvh_upkeep.h"
+#include "core/collision/collision_data.h"
+#include "core/collision/vertex_positions.h"
 #include "deformcd/gpu_layout.h"
-#include "deformcd/world_state.h"
 
 namespace deformcd::cpu {
 
-using collision::kBvhRebuildFactor;
-
 class BvhTrees {
  public:
-  // Takes the trees built at assembly (state.bvh_nodes, body_bvhs) and fits them to
-  // state.positions; their area ratios there are the first rebuild references.
-  void upload(const WorldState& state);
+  // Takes the trees of `data` (built on `pose`) and fits them to it.
+  void upload(const collision::CollisionData& data, collision::VertexPositions pose);
   // Refits every tree to `positions` and measures its area ratio.
-  void refit(const std::vector<glm::vec4>& positions, const std::vector<gpu::Face>& faces);
-  // Rebuilds `body`'s tree from `positions` (then refits it) when its area ratio measured by the
-  // last refit exceeds kBvhRebuildFactor x the ratio after its last build. Returns whether it did.
-  bool rebuild_if_degraded(std::uint32_t body, const std::vector<glm::vec4>& positions,
-                           const std::vector<gpu::Face>& faces);
+  void refit(collision::VertexPositions positions);
+  // Rebuilds `mesh`'s tree from `positions` when the ratio measured by the last refit says it
+  // has degraded (collision::BvhUpkeep::degraded). Returns whether it did.
+  bool rebuild_if_degraded(std::uint32_t mesh, collision::VertexPositions positions);
 
-  [[nodiscard]] const std::vector<gpu::BvhNode>& nodes() const { return nodes_; }
+  [[nodiscard]] const std::vector<gpu::BvhNode>& nodes() const { return upkeep_.nodes(); }
   [[nodiscard]] const std::vector<gpu::Box>& boxes() const { return boxes_; }
-  [[nodiscard]] const gpu::BodyBvh& tree(std::uint32_t body) const { return trees_[body]; }
-  // The area ratio of `body`'s tree as last refitted, and right after its last build.
-  [[nodiscard]] double area_ratio(std::uint32_t body) const { return ratio_[body]; }
-  [[nodiscard]] double built_area_ratio(std::uint32_t body) const { return built_ratio_[body]; }
+  [[nodiscard]] const gpu::BodyBvh& tree(std::uint32_t mesh) const { return upkeep_.tree(mesh); }
+  // The area ratio of `mesh`'s tree as last refitted, and right after its last build.
+  [[nodiscard]] double area_ratio(std::uint32_t mesh) const { return ratio_[mesh]; }
+  [[nodiscard]] double built_area_ratio(std::uint32_t mesh) const {
+    return upkeep_.built_ratio(mesh);
+  }
   // Trees rebuilt since upload.
-  [[nodiscard]] std::uint64_t rebuild_count() const { return rebuilds_; }
+  [[nodiscard]] std::uint64_t rebuild_count() const { return upkeep_.rebuilds(); }
 
  private:
-  void refit_body(std::uint32_t body, const std::vector<glm::vec4>& positions,
-                  const std::vector<gpu::Face>& faces);
-  void refit_subtree(std::uint32_t node, std::uint32_t count,
-                     const std::vector<glm::vec4>& positions, const std::vector<gpu::Face>& faces);
+  void refit_mesh(std::uint32_t mesh, collision::VertexPositions positions);
+  void refit_subtree(std::uint32_t node, std::uint32_t count, collision::VertexPositions positions);
 
-  std::vector<gpu::ObjectInfo> objects_;
-  std::vector<gpu::BvhNode> nodes_;  // SSBO 25
-  std::vector<gpu::Box> boxes_;      // SSBO 26
-  std::vector<gpu::BodyBvh> trees_;  // SSBO 27
+  collision::BvhUpkeep upkeep_;
+  std::vector<gpu::Face> faces_;
+  std::vector<gpu::Box> boxes_;  // SSBO 26
   std::vector<double> ratio_;
-  std::vector<double> built_ratio_;
-  std::uint64_t rebuilds_ = 0;
 };
 
 }  // namespace deformcd::cpu

@@ -18,42 +18,85 @@ constexpr std::size_t kRowGrain = 16;
 
 }  // namespace
 
-void CpuCollision::upload(const WorldState& state) {
-  faces_ = state.faces;
-  objects_ = state.objects;
-  box_faces_ = state.box_faces;
-  face_boxes_ = state.face_boxes;
-  box_rows_ = state.box_rows;
-  body_pairs_ = state.body_pairs;
+CpuCollision::CpuCollision(std::shared_ptr<Executor> executor) : executor_(std::move(executor)) {}
+
+void CpuCollision::upload(const collision::CollisionData& data) {
+  // The trees are fitted to the positions on upload.
+  if (vertices_.size() != data.meshes.size()) {
+    throw Error("CPU collision: positions are set for " + std::to_string(vertices_.size()) +
+                " meshes, the data has " + std::to_string(data.meshes.size()) +
+                " (set them before uploading)");
+  }
+  faces_ = data.faces;
+  meshes_ = data.meshes;
+  box_faces_ = data.box_faces;
+  face_boxes_ = data.face_boxes;
+  box_rows_ = data.box_rows;
+  mesh_pairs_ = data.mesh_pairs;
   boxes_.assign(box_rows_.size(), collision::empty_box());
   mask_.assign(std::size_t{kBoxes} * kBoxes, -1);
   flags_.assign(faces_.size(), 0u);
   pairs_.clear();
   counters_ = {};
-  bvh_.upload(state);
+  executor_->run([&] { bvh_.upload(data, vertices_.data()); });
+}
+
+void CpuCollision::set_positions(const std::vector<collision::PositionSource>& sources) {
+  std::vector<collision::MeshVertices> vertices;
+  std::vector<std::uint32_t> counts;
+  for (std::size_t m = 0; m < sources.size(); ++m) {
+    const collision::PositionSource& s = sources[m];
+    if (s.kind == collision::PositionSource::Kind::kNone) {  // not set yet
+      vertices.push_back({nullptr, 0u});
+      counts.push_back(s.vertex_count);
+      continue;
+    }
+    if (s.kind != collision::PositionSource::Kind::kHost || s.host == nullptr ||
+        s.stride_bytes % sizeof(float) != 0) {
+      throw Error("CPU collision: mesh " + std::to_string(m) +
+                  " needs positions in host memory with a stride that is a multiple of 4 bytes");
+    }
+    vertices.push_back({s.host, static_cast<std::uint32_t>(s.stride_bytes / sizeof(float))});
+    counts.push_back(s.vertex_count);
+  }
+  vertices_ = std::move(vertices);
+  vertex_counts_ = std::move(counts);
+}
+
+std::vector<glm::vec3> CpuCollision::read_positions(std::uint32_t mesh) {
+  if (mesh >= vertices_.size()) {
+    throw Error("CPU collision: no positions for mesh " + std::to_string(mesh));
+  }
+  std::vector<glm::vec3> out(vertex_counts_[mesh]);
+  for (std::uint32_t i = 0; i < out.size(); ++i)
+    out[i] = collision::vertex_position(vertices_.data(), mesh, i);
+  return out;
 }
 
 void CpuCollision::detect(BroadPhase method) {
-  const std::vector<glm::vec4>& positions = simulation_.state().positions;
-  if (positions.empty() && !faces_.empty()) {
-    throw Error("CPU collision: the simulation holds no positions (upload it first)");
+  if (vertices_.size() != meshes_.size()) {
+    throw Error("CPU collision: upload the data and set the positions before detecting");
   }
+  executor_->run([&] { run(method); });
+}
+
+void CpuCollision::run(BroadPhase method) {
   std::fill(flags_.begin(), flags_.end(), 0u);
   pairs_.clear();
   counters_ = {};
-  const NarrowPhase narrow{positions.data(), faces_.data(), flags_.data()};
+  const NarrowPhase narrow{vertices_.data(), faces_.data(), flags_.data()};
   switch (method) {
     case BroadPhase::kNone:
       return;
     case BroadPhase::kBrute:
-      for (const gpu::BodyPair& pair : body_pairs_)
+      for (const gpu::BodyPair& pair : mesh_pairs_)
         brute_pair(pair, narrow);
       break;
     case BroadPhase::kOctree:
     case BroadPhase::kOctreeCompact: {
       update_boxes();
       const LeafBoxRows lists{box_faces_.data(), face_boxes_.data(), box_rows_.data()};
-      for (const gpu::BodyPair& pair : body_pairs_) {
+      for (const gpu::BodyPair& pair : mesh_pairs_) {
         update_box_mask(pair);
         if (method == BroadPhase::kOctree) {
           octree_pair(pair, narrow);
@@ -64,7 +107,7 @@ void CpuCollision::detect(BroadPhase method) {
       break;
     }
     case BroadPhase::kBvh:
-      bvh_.run(positions, faces_, body_pairs_, narrow, collector_);
+      bvh_.run(vertices_.data(), faces_, narrow, collector_);
       break;
   }
   counters_.candidates = saturate_u32(collector_.gather(pairs_));
@@ -82,7 +125,7 @@ void CpuCollision::detect(BroadPhase method) {
 
 // BBUpdate (Algorithm 1): each leaf box from its listed faces' current vertices.
 void CpuCollision::update_boxes() {
-  const std::vector<glm::vec4>& p = simulation_.state().positions;
+  const collision::VertexPositions p = vertices_.data();
   parallel_for(
       box_rows_.size(),
       [&](std::size_t box) {
@@ -90,9 +133,9 @@ void CpuCollision::update_boxes() {
         const glm::uvec2 rows = box_rows_[box];
         for (std::uint32_t r = rows.x; r < rows.x + rows.y; ++r) {
           const gpu::Face& f = faces_[box_faces_[r].face];
-          collision::grow_box(b, glm::vec3(p[f.a]));
-          collision::grow_box(b, glm::vec3(p[f.b]));
-          collision::grow_box(b, glm::vec3(p[f.c]));
+          collision::grow_box(b, collision::vertex_position(p, f.body, f.a));
+          collision::grow_box(b, collision::vertex_position(p, f.body, f.b));
+          collision::grow_box(b, collision::vertex_position(p, f.body, f.c));
         }
         boxes_[box] = b;
       },
@@ -114,8 +157,8 @@ void CpuCollision::update_box_mask(const gpu::BodyPair& pair) {
 // The N' x M' sweep over the two bodies' BoundingBox Face List rows (Algorithm 3), skipping
 // rows whose boxes do not overlap.
 void CpuCollision::octree_pair(const gpu::BodyPair& pair, const NarrowPhase& narrow) {
-  const gpu::ObjectInfo& a = objects_[pair.a];
-  const gpu::ObjectInfo& b = objects_[pair.b];
+  const gpu::MeshInfo& a = meshes_[pair.a];
+  const gpu::MeshInfo& b = meshes_[pair.b];
   const auto overlap = [&](std::uint32_t i, std::uint32_t j) { return mask_[i * kBoxes + j] == 1; };
   parallel_for(
       a.box_face_count,
@@ -134,11 +177,11 @@ void CpuCollision::octree_pair(const gpu::BodyPair& pair, const NarrowPhase& nar
       kRowGrain);
 }
 
-// The paper's baseline: every face of body a against every face of body b (for a body against
+// The paper's baseline: every face of mesh a against every face of mesh b (for a mesh against
 // itself, the narrow phase keeps the pairs x < y).
 void CpuCollision::brute_pair(const gpu::BodyPair& pair, const NarrowPhase& narrow) {
-  const gpu::ObjectInfo& a = objects_[pair.a];
-  const gpu::ObjectInfo& b = objects_[pair.b];
+  const gpu::MeshInfo& a = meshes_[pair.a];
+  const gpu::MeshInfo& b = meshes_[pair.b];
   parallel_for(
       a.face_count,
       [&](std::size_t x) {

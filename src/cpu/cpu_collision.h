@@ -1,28 +1,35 @@
 #pragma once
 // Collision detection on the CPU, in parallel with oneTBB: the same broad phases and narrow
 // phase as the GL backend's shaders (BBUpdate, BBCollision, Triangle-Triangle Intersection),
-// element for element, over the positions the CPU simulation holds. The paper's two methods
-// (brute, octree) live here; the ones beyond it in cpu_octree_compact.h and
-// cpu_bvh_broad_phase.h.
+// element for element, over the positions the caller holds (read in place, one array per
+// mesh). The paper's two methods (brute, octree) live here; the ones beyond it in
+// cpu_octree_compact.h and cpu_bvh_broad_phase.h.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/collision/collision_backend.h"
 #include "cpu_bvh_broad_phase.h"
 #include "cpu_narrow_phase.h"
 #include "cpu_octree_compact.h"
-#include "cpu_simulation.h"
+#include "executor.h"
 
 namespace deformcd::cpu {
 
 class CpuCollision final : public collision::CollisionBackend {
  public:
-  /// Reads node positions from `simulation`, which must outlive this object.
-  explicit CpuCollision(const CpuSimulation& simulation) : simulation_(simulation) {}
+  /// Runs its loops on `executor`'s threads.
+  explicit CpuCollision(std::shared_ptr<Executor> executor);
+  /// On an executor of its own with `threads` threads (0: every core).
+  explicit CpuCollision(int threads = 0) : CpuCollision(std::make_shared<Executor>(threads)) {}
 
   [[nodiscard]] std::string_view name() const override { return "cpu"; }
-  void upload(const WorldState& state) override;
+  [[nodiscard]] std::string device() const override { return executor_->describe(); }
+  void upload(const collision::CollisionData& data) override;
+  /// Host sources only (Error for a GL buffer).
+  void set_positions(const std::vector<collision::PositionSource>& sources) override;
+  [[nodiscard]] std::vector<glm::vec3> read_positions(std::uint32_t mesh) override;
   void detect(BroadPhase method) override;
   [[nodiscard]] gpu::CollisionCounters counters() override { return counters_; }
   /// Sorted by (face_a, face_b): the same list for every method and thread count.
@@ -36,22 +43,25 @@ class CpuCollision final : public collision::CollisionBackend {
   [[nodiscard]] const BvhTrees& bvh_trees() const { return bvh_.trees(); }
 
  private:
+  void run(BroadPhase method);
   void update_boxes();
-  // BBCollision (Algorithm 2) for one body pair into mask_; counts the overlapping box pairs.
+  // BBCollision (Algorithm 2) for one mesh pair into mask_; counts the overlapping box pairs.
   void update_box_mask(const gpu::BodyPair& pair);
   void octree_pair(const gpu::BodyPair& pair, const NarrowPhase& narrow);
   void brute_pair(const gpu::BodyPair& pair, const NarrowPhase& narrow);
 
-  const CpuSimulation& simulation_;
+  std::shared_ptr<Executor> executor_;
   std::vector<gpu::Face> faces_;
-  std::vector<gpu::ObjectInfo> objects_;
+  std::vector<gpu::MeshInfo> meshes_;
   std::vector<gpu::BoxFace> box_faces_;
   std::vector<glm::uvec2> face_boxes_;
   std::vector<glm::uvec2> box_rows_;
-  std::vector<gpu::BodyPair> body_pairs_;
+  std::vector<gpu::BodyPair> mesh_pairs_;
+  std::vector<collision::MeshVertices> vertices_;  // per mesh: the caller's array
+  std::vector<std::uint32_t> vertex_counts_;       // per mesh
 
   std::vector<gpu::Box> boxes_;       // SSBO 4
-  std::vector<std::int32_t> mask_;    // SSBO 11, one body pair's 64 x 64
+  std::vector<std::int32_t> mask_;    // SSBO 11, one mesh pair's 64 x 64
   std::vector<std::uint32_t> flags_;  // SSBO 5
   std::vector<gpu::FacePair> pairs_;  // SSBO 10
   gpu::CollisionCounters counters_{};

@@ -11,6 +11,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "core/collision/face_pair_intersection.h"
+#include "core/collision/vertex_positions.h"
 #include "deformcd/gpu_layout.h"
 
 namespace deformcd::cpu {
@@ -50,7 +51,7 @@ class PairCollector {
 // of bodies face_a is the lower-numbered body's, and within one body (self-collision, which
 // broad phases enumerate both ways) the other order is skipped here, before it is counted.
 struct NarrowPhase {
-  const glm::vec4* positions;
+  collision::VertexPositions positions;
   const gpu::Face* faces;
   std::uint32_t* flags;  // SSBO 5
 

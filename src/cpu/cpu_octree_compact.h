@@ -14,7 +14,7 @@
 
 namespace deformcd::cpu {
 
-// The leaf-box lists of every body (WorldState::box_faces, face_boxes, box_rows).
+// The leaf-box lists of every body (SimulationState::box_faces, face_boxes, box_rows).
 struct LeafBoxRows {
   const gpu::BoxFace* box_faces;  // SSBO 9
   const glm::uvec2* face_boxes;   // SSBO 21, per global face

@@ -1,30 +1,26 @@
 #include "cpu_simulation.h"
 
-#include <tbb/info.h>
-
 #include "core/sim/mass_spring.h"
 #include "parallel_for.h"
 
 namespace deformcd::cpu {
 
-CpuSimulation::CpuSimulation(int threads) : threads_(threads) {
-  if (threads > 0) {
-    limit_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                   static_cast<std::size_t>(threads));
-  }
-}
+CpuSimulation::CpuSimulation(std::shared_ptr<Executor> executor) : executor_(std::move(executor)) {}
 
 std::string CpuSimulation::device() const {
-  const int n = threads_ > 0 ? threads_ : tbb::info::default_concurrency();
-  return "CPU, oneTBB, " + std::to_string(n) + " thread" + (n == 1 ? "" : "s");
+  return executor_->describe();
 }
 
-void CpuSimulation::upload(const WorldState& state) {
+void CpuSimulation::upload(const SimulationState& state) {
   state_ = state;
 }
 
 void CpuSimulation::substep(const sim::SubstepConstants& c) {
-  WorldState& w = state_;
+  executor_->run([&] { step(c); });
+}
+
+void CpuSimulation::step(const sim::SubstepConstants& c) {
+  SimulationState& w = state_;
   // SpringUpdate: one spring per element.
   parallel_for(w.springs.size(), [&](std::size_t s) {
     const gpu::Spring& spring = w.springs[s];

@@ -14,7 +14,11 @@
 // polygons, whose number must match the scan's. Only whole-line '#' comments are allowed, as in
 // tinyobjloader. Materials (mtllib) are not loaded.
 
+// The imported target tinyobjloader::tinyobjloader_double defines TINYOBJLOADER_USE_DOUBLE (its
+// ABI); the guard keeps the header's doubles if it ever stops doing so.
+#ifndef TINYOBJLOADER_USE_DOUBLE
 #define TINYOBJLOADER_USE_DOUBLE
+#endif
 #include <tiny_obj_loader.h>
 
 #include <charconv>

@@ -4,13 +4,36 @@
 #include <cmath>
 #include <sstream>
 
-#include "backend_factory.h"
-#include "core/collision/collision_backend.h"
-#include "core/collision/contacts.h"
+#include "collision/backend_choice.h"
+#include "collision/detector_impl.h"
 #include "core/sim/stability_estimate.h"
+#include "cpu/executor.h"
 #include "deformcd/gl/context.h"
+#include "simulation_factory.h"
 
 namespace deformcd {
+
+namespace {
+
+// Each body's surface as a detector mesh: its faces index the body's own nodes.
+std::vector<CollisionMesh> surface_meshes(const std::vector<BodyInit>& bodies,
+                                          bool self_collision) {
+  std::vector<CollisionMesh> meshes;
+  meshes.reserve(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    CollisionMesh m;
+    m.vertex_count = static_cast<std::uint32_t>(bodies[b].body.positions.size());
+    m.triangles.reserve(bodies[b].body.faces.size());
+    for (const gpu::Face& f : bodies[b].body.faces)
+      m.triangles.push_back({f.a, f.b, f.c});
+    m.self_collision = self_collision;
+    m.name = bodies[b].name.empty() ? "body " + std::to_string(b) : bodies[b].name;
+    meshes.push_back(std::move(m));
+  }
+  return meshes;
+}
+
+}  // namespace
 
 World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
              const WorldOptions& options)
@@ -22,19 +45,23 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   if (!(settings.dt > 0.0f) || settings.substeps < 1) {
     throw Error("dt must be positive and substeps at least 1");
   }
-  const WorldState state = assemble_world(bodies, {.self_collision = options.self_collision});
+  if (options.cpu_threads < 0) throw Error("cpu_threads must be 0 (every core) or positive");
+  const SimulationState state = assemble_simulation(bodies);
   objects_ = state.objects;
   names_ = state.body_names;
-  faces_ = state.faces;
-  for (const BodyInit& b : bodies) {
-    const Bounds box = compute_bounds(b.body);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const Bounds box = compute_bounds(bodies[b].body);
     body_sizes_.push_back(static_cast<float>(glm::length(box.max - box.min)));
+    for (const gpu::Face& f : bodies[b].body.faces) {
+      const std::uint32_t first = objects_[b].node_offset;
+      faces_.push_back({f.a + first, f.b + first, f.c + first, static_cast<std::uint32_t>(b)});
+    }
   }
-  CreatedBackend created = create_backend(options);
-  owned_context_ = std::move(created.owned_context);
-  backend_ = std::move(created.backend);
-  collision_ = std::move(created.collision);
-  notice_ = std::move(created.notice);
+  BackendChoice choice = choose_backend(options.backend, options.gl_context);
+  owned_context_ = std::move(choice.owned_context);
+  notice_ = std::move(choice.notice);
+  executor_ = std::make_shared<cpu::Executor>(options.cpu_threads);
+  backend_ = create_simulation(choice.kind, choice.context, executor_);
   max_stable_substep_ = sim::estimate_max_stable_substep(state);
   const double h = static_cast<double>(settings.dt) / settings.substeps;
   if (h > max_stable_substep_) {
@@ -45,13 +72,32 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
     notice_ += (notice_.empty() ? "" : "\n") + msg.str();
   }
   backend_->upload(state);
-  collision_->upload(state);
+  // The detector reads the simulation's positions where they are: the CPU state's array, or
+  // the GL position buffer (vec4 per node, xyz + inverse mass). The World checks them itself
+  // (check_stability), so the detector does not.
+  DetectorOptions detector_options;
+  detector_options.broadphase = broadphase_;
+  detector_ = std::unique_ptr<Detector>(new Detector(
+      Detector::Impl::create(surface_meshes(bodies, options.self_collision), detector_options,
+                             choice.kind, choice.context, executor_, false)));
+  for (std::size_t b = 0; b < objects_.size(); ++b) {
+    const std::uint32_t first = objects_[b].node_offset;
+    if (choice.kind == BackendKind::kGl) {
+      detector_->set_positions(b, GlPositions{backend_->gl_position_buffer(),
+                                              first * sizeof(glm::vec4), sizeof(glm::vec4)});
+    } else {
+      detector_->set_positions(
+          b, HostPositions{&backend_->host_positions()[first].x, sizeof(glm::vec4)});
+    }
+  }
+  // The paper's octree cuts the start pose: build the hierarchies on it.
+  detector_->prepare();
 }
 
 World::~World() = default;
 
 void World::step() {
-  complete_collision_pass();  // before the positions move
+  detector_->complete();  // before the positions move (a GL pass may rerun on them)
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const float h = settings_.dt / static_cast<float>(settings_.substeps);
@@ -75,56 +121,36 @@ void World::step() {
   }
 }
 
-void World::complete_collision_pass() const {
-  if (!pass_pending_) return;
-  collision_->complete_pass();
-  pass_pending_ = false;
-}
-
 void World::detect_collisions() {
-  complete_collision_pass();
-  collision_->detect(broadphase_);
-  pass_pending_ = true;
+  detector_->set_broadphase(broadphase_);
+  detector_->detect();
   // Timed passes include a rerun after an overflow; otherwise the check waits until the next
   // step or read, so that the GPU can run on while the CPU queues the next frame.
-  if (measure_stage_times_) complete_collision_pass();
+  if (measure_stage_times_) detector_->complete();
   detected_ = broadphase_ != BroadPhase::kNone;
 }
 
 CollisionCounts World::collision_counts() const {
   if (!detected_) return {};
-  complete_collision_pass();
-  const gpu::CollisionCounters c = collision_->counters();
-  return {c.face_pairs, c.box_pairs, c.colliding_faces, c.candidates};
+  return detector_->counts();
 }
 
 std::vector<Contact> World::contacts() const {
   if (!detected_) return {};
-  complete_collision_pass();
-  std::vector<gpu::FacePair> pairs;
-  collision_->download_face_pairs(pairs);
-  return collision::make_contacts(pairs, faces_, objects_);
+  return detector_->contacts();
 }
 
 std::vector<std::uint32_t> World::face_flags() const {
   if (!detected_) return std::vector<std::uint32_t>(faces_.size(), 0u);
-  complete_collision_pass();
-  std::vector<std::uint32_t> flags;
-  collision_->download_face_flags(flags);
-  flags.resize(faces_.size());  // a GL buffer holds at least one element
-  return flags;
+  return detector_->face_flags();
 }
 
 std::uint32_t World::gl_face_flag_buffer() const {
-  return collision_->gl_face_flag_buffer();
+  return detector_->gl_face_flag_buffer();
 }
 
 std::vector<gpu::Box> World::leaf_boxes() const {
-  complete_collision_pass();
-  std::vector<gpu::Box> boxes;
-  collision_->download_boxes(boxes);
-  boxes.resize(objects_.size() * gpu::kLeafBoxesPerBody);
-  return boxes;
+  return detector_->leaf_boxes();
 }
 
 void World::finish() {

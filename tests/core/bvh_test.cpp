@@ -9,26 +9,29 @@
 #include <gtest/gtest.h>
 
 #include "deformcd/body.h"
+#include "support/collision_fixtures.h"
 #include "support/world_fixtures.h"
 
 namespace deformcd::collision {
 namespace {
 
-WorldState two_grids() {
+// Two meshes (the grids' surfaces), their trees built on these positions.
+test::CollisionFixture two_grids() {
   BodyInit a;
   a.body = build_body(test::tet_grid(6, 5, 4, 0.2, glm::dvec3(0.0)));
   BodyInit b;
   b.body = build_body(test::tet_grid(3, 3, 3, 0.3, glm::dvec3(0.5, 0.3, 0.2)));
-  return assemble_world({a, b});
+  return test::collision_fixture({a, b});
 }
 
 TEST(Bvh, EveryFaceIsOneLeafAndNodesAreInPreorder) {
-  const WorldState w = two_grids();
-  ASSERT_EQ(w.body_bvhs.size(), 2u);
+  const test::CollisionFixture fixture = two_grids();
+  const CollisionData& w = fixture.data;
+  ASSERT_EQ(w.mesh_bvhs.size(), 2u);
   std::uint32_t offset = 0;
   for (std::size_t b = 0; b < 2; ++b) {
-    const gpu::ObjectInfo& o = w.objects[b];
-    const gpu::BodyBvh& t = w.body_bvhs[b];
+    const gpu::MeshInfo& o = w.meshes[b];
+    const gpu::BodyBvh& t = w.mesh_bvhs[b];
     EXPECT_EQ(t.root, offset);
     EXPECT_EQ(t.node_count, 2 * o.face_count - 1);
     std::multiset<std::uint32_t> leaves;
@@ -60,26 +63,31 @@ TEST(Bvh, EveryFaceIsOneLeafAndNodesAreInPreorder) {
 }
 
 TEST(Bvh, QueriesFindExactlyTheFacesWhoseBoxesOverlap) {
-  WorldState w = two_grids();
+  test::CollisionFixture fixture = two_grids();
+  const CollisionData& w = fixture.data;
   // Deform: the refit must follow.
-  for (std::size_t i = 0; i < w.positions.size(); ++i) {
-    const glm::vec3 p(w.positions[i]);
-    w.positions[i] = glm::vec4(
-        p + 0.05f * glm::vec3(std::sin(7.0f * p.y), std::cos(5.0f * p.z), std::sin(3.0f * p.x)),
-        w.positions[i].w);
+  for (std::vector<glm::vec4>& mesh : fixture.positions) {
+    for (glm::vec4& v : mesh) {
+      const glm::vec3 p(v);
+      v = glm::vec4(
+          p + 0.05f * glm::vec3(std::sin(7.0f * p.y), std::cos(5.0f * p.z), std::sin(3.0f * p.x)),
+          v.w);
+    }
   }
+  const VertexPositions positions = fixture.vertices();
   std::vector<gpu::Box> boxes(w.bvh_nodes.size());
-  for (const gpu::BodyBvh& t : w.body_bvhs) {
-    refit_bvh(w.bvh_nodes, t.root, t.node_count, w.positions, w.faces, boxes);
+  for (const gpu::BodyBvh& t : w.mesh_bvhs) {
+    refit_bvh(w.bvh_nodes, t.root, t.node_count, positions, w.faces, boxes);
   }
   const auto face_box = [&](std::uint32_t f) {
     gpu::Box b = empty_box();
-    for (std::uint32_t n : {w.faces[f].a, w.faces[f].b, w.faces[f].c})
-      grow_box(b, glm::vec3(w.positions[n]));
+    const gpu::Face& face = w.faces[f];
+    for (std::uint32_t n : {face.a, face.b, face.c})
+      grow_box(b, vertex_position(positions, face.body, n));
     return b;
   };
-  const gpu::ObjectInfo& a = w.objects[0];
-  const gpu::ObjectInfo& b = w.objects[1];
+  const gpu::MeshInfo& a = w.meshes[0];
+  const gpu::MeshInfo& b = w.meshes[1];
   std::size_t found_pairs = 0;
   for (std::uint32_t fa = a.face_offset; fa < a.face_offset + a.face_count; ++fa) {
     const gpu::Box q = face_box(fa);
@@ -88,7 +96,7 @@ TEST(Bvh, QueriesFindExactlyTheFacesWhoseBoxesOverlap) {
       if (boxes_overlap(q, face_box(fb))) expected.insert(fb);
     }
     std::set<std::uint32_t> found;
-    query_bvh(w.bvh_nodes.data(), boxes.data(), w.body_bvhs[1].root, q,
+    query_bvh(w.bvh_nodes.data(), boxes.data(), w.mesh_bvhs[1].root, q,
               [&](std::uint32_t f) { EXPECT_TRUE(found.insert(f).second) << "twice: " << f; });
     ASSERT_EQ(found, expected) << "face " << fa;
     found_pairs += found.size();
@@ -97,18 +105,18 @@ TEST(Bvh, QueriesFindExactlyTheFacesWhoseBoxesOverlap) {
 }
 
 TEST(Bvh, AreaRatioGrowsWhenTheTreeLoosens) {
-  WorldState w = two_grids();
-  const gpu::BodyBvh& t = w.body_bvhs[0];
+  test::CollisionFixture fixture = two_grids();
+  const CollisionData& w = fixture.data;
+  const gpu::BodyBvh& t = w.mesh_bvhs[0];
   std::vector<gpu::Box> boxes(w.bvh_nodes.size());
-  refit_bvh(w.bvh_nodes, t.root, t.node_count, w.positions, w.faces, boxes);
+  refit_bvh(w.bvh_nodes, t.root, t.node_count, fixture.vertices(), w.faces, boxes);
   const double fresh = bvh_area_ratio(w.bvh_nodes, t.root, t.node_count, boxes);
   EXPECT_GT(fresh, 1.0);
-  // Mirror the body through its centre plane x = 0.6: siblings now overlap everywhere.
-  for (std::uint32_t i = 0; i < w.objects[0].node_count; ++i) {
-    glm::vec4& p = w.positions[i];
+  // Mirror the lower half of mesh 0 through its centre plane x = 0.6 (in place: the views
+  // still point at the arrays): siblings now overlap everywhere.
+  for (glm::vec4& p : fixture.positions[0])
     p.x = p.y < 0.5f ? 1.2f - p.x : p.x;
-  }
-  refit_bvh(w.bvh_nodes, t.root, t.node_count, w.positions, w.faces, boxes);
+  refit_bvh(w.bvh_nodes, t.root, t.node_count, fixture.vertices(), w.faces, boxes);
   EXPECT_GT(bvh_area_ratio(w.bvh_nodes, t.root, t.node_count, boxes), 1.2 * fresh);
 }
 

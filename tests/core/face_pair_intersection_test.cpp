@@ -42,6 +42,15 @@ TEST(SharedNodes, CountsCommonNodesAndTheirCorners) {
   EXPECT_EQ(shared_nodes(f, {12, 10, 11, 0}).count, 3);
 }
 
+TEST(SharedNodes, FacesOfDifferentMeshesShareNoNodeWhateverTheirIndices) {
+  // Vertex indices are local to each mesh: the same numbers in two meshes are two vertices.
+  const gpu::Face f{10, 11, 12, 0};
+  EXPECT_EQ(shared_nodes(f, {20, 12, 22, 1}).count, 0);
+  EXPECT_EQ(shared_nodes(f, {11, 10, 22, 1}).count, 0);
+  EXPECT_EQ(shared_nodes(f, {10, 11, 12, 1}).count, 0);
+  EXPECT_EQ(shared_nodes({10, 11, 12, 3}, {12, 10, 11, 2}).count, 0);
+}
+
 TEST(SegmentTriangle, CrossingTouchingInPlaneAndApart) {
   const vec3 t[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
   EXPECT_TRUE(segment_triangle_meet(vec3(0.2f, 0.2f, -1), vec3(0.2f, 0.2f, 1), t));
@@ -136,14 +145,17 @@ class FacePairTest : public ::testing::Test {
  protected:
   // Two triangles folded onto each other over edge 0-1 (nodes 2 and 3 on the same side), and a
   // third face sharing only node 0 that passes through the first.
-  std::vector<glm::vec4> positions = {
+  std::vector<glm::vec4> points = {
       {0, 0, 0, 0},        {2, 0, 0, 0}, {1, 1, 0, 0}, {1, 0.5f, 0, 0}, {0.5f, 0.5f, 1, 0},
       {0.5f, 0.5f, -1, 0}, {5, 5, 5, 0}, {6, 5, 5, 0}, {5, 6, 5, 0},
   };
+  // One mesh (Face::body 0) whose vertices are `points`.
+  const MeshVertices mesh{&points[0].x, 4u};
+  const VertexPositions positions = &mesh;
 };
 
 TEST_F(FacePairTest, EdgeNeighboursAreNeverAContact) {
-  const TriTriResult r = face_pair_intersect({0, 1, 2, 0}, {1, 0, 3, 0}, positions.data());
+  const TriTriResult r = face_pair_intersect({0, 1, 2, 0}, {1, 0, 3, 0}, positions);
   EXPECT_FALSE(r.intersect);
   // The same triangles as separate nodes (different bodies) do overlap.
   const vec3 p[3] = {vec3(0, 0, 0), vec3(2, 0, 0), vec3(1, 1, 0)};
@@ -157,21 +169,64 @@ TEST_F(FacePairTest, VertexNeighboursAreTestedBeyondTheSharedNodeInAnyCornerOrde
   const std::array<gpu::Face, 3> fb = {{{0, 4, 5, 0}, {5, 0, 4, 0}, {4, 5, 0, 0}}};
   for (const gpu::Face& a : fa) {
     for (const gpu::Face& b : fb) {
-      EXPECT_TRUE(face_pair_intersect(a, b, positions.data()).intersect);
-      EXPECT_TRUE(face_pair_intersect(b, a, positions.data()).intersect);
+      EXPECT_TRUE(face_pair_intersect(a, b, positions).intersect);
+      EXPECT_TRUE(face_pair_intersect(b, a, positions).intersect);
     }
   }
   // Face (0, 6, 7) shares node 0 and runs away from face (0, 1, 2): no contact, though the
   // plain test would report the shared node.
-  EXPECT_FALSE(face_pair_intersect({0, 1, 2, 0}, {0, 6, 7, 0}, positions.data()).intersect);
+  EXPECT_FALSE(face_pair_intersect({0, 1, 2, 0}, {0, 6, 7, 0}, positions).intersect);
 }
 
 TEST_F(FacePairTest, FacesSharingNothingTakeTheTriangleTest) {
-  EXPECT_FALSE(face_pair_intersect({0, 1, 2, 0}, {6, 7, 8, 0}, positions.data()).intersect);
-  const TriTriResult r = face_pair_intersect({1, 2, 3, 0}, {4, 5, 6, 0}, positions.data());
+  EXPECT_FALSE(face_pair_intersect({0, 1, 2, 0}, {6, 7, 8, 0}, positions).intersect);
+  const TriTriResult r = face_pair_intersect({1, 2, 3, 0}, {4, 5, 6, 0}, positions);
   const vec3 p[3] = {vec3(2, 0, 0), vec3(1, 1, 0), vec3(1, 0.5f, 0)};
   const vec3 q[3] = {vec3(0.5f, 0.5f, 1), vec3(0.5f, 0.5f, -1), vec3(5, 5, 5)};
   EXPECT_EQ(r.intersect, tri_tri_intersect(p, q).intersect);
+}
+
+// Faces of two meshes whose local vertex indices coincide take the plain triangle test: the
+// pairs below are all contacts, though within one mesh the same indices would make the first
+// two edge (or all-node) neighbours and the third vertex neighbours that meet nowhere else.
+TEST_F(FacePairTest, FacesOfDifferentMeshesWithTheSameIndicesTakeTheTriangleTest) {
+  // Mesh 1: `points` moved by 0.1 within the plane z = 0.
+  std::vector<glm::vec4> moved = points;
+  for (glm::vec4& p : moved)
+    p += glm::vec4(0.1f, 0.1f, 0.0f, 0.0f);
+  const MeshVertices same[2] = {mesh, mesh};
+  const MeshVertices shifted[2] = {mesh, {&moved[0].x, 4u}};
+  struct Case {
+    gpu::Face a;
+    gpu::Face b;
+    const MeshVertices* positions;
+  };
+  const Case cases[] = {
+      // The folded-over pair of EdgeNeighboursAreNeverAContact, as two meshes on one array.
+      {{0, 1, 2, 0}, {1, 0, 3, 1}, same},
+      // Face (0, 1, 2) against its copy in mesh 1, shifted within its plane: they overlap.
+      {{0, 1, 2, 0}, {0, 1, 2, 1}, shifted},
+      // Face (0, 6, 7) of mesh 1 touches face (0, 1, 2) of mesh 0 at their coinciding vertex
+      // 0 only: a contact between meshes (touching counts), none within one mesh.
+      {{0, 1, 2, 0}, {0, 6, 7, 1}, same},
+  };
+  for (const Case& c : cases) {
+    vec3 p[3];
+    vec3 q[3];
+    face_vertices(c.positions, c.a, p);
+    face_vertices(c.positions, c.b, q);
+    const TriTriResult expected = tri_tri_intersect(p, q);
+    ASSERT_TRUE(expected.intersect) << c.b.a << " " << c.b.b << " " << c.b.c;
+    const TriTriResult r = face_pair_intersect(c.a, c.b, c.positions);
+    EXPECT_TRUE(r.intersect) << c.b.a << " " << c.b.b << " " << c.b.c;
+    EXPECT_EQ(r.coplanar, expected.coplanar);
+    EXPECT_EQ(r.segment[0], expected.segment[0]);
+    EXPECT_EQ(r.segment[1], expected.segment[1]);
+    // Within one mesh the same indices are neighbours: not a contact.
+    const gpu::Face b_in_a{c.b.a, c.b.b, c.b.c, 0};
+    EXPECT_FALSE(face_pair_intersect(c.a, b_in_a, positions).intersect)
+        << c.b.a << " " << c.b.b << " " << c.b.c;
+  }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "deformcd/body.h"
+#include "support/collision_fixtures.h"
 #include "support/world_fixtures.h"
 
 namespace deformcd::collision {
@@ -33,9 +34,11 @@ BodyInit grid_body(int n, double spacing, glm::dvec3 origin) {
 }
 
 TEST(LeafBoxes, EveryFaceIsListedUnderTheCellsItsBoxOverlaps) {
-  const WorldState w = assemble_world({grid_body(8, 0.125, glm::dvec3(0.0))});
-  const gpu::ObjectInfo& o = w.objects[0];
-  ASSERT_EQ(o.box_count, 64u);
+  const test::CollisionFixture fixture =
+      test::collision_fixture({grid_body(8, 0.125, glm::dvec3(0.0))});
+  const CollisionData& w = fixture.data;
+  ASSERT_EQ(w.mesh_count(), 1u);
+  const gpu::MeshInfo& o = w.meshes[0];
   ASSERT_EQ(w.box_rows.size(), 64u);
   ASSERT_EQ(w.face_boxes.size(), w.faces.size());
   // Rows grouped box by box, in box order, and box_rows pointing at each group.
@@ -68,25 +71,28 @@ TEST(LeafBoxes, EveryFaceIsListedUnderTheCellsItsBoxOverlaps) {
 }
 
 TEST(LeafBoxes, ListsOfSeveralBodiesFollowEachOther) {
-  const WorldState w =
-      assemble_world({grid_body(2, 0.5, glm::dvec3(0.0)), grid_body(3, 0.2, glm::dvec3(5.0)),
-                      grid_body(1, 1.0, glm::dvec3(-5.0))});
-  ASSERT_EQ(w.objects.size(), 3u);
-  ASSERT_EQ(w.body_pairs.size(), 3u);
-  EXPECT_EQ(w.body_pairs[0].a, 0u);
-  EXPECT_EQ(w.body_pairs[0].b, 1u);
-  EXPECT_EQ(w.body_pairs[2].a, 1u);
-  EXPECT_EQ(w.body_pairs[2].b, 2u);
+  const test::CollisionFixture fixture = test::collision_fixture(
+      {grid_body(2, 0.5, glm::dvec3(0.0)), grid_body(3, 0.2, glm::dvec3(5.0)),
+       grid_body(1, 1.0, glm::dvec3(-5.0))});
+  const CollisionData& w = fixture.data;
+  ASSERT_EQ(w.meshes.size(), 3u);
+  ASSERT_EQ(w.mesh_pairs.size(), 3u);
+  EXPECT_EQ(w.mesh_pairs[0].a, 0u);
+  EXPECT_EQ(w.mesh_pairs[0].b, 1u);
+  EXPECT_EQ(w.mesh_pairs[2].a, 1u);
+  EXPECT_EQ(w.mesh_pairs[2].b, 2u);
+  ASSERT_EQ(w.box_rows.size(), 3u * 64u);
   std::uint32_t rows = 0;
   for (std::uint32_t b = 0; b < 3; ++b) {
-    const gpu::ObjectInfo& o = w.objects[b];
-    EXPECT_EQ(o.box_offset, 64u * b);
+    const gpu::MeshInfo& o = w.meshes[b];
+    // Mesh b's 64 boxes are boxes 64 b to 64 b + 63 (the leaf-box arrays hold 64 per mesh).
+    const std::uint32_t box_offset = 64u * b;
     EXPECT_EQ(o.box_face_offset, rows);
     for (std::uint32_t r = o.box_face_offset; r < o.box_face_offset + o.box_face_count; ++r) {
       EXPECT_GE(w.box_faces[r].face, o.face_offset);
       EXPECT_LT(w.box_faces[r].face, o.face_offset + o.face_count);
     }
-    EXPECT_EQ(w.box_rows[o.box_offset].x, o.box_face_offset);
+    EXPECT_EQ(w.box_rows[box_offset].x, o.box_face_offset);
     rows += o.box_face_count;
   }
   EXPECT_EQ(rows, w.box_faces.size());
@@ -96,8 +102,9 @@ TEST(LeafBoxes, AFlatBodyUsesOneLayerOfCells) {
   // Two triangles in z = 0: no extent along z, all cells at z = 0, no division by zero.
   const std::vector<glm::vec4> p = {glm::vec4(0, 0, 0, 1), glm::vec4(1, 0, 0, 1),
                                     glm::vec4(0, 1, 0, 1), glm::vec4(1, 1, 0, 1)};
+  const MeshVertices mesh{&p[0].x, 4u};
   const gpu::Face faces[2] = {{0, 1, 2, 0}, {1, 3, 2, 0}};
-  const LeafBoxLists lists = build_leaf_box_lists(p, faces, 2, 0);
+  const LeafBoxLists lists = build_leaf_box_lists(&mesh, faces, 2, 0);
   ASSERT_FALSE(lists.rows.empty());
   for (const gpu::BoxFace& r : lists.rows)
     EXPECT_EQ(r.box % 8u / 4u, 0u) << r.box;  // z bit

@@ -46,7 +46,7 @@ TEST(CpuMassSpring, TwoMassesOscillateWithTheReducedMassPeriod) {
 }
 
 // A cube grid with random stretches and random velocities, no gravity, no damping.
-WorldState shaken_grid(unsigned seed) {
+SimulationState shaken_grid(unsigned seed) {
   BodyOptions options;
   options.stiffness = 5.0e4;
   BodyInit init;
@@ -57,7 +57,7 @@ WorldState shaken_grid(unsigned seed) {
     p += glm::vec4(jitter(rng), jitter(rng), jitter(rng), 0.0f);
   for (auto& v : init.body.velocities)
     v = glm::vec4(speed(rng), speed(rng), speed(rng), 0.0f);
-  return assemble_world({init});
+  return assemble_simulation({init});
 }
 
 glm::dvec3 momentum(const std::vector<glm::vec4>& p, const std::vector<glm::vec4>& v) {
@@ -92,7 +92,7 @@ TEST(CpuMassSpring, OneAndTwoThreadsGiveBitIdenticalStates) {
   std::uniform_real_distribution<float> jitter(-0.01f, 0.01f);
   for (auto& p : big.body.positions)
     p += glm::vec4(jitter(rng), jitter(rng), jitter(rng), 0.0f);
-  const WorldState start = assemble_world({big});
+  const SimulationState start = assemble_simulation({big});
   ASSERT_GT(start.springs.size(), 4 * cpu::kDefaultGrain);
 
   auto run = [&](int threads) {
@@ -116,7 +116,7 @@ TEST(CpuMassSpring, FixedNodesStayAndCarryVelocityMovesTheBody) {
   init.fixed = {0};
   init.carry_velocity = glm::vec3(1.0f, 0.0f, 0.0f);
   cpu::CpuSimulation sim;
-  sim.upload(assemble_world({init}));
+  sim.upload(assemble_simulation({init}));
   for (int step = 0; step < 100; ++step)
     sim.substep({0.01f, glm::vec3(0.0f), 1.0f});
   std::vector<glm::vec4> p;

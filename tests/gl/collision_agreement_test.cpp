@@ -1,8 +1,9 @@
 // GL and CPU collision backends on the same positions: the shipped phase scenes replayed on the
-// CPU, and at every frame the same world state handed to both collision backends, which must
-// return the same face pairs (segments bit for bit: the GLSL narrow phase mirrors the C++), the
-// same flags and the same counts, with every broad phase (the paper's octree every third frame);
-// and every broad phase the same pairs as the octree.
+// CPU, and at every frame the same positions handed to both collision backends (the CPU one
+// reads host arrays, the GL one a GL buffer holding every node as a World's simulation does),
+// which must return the same face pairs (segments bit for bit: the GLSL narrow phase mirrors the
+// C++), the same flags and the same counts, with every broad phase (the paper's octree every
+// third frame); and every broad phase the same pairs as the octree.
 
 #include <algorithm>
 #include <filesystem>
@@ -10,13 +11,16 @@
 
 #include <gtest/gtest.h>
 
+#include "collision_test_backends.h"
+#include "core/collision/collision_backend.h"
 #include "cpu/cpu_collision.h"
 #include "cpu/cpu_simulation.h"
+#include "deformcd/gl/ssbo.h"
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "gl_test_context.h"
 #include "gpu/gl/gl_collision.h"
-#include "gpu/gl/gl_simulation.h"
+#include "support/collision_fixtures.h"
 
 namespace fs = std::filesystem;
 
@@ -34,8 +38,7 @@ auto pair_key(const gpu::FacePair& p) {
                   p.segment1.x, p.segment1.y, p.segment1.z);
 }
 
-template <class Collision>
-Pass run(Collision& collision, BroadPhase method) {
+Pass run(collision::CollisionBackend& collision, BroadPhase method) {
   Pass pass;
   collision.detect(method);
   collision.download_face_pairs(pass.pairs);
@@ -65,21 +68,36 @@ void expect_same(const Pass& gl, const Pass& cpu, const std::string& where) {
 }
 
 // A shipped scene replayed on the CPU over its whole trajectory in `frames` frames; at each
-// frame the GL simulation gets the CPU's positions, so that both collision backends test the
-// same floats.
+// frame both collision backends test the CPU simulation's positions: the CPU one from host
+// arrays (one per mesh), the GL one from a GL buffer of every node (a vec4 each, mesh m's from
+// its body's node offset), read in place as a World reads its GL simulation's.
 struct SceneReplay {
   SceneReplay(Context& context, const std::string& name, int frames)
       : scene(read_scene(fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (name + ".json"))),
-        state(assemble_world(make_scene_bodies(scene, read_tetgen, frames),
-                             {.self_collision = scene.collision.self})),
+        bodies(make_scene_bodies(scene, read_tetgen, frames)),
+        state(assemble_simulation(bodies)),
         settings(step_settings(scene.settings)),
-        cpu_collision(cpu_sim),
-        gl_sim(context),
-        gl_collision(context, gl_sim) {
+        fixture(test::collision_fixture(bodies, scene.collision.self)),
+        cpu_sim(2),
+        cpu_collision(2),
+        gl_positions(state.positions.size() * sizeof(glm::vec4)),
+        gl_collision(context) {
     cpu_sim.upload(state);
-    cpu_collision.upload(state);
-    gl_sim.upload(state);
-    gl_collision.upload(state);
+    cpu_collision.set_positions(fixture.host_sources());
+    cpu_collision.upload(fixture.data);
+    std::vector<collision::PositionSource> sources;
+    for (const gpu::ObjectInfo& o : state.objects) {
+      collision::PositionSource s;
+      s.kind = collision::PositionSource::Kind::kGl;
+      s.gl_buffer = gl_positions.name();
+      s.offset_bytes = std::uint64_t{o.node_offset} * sizeof(glm::vec4);
+      s.stride_bytes = sizeof(glm::vec4);
+      s.vertex_count = o.node_count;
+      sources.push_back(s);
+    }
+    share_positions();
+    gl_collision.set_positions(sources);
+    gl_collision.upload(fixture.data);
   }
 
   void step() {
@@ -88,16 +106,38 @@ struct SceneReplay {
                                           std::exp(-settings.velocity_damping * h)};
     for (int s = 0; s < settings.substeps; ++s)
       cpu_sim.substep(constants);
-    state.positions = cpu_sim.state().positions;
-    gl_sim.upload(state);
+    share_positions();
+  }
+
+  // The CPU simulation's positions into the host arrays and the GL buffer.
+  void share_positions() {
+    const std::vector<glm::vec4>& p = cpu_sim.state().positions;
+    for (std::size_t b = 0; b < state.objects.size(); ++b) {
+      const gpu::ObjectInfo& o = state.objects[b];
+      std::copy(p.begin() + o.node_offset, p.begin() + o.node_offset + o.node_count,
+                fixture.positions[b].begin());
+    }
+    gl_positions.upload(p.data(), p.size() * sizeof(glm::vec4));
+  }
+
+  // Face count products over the mesh pairs (a mesh with itself: each pair once).
+  [[nodiscard]] std::uint64_t all_face_pairs() const {
+    std::uint64_t all = 0;
+    for (const gpu::BodyPair& p : fixture.data.mesh_pairs) {
+      const std::uint64_t a = fixture.data.meshes[p.a].face_count;
+      all += p.a == p.b ? a * (a - 1) / 2 : a * fixture.data.meshes[p.b].face_count;
+    }
+    return all;
   }
 
   Scene scene;
-  WorldState state;
+  std::vector<BodyInit> bodies;
+  SimulationState state;
   StepSettings settings;
+  test::CollisionFixture fixture;
   cpu::CpuSimulation cpu_sim;
   cpu::CpuCollision cpu_collision;
-  GlSimulation gl_sim;
+  BufferObject gl_positions;
   GlCollision gl_collision;
 };
 
@@ -136,12 +176,7 @@ TEST_P(CollisionBackendAgreement, GlEqualsCpuOnEveryFrame) {
       expected.counters.box_pairs = 0;
       expected.counters.candidates = gl_brute.counters.candidates;
       expect_same(gl_brute, expected, std::string(GetParam()) + " brute" + frame);
-      std::uint64_t all = 0;
-      for (const gpu::BodyPair& p : replay.state.body_pairs) {
-        all += std::uint64_t{replay.state.objects[p.a].face_count} *
-               replay.state.objects[p.b].face_count;
-      }
-      EXPECT_EQ(gl_brute.counters.candidates, all) << "brute" << frame;
+      EXPECT_EQ(gl_brute.counters.candidates, replay.all_face_pairs()) << "brute" << frame;
     }
   }
   EXPECT_GE(frames_in_contact, 2);
@@ -152,15 +187,15 @@ INSTANTIATE_TEST_SUITE_P(ShippedScenes, CollisionBackendAgreement,
 
 class CollisionBackendSelf : public test_support::GlTest {};
 
-// The plate of scenes/fold.json folding into itself (self-collision: one body pair (0, 0), faces
+// The plate of scenes/fold.json folding into itself (self-collision: one mesh pair (0, 0), faces
 // sharing an edge skipped, faces sharing a node tested beyond it): every broad phase on GL
 // returns the CPU's pairs, segments bit for bit, and the same counts, the all-pairs baseline
 // included, at rest, while it bends (frame 3) and through the fold.
 TEST_F(CollisionBackendSelf, GlEqualsCpuOnTheFoldingPlate) {
   constexpr int kFrames = 40;
   SceneReplay replay(context(), "fold", 120);
-  ASSERT_EQ(replay.state.body_pairs.size(), 1u);
-  ASSERT_EQ(replay.state.body_pairs[0].a, replay.state.body_pairs[0].b);
+  ASSERT_EQ(replay.fixture.data.mesh_pairs.size(), 1u);
+  ASSERT_EQ(replay.fixture.data.mesh_pairs[0].a, replay.fixture.data.mesh_pairs[0].b);
   int frames_in_contact = 0;
   for (int f = 0; f <= kFrames; ++f) {
     if (f > 0) replay.step();
@@ -177,22 +212,21 @@ TEST_F(CollisionBackendSelf, GlEqualsCpuOnTheFoldingPlate) {
       brute_pairs.counters = cpu.counters;
       expect_same(cpu, brute_pairs, where + " against brute");
     }
-    // The baseline counts each pair of the body's faces once.
-    const std::uint64_t n = replay.state.objects[0].face_count;
-    EXPECT_EQ(cpu_brute.counters.candidates, n * (n - 1) / 2) << frame;
+    // The baseline counts each pair of the mesh's faces once.
+    EXPECT_EQ(cpu_brute.counters.candidates, replay.all_face_pairs()) << frame;
   }
   EXPECT_GE(frames_in_contact, 3);
 }
 
 class CollisionBackendManyBodies : public test_support::GlTest {};
 
-// Sixteen bodies crossing in two lanes (120 body pairs, most of them apart at any time, culled
+// Sixteen bodies crossing in two lanes (120 mesh pairs, most of them apart at any time, culled
 // by their root boxes on the GPU): the broad phases beyond the paper agree with the CPU's, and
 // with each other. (The paper's octree and the baseline would take minutes here on llvmpipe.)
 TEST_F(CollisionBackendManyBodies, GlEqualsCpuWithSixteenBodies) {
   constexpr int kFrames = 8;
   SceneReplay replay(context(), "crossing16", kFrames);
-  ASSERT_EQ(replay.state.body_pairs.size(), 120u);
+  ASSERT_EQ(replay.fixture.data.mesh_pairs.size(), 120u);
   int frames_in_contact = 0;
   for (int f = 0; f <= kFrames; ++f) {
     if (f > 0) replay.step();

@@ -1,21 +1,30 @@
 #pragma once
-// What the GL collision tests share: a GL simulation holding a world's positions with a GL
-// collision backend over them, and comparisons of face pairs and flags with host references.
+// What the GL collision tests share: a GL collision backend over a fixture's meshes, positions
+// in GL buffers the test owns (as a caller's VBO would hold them), and comparisons of face
+// pairs with host references.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
 #include "collision_test_worlds.h"
+#include "core/collision/collision_backend.h"
 #include "deformcd/gl/context.h"
+#include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
-#include "deformcd/world_state.h"
 #include "gpu/gl/gl_collision.h"
-#include "gpu/gl/gl_simulation.h"
+#include "support/collision_fixtures.h"
 
 namespace deformcd::test {
+
+using collision::PositionSource;
 
 /// Same pairs in the same order (both sorted), segments bit for bit.
 inline void expect_same_pairs(const std::vector<gpu::FacePair>& actual,
@@ -49,16 +58,87 @@ inline std::uint32_t count_set(const std::vector<std::uint32_t>& flags) {
   return n;
 }
 
-/// A simulation holding a world's positions and a collision backend over them.
-struct Backends {
-  gl::GlSimulation simulation;
+/// Positions of some meshes in one GL buffer the test owns: from `offset_bytes`, mesh after
+/// mesh, vertex after vertex `stride_bytes` apart (12: packed xyz). The bytes between vertices
+/// and before the first hold NaN, so that a shader reading the wrong words finds no contact.
+class GlPositionBuffer {
+ public:
+  GlPositionBuffer(const std::vector<std::vector<glm::vec4>>& meshes, std::size_t offset_bytes,
+                   std::size_t stride_bytes)
+      : buffer_(bytes_for(meshes, offset_bytes, stride_bytes)), stride_(stride_bytes) {
+    std::size_t at = offset_bytes;
+    for (const std::vector<glm::vec4>& m : meshes) {
+      offsets_.push_back(at);
+      counts_.push_back(static_cast<std::uint32_t>(m.size()));
+      at += m.size() * stride_bytes;
+    }
+    write(meshes);
+  }
+
+  /// Rewrites every mesh's positions (as many as at construction).
+  void write(const std::vector<std::vector<glm::vec4>>& meshes) {
+    std::vector<float> words(buffer_.size_bytes() / sizeof(float),
+                             std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
+      for (std::size_t i = 0; i < meshes[m].size(); ++i) {
+        float* w = &words[(offsets_[m] + i * stride_) / sizeof(float)];
+        w[0] = meshes[m][i].x;
+        w[1] = meshes[m][i].y;
+        w[2] = meshes[m][i].z;
+      }
+    }
+    buffer_.upload(words.data(), words.size() * sizeof(float));
+  }
+
+  /// Overwrites one coordinate of one vertex.
+  void write_coordinate(std::size_t mesh, std::uint32_t vertex, int axis, float value) {
+    buffer_.upload(&value, sizeof(float), offsets_[mesh] + vertex * stride_ + axis * sizeof(float));
+  }
+
+  /// Mesh `mesh` (in construction order) as a source.
+  [[nodiscard]] PositionSource source(std::size_t mesh) const {
+    PositionSource s;
+    s.kind = PositionSource::Kind::kGl;
+    s.gl_buffer = buffer_.name();
+    s.offset_bytes = offsets_[mesh];
+    s.stride_bytes = stride_;
+    s.vertex_count = counts_[mesh];
+    return s;
+  }
+  [[nodiscard]] std::vector<PositionSource> sources() const {
+    std::vector<PositionSource> all;
+    for (std::size_t m = 0; m < offsets_.size(); ++m)
+      all.push_back(source(m));
+    return all;
+  }
+  [[nodiscard]] std::uint32_t name() const { return buffer_.name(); }
+
+ private:
+  static std::size_t bytes_for(const std::vector<std::vector<glm::vec4>>& meshes,
+                               std::size_t offset_bytes, std::size_t stride_bytes) {
+    std::size_t bytes = offset_bytes;
+    for (const std::vector<glm::vec4>& m : meshes)
+      bytes += m.size() * stride_bytes;
+    return bytes;
+  }
+
+  gl::BufferObject buffer_;
+  std::size_t stride_;
+  std::vector<std::size_t> offsets_;
+  std::vector<std::uint32_t> counts_;
+};
+
+/// A GL collision backend over bodies' surfaces (test::collision_fixture), reading the
+/// fixture's host arrays until told otherwise.
+struct GlBackend {
+  CollisionFixture fixture;
   gl::GlCollision collision;
 
-  Backends(gl::Context& context, const WorldState& world,
-           const gl::GlCollisionOptions& options = {})
-      : simulation(context), collision(context, simulation, options) {
-    simulation.upload(world);
-    collision.upload(world);
+  GlBackend(gl::Context& context, const std::vector<BodyInit>& bodies,
+            const gl::GlCollisionOptions& options = {}, bool self_collision = false)
+      : fixture(collision_fixture(bodies, self_collision)), collision(context, options) {
+    collision.set_positions(fixture.host_sources());
+    collision.upload(fixture.data);
   }
 
   /// One pass, its face pairs sorted.
@@ -68,6 +148,9 @@ struct Backends {
     collision.download_face_pairs(out);
     return sorted(out);
   }
+
+  /// What the host finds on the fixture's current positions.
+  [[nodiscard]] std::vector<gpu::FacePair> expected() const { return all_pairs_on_host(fixture); }
 };
 
 }  // namespace deformcd::test

@@ -32,6 +32,8 @@ TEST(EmbeddedShaders, MatchTheFilesOnDisk) {
 
 TEST(EmbeddedShaders, LookUpByName) {
   EXPECT_NE(embedded_shader("common/layout.glsl").find("struct ObjectInfo"), std::string::npos);
+  EXPECT_NE(embedded_shader("common/layout.glsl").find("struct MeshInfo"), std::string::npos);
+  EXPECT_NE(embedded_shader("collision/vertex_check.comp").find("atomicMin"), std::string::npos);
   EXPECT_THROW((void)embedded_shader("common/missing.glsl"), GlError);
 }
 

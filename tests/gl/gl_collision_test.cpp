@@ -1,9 +1,9 @@
 // The GL collision backend against host references: every broad phase (the octree, the
 // all-pairs baseline, octree-compact, bvh) finds exactly the face pairs that testing every pair
-// of faces with the C++ narrow phase finds (the GLSL mirror performs the same float operations, so
-// the segments agree bit for bit on llvmpipe), the face flags and counters agree with those pairs,
-// the leaf boxes with boxes grown on the host; and the backend's boundaries: a full result buffer,
-// several mask chunks, buffers over the limit, a single body.
+// of faces with the C++ narrow phase finds (the GLSL mirror performs the same float operations,
+// so the segments agree bit for bit on llvmpipe), the face flags and counters agree with those
+// pairs, the leaf boxes with boxes grown on the host; and the backend's boundaries: a full
+// result buffer, several mask chunks, buffers over the limit, a single mesh, misuse.
 
 #include <gtest/gtest.h>
 
@@ -15,7 +15,7 @@
 #include "collision_test_backends.h"
 #include "collision_test_worlds.h"
 #include "deformcd/error.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 #include "gl_test_context.h"
 #include "gpu/gl/gl_collision.h"
 #include "gpu/gl/gl_simulation.h"
@@ -23,10 +23,10 @@
 namespace deformcd::gl {
 namespace {
 
-using test::Backends;
 using test::count_set;
 using test::expect_same_pairs;
 using test::flags_of;
+using test::GlBackend;
 
 constexpr BroadPhase kEveryMethod[] = {BroadPhase::kOctree, BroadPhase::kBrute,
                                        BroadPhase::kOctreeCompact, BroadPhase::kBvh};
@@ -37,17 +37,18 @@ bool lists_box_pairs(BroadPhase method) {
 
 class GlCollisionTest : public test_support::GlTest {};
 
-TEST_F(GlCollisionTest, CrossingBodiesGiveTheHostPairsFlagsAndCounts) {
-  const WorldState world = test::two_crossing_grids();
-  const std::vector<gpu::FacePair> expected = test::all_pairs_on_host(world);
-  ASSERT_GT(expected.size(), 10u) << "the fixture's bodies should cross";
-  const std::vector<std::uint32_t> expected_flags = flags_of(expected, world.faces.size());
+TEST_F(GlCollisionTest, CrossingMeshesGiveTheHostPairsFlagsAndCounts) {
+  GlBackend gl(context(), test::two_crossing_grids());
+  const collision::CollisionData& data = gl.fixture.data;
+  const std::vector<gpu::FacePair> expected = gl.expected();
+  ASSERT_GT(expected.size(), 10u) << "the fixture's meshes should cross";
+  const std::vector<std::uint32_t> expected_flags = flags_of(expected, data.faces.size());
   const std::uint32_t expected_box_pairs =
-      test::overlapping_box_pairs(world, test::leaf_boxes_on_host(world, world.positions));
+      test::overlapping_box_pairs(data, test::leaf_boxes_on_host(data, gl.fixture.vertices()));
   ASSERT_GT(expected_box_pairs, 0u);
 
-  Backends gl(context(), world);
   EXPECT_EQ(gl.collision.name(), "gl");
+  EXPECT_NE(gl.collision.device().find("OpenGL"), std::string::npos) << gl.collision.device();
   for (BroadPhase method : kEveryMethod) {
     const std::string name(broadphase_name(method));
     expect_same_pairs(gl.pairs(method), expected, name);
@@ -59,12 +60,13 @@ TEST_F(GlCollisionTest, CrossingBodiesGiveTheHostPairsFlagsAndCounts) {
     gl.collision.download_face_flags(flags);
     EXPECT_EQ(flags, expected_flags) << name;
   }
+  // Host arrays are gathered into the backend's buffer.
+  EXPECT_FALSE(gl.collision.positions_in_place());
 }
 
-TEST_F(GlCollisionTest, BodiesApartGiveNoPairsNoFlagsAndNoBoxPairs) {
-  const WorldState world = test::two_separate_grids();
-  ASSERT_TRUE(test::all_pairs_on_host(world).empty());
-  Backends gl(context(), world);
+TEST_F(GlCollisionTest, MeshesApartGiveNoPairsNoFlagsAndNoBoxPairs) {
+  GlBackend gl(context(), test::two_separate_grids());
+  ASSERT_TRUE(gl.expected().empty());
   for (BroadPhase method : kEveryMethod) {
     const std::string name(broadphase_name(method));
     EXPECT_TRUE(gl.pairs(method).empty()) << name;
@@ -74,72 +76,96 @@ TEST_F(GlCollisionTest, BodiesApartGiveNoPairsNoFlagsAndNoBoxPairs) {
     EXPECT_EQ(counters.colliding_faces, 0u) << name;
     std::vector<std::uint32_t> flags;
     gl.collision.download_face_flags(flags);
-    EXPECT_EQ(flags, std::vector<std::uint32_t>(world.faces.size(), 0u)) << name;
+    EXPECT_EQ(flags, std::vector<std::uint32_t>(gl.fixture.data.faces.size(), 0u)) << name;
   }
 }
 
-// The boxes follow the deformation: after a few substeps they are the host's boxes of the
-// simulation's current positions, empty ones (leaf cells inside the body) included.
-TEST_F(GlCollisionTest, LeafBoxesAreTheHostBoxesOfTheCurrentPositions) {
-  WorldState world = test::two_crossing_grids();
+// A World's case: the positions are a GL simulation's SSBO 0 (a vec4 per node, body b's from
+// node_offset), read in place. After a few substeps the leaf boxes are the host's boxes of the
+// simulation's current positions, empty ones (leaf cells inside a mesh) included, and the pairs
+// those of the current positions.
+TEST_F(GlCollisionTest, LeafBoxesFollowASimulationsBufferReadInPlace) {
+  const std::vector<BodyInit> bodies = test::two_crossing_grids();
+  SimulationState world = assemble_simulation(bodies);
   for (std::size_t i = 0; i < world.velocities.size(); ++i) {
     const auto n = static_cast<std::uint32_t>(i);
     world.velocities[i] =
         glm::vec4(test::hash_unit(n, 21), test::hash_unit(n, 22), test::hash_unit(n, 23), 0.0f);
   }
-  Backends gl(context(), world);
-  test::run_substeps(gl.simulation, test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}), 5);
+  GlSimulation simulation(context());
+  simulation.upload(world);
+  test::GlBackend gl(context(), bodies);
+  std::vector<collision::PositionSource> sources;
+  for (const gpu::ObjectInfo& o : world.objects) {
+    collision::PositionSource s;
+    s.kind = collision::PositionSource::Kind::kGl;
+    s.gl_buffer = simulation.gl_position_buffer();
+    s.offset_bytes = std::uint64_t{o.node_offset} * sizeof(glm::vec4);
+    s.stride_bytes = sizeof(glm::vec4);
+    s.vertex_count = o.node_count;
+    sources.push_back(s);
+  }
+  gl.collision.set_positions(sources);
+  test::run_substeps(simulation, test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}), 5);
   std::vector<glm::vec4> positions;
-  gl.simulation.download_positions(positions);
+  simulation.download_positions(positions);
   ASSERT_NE(positions, world.positions) << "the substeps should move the nodes";
-  const std::vector<gpu::Box> expected = test::leaf_boxes_on_host(world, positions);
+  for (std::size_t b = 0; b < world.objects.size(); ++b) {
+    const gpu::ObjectInfo& o = world.objects[b];
+    gl.fixture.positions[b].assign(positions.begin() + o.node_offset,
+                                   positions.begin() + o.node_offset + o.node_count);
+  }
+  gl.fixture.refresh_views();
+  const std::vector<gpu::Box> expected =
+      test::leaf_boxes_on_host(gl.fixture.data, gl.fixture.vertices());
 
   gl.collision.detect(BroadPhase::kOctree);
+  EXPECT_TRUE(gl.collision.positions_in_place());
+  std::vector<gpu::MeshInfo> meshes;
+  gl.collision.download_meshes(meshes);
+  ASSERT_EQ(meshes.size(), 2u);
+  EXPECT_EQ(meshes[1].position_offset, 4 * world.objects[1].node_offset);
+  EXPECT_EQ(meshes[1].position_stride, 4u);
   std::vector<gpu::Box> boxes;
   gl.collision.download_boxes(boxes);
-  ASSERT_EQ(boxes.size(), 64u * world.body_count());
+  ASSERT_EQ(boxes.size(), 64u * bodies.size());
   std::size_t empty = 0;
   for (std::size_t k = 0; k < boxes.size(); ++k) {
     EXPECT_EQ(boxes[k].min, expected[k].min) << "box " << k;
     EXPECT_EQ(boxes[k].max, expected[k].max) << "box " << k;
-    empty += world.box_rows[k].y == 0 ? 1 : 0;
+    empty += gl.fixture.data.box_rows[k].y == 0 ? 1 : 0;
   }
   EXPECT_GT(empty, 0u) << "the fixture should have leaf boxes without faces";
-
-  // And the pairs are those of the current positions.
-  WorldState moved = world;
-  moved.positions = positions;
-  expect_same_pairs(gl.pairs(BroadPhase::kOctree), test::all_pairs_on_host(moved), "moved");
+  expect_same_pairs(gl.pairs(BroadPhase::kOctree), gl.expected(), "moved");
+  expect_same_pairs(gl.pairs(BroadPhase::kBvh), gl.expected(), "moved, bvh");
 }
 
 TEST_F(GlCollisionTest, AFullPairBufferGrowsAndTheRerunReturnsEveryPair) {
-  const WorldState world = test::two_crossing_grids();
-  const std::vector<gpu::FacePair> expected = test::all_pairs_on_host(world);
-  Backends gl(context(), world, {.initial_pair_capacity = 1});
+  GlBackend gl(context(), test::two_crossing_grids(), {.initial_pair_capacity = 1});
+  const std::vector<gpu::FacePair> expected = gl.expected();
   EXPECT_EQ(gl.collision.face_pair_capacity(), 1u);
   for (BroadPhase method : kEveryMethod) {
     expect_same_pairs(gl.pairs(method), expected, std::string(broadphase_name(method)));
     EXPECT_GE(gl.collision.face_pair_capacity(), expected.size());
     std::vector<std::uint32_t> flags;
     gl.collision.download_face_flags(flags);
-    EXPECT_EQ(flags, flags_of(expected, world.faces.size()));
+    EXPECT_EQ(flags, flags_of(expected, gl.fixture.data.faces.size()));
   }
 }
 
-TEST_F(GlCollisionTest, ThreeBodiesInOneMaskSlotChunkByChunkFindEveryPair) {
-  const WorldState world = test::three_crossing_grids();
-  ASSERT_EQ(world.body_pairs.size(), 3u);
-  const std::vector<gpu::FacePair> expected = test::all_pairs_on_host(world);
-  // Every body pair crosses, so that each chunk has work.
-  std::set<std::pair<std::uint32_t, std::uint32_t>> crossing_bodies;
-  for (const gpu::FacePair& p : expected) {
-    crossing_bodies.emplace(world.faces[p.face_a].body, world.faces[p.face_b].body);
-  }
-  ASSERT_EQ(crossing_bodies.size(), 3u);
+TEST_F(GlCollisionTest, ThreeMeshesInOneMaskSlotChunkByChunkFindEveryPair) {
+  GlBackend one_slot(context(), test::three_crossing_grids(), {.mask_slots = 1});
+  GlBackend two_slots(context(), test::three_crossing_grids(), {.mask_slots = 2});
+  GlBackend all_slots(context(), test::three_crossing_grids());
+  const collision::CollisionData& data = one_slot.fixture.data;
+  ASSERT_EQ(data.mesh_pairs.size(), 3u);
+  const std::vector<gpu::FacePair> expected = one_slot.expected();
+  // Every mesh pair crosses, so that each chunk has work.
+  std::set<std::pair<std::uint32_t, std::uint32_t>> crossing_meshes;
+  for (const gpu::FacePair& p : expected)
+    crossing_meshes.emplace(data.faces[p.face_a].body, data.faces[p.face_b].body);
+  ASSERT_EQ(crossing_meshes.size(), 3u);
 
-  Backends one_slot(context(), world, {.mask_slots = 1});
-  Backends two_slots(context(), world, {.mask_slots = 2});
-  Backends all_slots(context(), world);
   expect_same_pairs(one_slot.pairs(BroadPhase::kOctree), expected, "octree, 1 slot");
   const gpu::CollisionCounters one_slot_counters = one_slot.collision.counters();
   expect_same_pairs(two_slots.pairs(BroadPhase::kOctree), expected, "octree, 2 slots");
@@ -154,12 +180,11 @@ TEST_F(GlCollisionTest, ThreeBodiesInOneMaskSlotChunkByChunkFindEveryPair) {
 // 1024 bytes: the faces (216 x 16 bytes) and the one mask slot (16 KiB) are over it, the
 // counters are not, and the default face-pair capacity shrinks to fit it.
 TEST_F(GlCollisionTest, BuffersOverTheLimitAreNamedWithTheirSizes) {
-  const WorldState world = test::two_crossing_grids();
-  GlSimulation simulation(context());
-  simulation.upload(world);
-  GlCollision collision(context(), simulation, {.max_buffer_bytes = 1024});
+  const test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids());
+  GlCollision collision(context(), {.max_buffer_bytes = 1024});
+  collision.set_positions(f.host_sources());
   try {
-    collision.upload(world);
+    collision.upload(f.data);
     FAIL() << "expected GlError";
   } catch (const GlError& e) {
     const std::string what = e.what();
@@ -167,8 +192,8 @@ TEST_F(GlCollisionTest, BuffersOverTheLimitAreNamedWithTheirSizes) {
                         "(1024 bytes)"),
               std::string::npos)
         << what;
-    const std::string faces = std::to_string(world.faces.size());
-    EXPECT_NE(what.find("Face Information (SSBO 7): " + std::to_string(16 * world.faces.size()) +
+    const std::string faces = std::to_string(f.data.faces.size());
+    EXPECT_NE(what.find("Face Information (SSBO 7): " + std::to_string(16 * f.data.faces.size()) +
                         " bytes (" + faces + " x 16)"),
               std::string::npos)
         << what;
@@ -178,13 +203,13 @@ TEST_F(GlCollisionTest, BuffersOverTheLimitAreNamedWithTheirSizes) {
   }
   // Nothing was allocated.
   EXPECT_EQ(collision.gl_face_flag_buffer(), 0u);
+  EXPECT_EQ(collision.gl_face_pair_buffer(), 0u);
   EXPECT_THROW(collision.detect(BroadPhase::kOctree), Error);
 }
 
-TEST_F(GlCollisionTest, ASingleBodyHasNoPairs) {
-  const WorldState world = assemble_world({test::crossing_grid(1, 0.0, {0, 0, 1}, {0, 0, 0})});
-  ASSERT_TRUE(world.body_pairs.empty());
-  Backends gl(context(), world);
+TEST_F(GlCollisionTest, ASingleMeshHasNoPairs) {
+  GlBackend gl(context(), {test::crossing_grid(1, 0.0, {0, 0, 1}, {0, 0, 0})});
+  ASSERT_TRUE(gl.fixture.data.mesh_pairs.empty());
   for (BroadPhase method : kEveryMethod) {
     EXPECT_TRUE(gl.pairs(method).empty());
     const gpu::CollisionCounters counters = gl.collision.counters();
@@ -192,13 +217,14 @@ TEST_F(GlCollisionTest, ASingleBodyHasNoPairs) {
     EXPECT_EQ(counters.box_pairs, 0u);
     std::vector<std::uint32_t> flags;
     gl.collision.download_face_flags(flags);
-    EXPECT_EQ(flags, std::vector<std::uint32_t>(world.faces.size(), 0u));
+    EXPECT_EQ(flags, std::vector<std::uint32_t>(gl.fixture.data.faces.size(), 0u));
   }
-  // BBUpdate still runs over the body's boxes.
+  // BBUpdate still runs over the mesh's boxes.
   std::vector<gpu::Box> boxes;
   gl.collision.detect(BroadPhase::kOctree);
   gl.collision.download_boxes(boxes);
-  const std::vector<gpu::Box> expected = test::leaf_boxes_on_host(world, world.positions);
+  const std::vector<gpu::Box> expected =
+      test::leaf_boxes_on_host(gl.fixture.data, gl.fixture.vertices());
   ASSERT_EQ(boxes.size(), expected.size());
   for (std::size_t k = 0; k < boxes.size(); ++k) {
     EXPECT_EQ(boxes[k].min, expected[k].min) << "box " << k;
@@ -207,8 +233,7 @@ TEST_F(GlCollisionTest, ASingleBodyHasNoPairs) {
 }
 
 TEST_F(GlCollisionTest, NoneResetsTheLastPassResults) {
-  const WorldState world = test::two_crossing_grids();
-  Backends gl(context(), world);
+  GlBackend gl(context(), test::two_crossing_grids());
   ASSERT_FALSE(gl.pairs(BroadPhase::kBvh).empty());
   EXPECT_TRUE(gl.pairs(BroadPhase::kNone).empty());
   const gpu::CollisionCounters counters = gl.collision.counters();
@@ -220,35 +245,57 @@ TEST_F(GlCollisionTest, NoneResetsTheLastPassResults) {
   EXPECT_EQ(count_set(flags), 0u);
 }
 
+// Runs `call` and expects an Error whose message contains every one of `parts`.
+template <class Call>
+void expect_error(Call&& call, const std::vector<std::string>& parts) {
+  try {
+    call();
+    ADD_FAILURE() << "expected Error containing " << parts.front();
+  } catch (const Error& e) {
+    for (const std::string& part : parts)
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(GlCollisionTest, MisuseThrowsNamingTheProblem) {
-  GlSimulation simulation(context());
-  EXPECT_THROW({ GlCollision bad(context(), simulation, {.mask_slots = 0}); }, Error);
-  GlCollision collision(context(), simulation);
+  EXPECT_THROW({ GlCollision bad(context(), {.mask_slots = 0}); }, Error);
+  GlCollision collision(context());
   EXPECT_EQ(collision.gl_face_flag_buffer(), 0u);
   EXPECT_EQ(collision.face_pair_capacity(), 0u);
   EXPECT_THROW(collision.detect(BroadPhase::kOctree), Error);
   std::vector<gpu::FacePair> pairs;
   EXPECT_THROW(collision.download_face_pairs(pairs), Error);
+  expect_error([&] { (void)collision.read_positions(0); }, {"mesh 0", "no positions"});
 
-  const WorldState world = test::two_crossing_grids();
-  collision.upload(world);  // the simulation has no positions yet
+  // Hierarchies are needed.
+  test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids());
+  collision::CollisionData bare = f.data;
+  bare.bvh_nodes.clear();
+  bare.mesh_bvhs.clear();
+  expect_error([&] { collision.upload(bare); }, {"no hierarchies"});
+
+  // Uploaded before any positions are set: a pass needs them.
+  collision.upload(f.data);
   EXPECT_NE(collision.gl_face_flag_buffer(), 0u);
-  try {
-    collision.detect(BroadPhase::kOctree);
-    FAIL() << "expected Error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("no positions"), std::string::npos) << e.what();
-  }
-  // Positions of a smaller world: too few nodes for the faces.
-  simulation.upload(assemble_world({test::crossing_grid(1, 0.0, {0, 0, 1}, {0, 0, 0})}));
-  try {
-    collision.detect(BroadPhase::kOctree);
-    FAIL() << "expected Error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(std::to_string(world.node_count()) + " nodes"),
-              std::string::npos)
-        << e.what();
-  }
+  EXPECT_NE(collision.gl_face_pair_buffer(), 0u);
+  EXPECT_NE(collision.gl_face_pair_buffer(), collision.gl_face_flag_buffer());
+  expect_error([&] { collision.detect(BroadPhase::kOctree); }, {"positions set for 0 meshes"});
+  std::vector<collision::PositionSource> sources = f.host_sources();
+  sources[1] = {};
+  collision.set_positions(sources);
+  expect_error([&] { collision.detect(BroadPhase::kOctree); }, {"mesh 1 ('grid 7')", "none set"});
+  // Positions for another vertex count than the mesh's.
+  sources = f.host_sources();
+  sources[0].vertex_count -= 1;
+  collision.set_positions(sources);
+  expect_error([&] { collision.detect(BroadPhase::kOctree); },
+               {"mesh 0 ('grid 1')", "set for 63 vertices, but the mesh has 64"});
+  // A malformed source is refused where it is set.
+  sources = f.host_sources();
+  sources[1].stride_bytes = 14;
+  expect_error([&] { collision.set_positions(sources); }, {"mesh 1", "stride of 14 bytes"});
+  sources[1].stride_bytes = 8;
+  expect_error([&] { collision.set_positions(sources); }, {"mesh 1", "stride of 8 bytes"});
 }
 
 }  // namespace

@@ -10,7 +10,7 @@
 
 #include "deformcd/body.h"
 #include "deformcd/error.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 #include "gl_test_context.h"
 #include "gpu/gl/gl_simulation.h"
 #include "sim_test_worlds.h"
@@ -18,10 +18,10 @@
 namespace deformcd::gl {
 namespace {
 
-WorldState small_world() {
+SimulationState small_world() {
   BodyInit init;
   init.body = build_body(test::tet_grid(2, 2, 2, 0.1));
-  return assemble_world({init});
+  return assemble_simulation({init});
 }
 
 bool contains(const std::string& text, const std::string& part) {
@@ -43,10 +43,10 @@ TEST_F(GlSimulationErrorsTest, UseBeforeUploadIsAnError) {
 // each) and their forces exceed it here while the per-node buffers fit. The failed upload
 // keeps the previous state, which goes on stepping.
 TEST_F(GlSimulationErrorsTest, BuffersOverTheLimitAreNamedAndThePreviousStateKept) {
-  const WorldState small = small_world();
+  const SimulationState small = small_world();
   BodyInit big_body;
   big_body.body = build_body(test::tet_grid(4, 4, 4, 0.1));
-  const WorldState big = assemble_world({big_body});
+  const SimulationState big = assemble_simulation({big_body});
   const std::uint64_t limit = 16 * big.springs.size() - 1;
   ASSERT_LT(16 * big.node_count(), limit);
   ASSERT_GE(limit, 16 * small.springs.size());
@@ -82,7 +82,7 @@ TEST_F(GlSimulationErrorsTest, BuffersOverTheLimitAreNamedAndThePreviousStateKep
 }
 
 TEST_F(GlSimulationErrorsTest, AnInconsistentStateIsRejected) {
-  WorldState world = small_world();
+  SimulationState world = small_world();
   world.springs[3].b = static_cast<std::uint32_t>(world.node_count());
   GlSimulation gl(context());
   try {
@@ -95,7 +95,7 @@ TEST_F(GlSimulationErrorsTest, AnInconsistentStateIsRejected) {
 
 // The buffer a renderer would draw from holds the node positions.
 TEST_F(GlSimulationErrorsTest, PositionBufferHoldsThePositions) {
-  const WorldState world = small_world();
+  const SimulationState world = small_world();
   GlSimulation gl(context());
   gl.upload(world);
   gl.substep(test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}));

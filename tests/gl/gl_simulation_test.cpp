@@ -12,7 +12,7 @@
 #include "cpu/cpu_simulation.h"
 #include "deformcd/body.h"
 #include "deformcd/gl/device_info.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 #include "gl_test_context.h"
 #include "gpu/gl/gl_simulation.h"
 #include "sim_test_worlds.h"
@@ -25,7 +25,7 @@ using test::tet_grid;
 // Two bodies of different stiffness (Pa) and damping (s): A (5 x 4 x 4 cubes, one bottom edge of
 // nodes fixed) with every node randomly displaced so that its springs are stretched and compressed;
 // B (3 x 3 x 3 cubes) squashed to 80 % along y, with a carry velocity and an initial spin.
-WorldState two_body_world() {
+SimulationState two_body_world() {
   BodyInit a;
   a.body = build_body(tet_grid(5, 4, 4, 0.1), {.stiffness = 1.5e5}, "grid A");
   a.damping = 1e-3f;
@@ -51,7 +51,7 @@ WorldState two_body_world() {
     p.y = centre.y + 0.8f * r.y;
     b.body.velocities[i] = glm::vec4(glm::cross(glm::vec3(0.0f, 0.0f, 2.0f), r), 0.0f);
   }
-  return assemble_world({a, b});
+  return assemble_simulation({a, b});
 }
 
 class GlSimulationTest : public test_support::GlTest {};
@@ -68,7 +68,7 @@ TEST_F(GlSimulationTest, NameAndDeviceDescribeTheContext) {
 // One substep computes the same node forces as the CPU: only rounding differs (the division
 // and the sums may round differently on the GPU), so the tolerance is tight.
 TEST_F(GlSimulationTest, NodeForcesOfOneSubstepMatchTheCpu) {
-  const WorldState world = two_body_world();
+  const SimulationState world = two_body_world();
   const sim::SubstepConstants c = test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}, 0.5f);
   cpu::CpuSimulation cpu;
   GlSimulation gl(context());
@@ -87,7 +87,7 @@ TEST_F(GlSimulationTest, NodeForcesOfOneSubstepMatchTheCpu) {
 }
 
 TEST_F(GlSimulationTest, TwoHundredSubstepsAgreeWithTheCpu) {
-  const WorldState world = two_body_world();
+  const SimulationState world = two_body_world();
   const sim::SubstepConstants c = test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}, 0.5f);
   cpu::CpuSimulation cpu;
   GlSimulation gl(context());
@@ -115,7 +115,7 @@ TEST_F(GlSimulationTest, TwoHundredSubstepsAgreeWithTheCpu) {
 
 // The per-node gather has a fixed summation order, so two runs are bit-identical.
 TEST_F(GlSimulationTest, RunsAreBitIdentical) {
-  const WorldState world = two_body_world();
+  const SimulationState world = two_body_world();
   const sim::SubstepConstants c = test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f});
   std::vector<glm::vec4> first, second;
   for (std::vector<glm::vec4>* out : {&first, &second}) {
@@ -136,7 +136,7 @@ TEST_F(GlSimulationTest, FixedNodesMoveOnlyWithTheCarryVelocity) {
   for (std::uint32_t i = 0; i < init.body.positions.size(); ++i) {
     if (init.body.positions[i].y > 0.29f) init.fixed.push_back(i);
   }
-  const WorldState world = assemble_world({init});
+  const SimulationState world = assemble_simulation({init});
   const float h = 1e-3f;
   const int substeps = 100;
   GlSimulation gl(context());
@@ -164,7 +164,7 @@ TEST_F(GlSimulationTest, CarryVelocityTranslatesAFreeBodyRigidly) {
   BodyInit init;
   init.body = build_body(tet_grid(3, 2, 2, 0.1, {0.2, 0.4, -0.1}));
   init.carry_velocity = {0.5f, -0.2f, 0.1f};
-  const WorldState world = assemble_world({init});
+  const SimulationState world = assemble_simulation({init});
   const float h = 1.0f / 240.0f;
   const int substeps = 120;
   GlSimulation gl(context());

@@ -31,13 +31,14 @@ struct ProbeOutput {
   std::vector<gpu::CollisionCounters> counters;
   std::vector<gpu::BvhNode> bvh_nodes;
   std::vector<gpu::BodyBvh> body_bvhs;
+  std::vector<gpu::MeshInfo> meshes;
   // The BINDING_* macros in gpu::Binding order (kBindingCount of them), then the constants
   // (kConstantCount).
   std::vector<std::uint32_t> bindings;
 };
 
 constexpr std::uint32_t kBindingCount = gpu::kCandidatePair + 1;
-constexpr std::uint32_t kConstantCount = 12;
+constexpr std::uint32_t kConstantCount = 14;
 
 // Runs shaders/test/layout_probe.comp over `count` elements of each struct.
 ProbeOutput run_layout_probe(std::uint32_t count) {
@@ -55,6 +56,7 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   const Ssbo<gpu::CollisionCounters> counters(count);
   const Ssbo<gpu::BvhNode> bvh_nodes(count);
   const Ssbo<gpu::BodyBvh> body_bvhs(count);
+  const Ssbo<gpu::MeshInfo> meshes(count);
   springs.bind(0);
   faces.bind(1);
   boxes.bind(2);
@@ -68,13 +70,14 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   counters.bind(10);
   bvh_nodes.bind(11);
   body_bvhs.bind(12);
+  meshes.bind(13);
   program.set_uniform("u_count", count);
   program.dispatch_covering(count);
   return {springs.download(),   faces.download(),      boxes.download(),
           box_faces.download(), objects.download(),    body_params.download(),
           tets.download(),      body_pairs.download(), face_pairs.download(),
           counters.download(),  bvh_nodes.download(),  body_bvhs.download(),
-          bindings.download()};
+          meshes.download(),    bindings.download()};
 }
 
 std::uint32_t probe(std::uint32_t i, std::uint32_t k) {
@@ -165,6 +168,13 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
     EXPECT_EQ(tree.node_count, probe(i, 1));
     EXPECT_EQ(tree.depth, probe(i, 2));
     EXPECT_EQ(tree.pad, probe(i, 3));
+
+    const gpu::MeshInfo& m = out.meshes[i];
+    const std::uint32_t mesh_fields[] = {
+        m.vertex_count,   m.face_offset,     m.face_count,      m.box_face_offset,
+        m.box_face_count, m.position_offset, m.position_stride, m.pad};
+    for (std::uint32_t k = 0; k < 8; ++k)
+      EXPECT_EQ(mesh_fields[k], probe(i, k)) << "MeshInfo field " << k;
   }
 }
 
@@ -196,6 +206,8 @@ TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
   EXPECT_EQ(constants[9], kNarrowArgsWord) << "DISPATCH_ARGS_NARROW";
   EXPECT_EQ(constants[10], kTraverseArgsWord) << "DISPATCH_ARGS_TRAVERSE";
   EXPECT_EQ(constants[11], kBvhLeavesBinding) << "BINDING_BVH_LEAVES";
+  EXPECT_EQ(constants[12], gpu::kMeshInfo) << "BINDING_MESH_INFO";
+  EXPECT_EQ(constants[13], kNonFiniteBinding) << "BINDING_NON_FINITE";
 }
 
 }  // namespace

@@ -15,7 +15,7 @@
 #include "core/sim/simulation_backend.h"
 #include "deformcd/body.h"
 #include "deformcd/mesh.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 #include "support/world_fixtures.h"
 
 namespace deformcd::test {

@@ -1,5 +1,5 @@
 // The checks GlSimulation::upload runs before allocating (no GL needed): buffer sizes against
-// a limit and the consistency of a WorldState's arrays.
+// a limit and the consistency of a SimulationState's arrays.
 
 #include <gtest/gtest.h>
 
@@ -11,22 +11,22 @@
 
 #include "deformcd/body.h"
 #include "deformcd/error.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 #include "gpu/gl/simulation_upload_checks.h"
 #include "sim_test_worlds.h"
 
 namespace deformcd::gl {
 namespace {
 
-WorldState two_cube_world() {
+SimulationState two_cube_world() {
   BodyInit a, b;
   a.body = build_body(test::tet_grid(1, 1, 1, 1.0));
   b.body = build_body(test::tet_grid(2, 1, 1, 1.0, {3.0, 0.0, 0.0}));
-  return assemble_world({a, b});
+  return assemble_simulation({a, b});
 }
 
 TEST(SimulationBufferSizes, ListsEveryBufferWithItsBindingAndSize) {
-  const WorldState w = two_cube_world();
+  const SimulationState w = two_cube_world();
   const std::vector<BufferSize> sizes = simulation_buffer_sizes(w);
   ASSERT_EQ(sizes.size(), 13u);
   const std::vector<std::uint32_t> bindings = {0, 1, 2, 3, 12, 13, 14, 15, 16, 17, 18, 19, 20};
@@ -75,40 +75,43 @@ TEST(CheckBufferSizes, NamesEveryBufferOverTheLimitWithItsSizeAndTheLimit) {
 
 TEST(CheckWorldConsistency, AcceptsAnAssembledWorld) {
   EXPECT_NO_THROW(check_world_consistency(two_cube_world()));
-  EXPECT_NO_THROW(check_world_consistency(assemble_world({})));
+  EXPECT_NO_THROW(check_world_consistency(assemble_simulation({})));
 }
 
 struct Corruption {
-  std::string what;                        // for the failure message
-  std::function<void(WorldState&)> apply;  // breaks one thing
-  std::string expected;                    // part of the error message
+  std::string what;                             // for the failure message
+  std::function<void(SimulationState&)> apply;  // breaks one thing
+  std::string expected;                         // part of the error message
 };
 
 TEST(CheckWorldConsistency, NamesWhatDoesNotFit) {
   const std::vector<Corruption> corruptions = {
-      {"short velocities", [](WorldState& w) { w.velocities.pop_back(); }, "velocities has"},
-      {"short node_body", [](WorldState& w) { w.node_body.pop_back(); }, "node_body has"},
-      {"short spring forces", [](WorldState& w) { w.spring_forces.pop_back(); },
+      {"short velocities", [](SimulationState& w) { w.velocities.pop_back(); }, "velocities has"},
+      {"short node_body", [](SimulationState& w) { w.node_body.pop_back(); }, "node_body has"},
+      {"short spring forces", [](SimulationState& w) { w.spring_forces.pop_back(); },
        "spring_forces has"},
-      {"short offsets", [](WorldState& w) { w.node_spring_offset.pop_back(); },
+      {"short offsets", [](SimulationState& w) { w.node_spring_offset.pop_back(); },
        "node_spring_offset has"},
-      {"spring node", [](WorldState& w) { w.springs[5].a = 1000; }, "spring 5 joins nodes 1000"},
-      {"node body", [](WorldState& w) { w.node_body[3] = 9; }, "node 3 belongs to body 9"},
-      {"first offset", [](WorldState& w) { w.node_spring_offset[0] = 1; },
+      {"spring node", [](SimulationState& w) { w.springs[5].a = 1000; },
+       "spring 5 joins nodes 1000"},
+      {"node body", [](SimulationState& w) { w.node_body[3] = 9; }, "node 3 belongs to body 9"},
+      {"first offset", [](SimulationState& w) { w.node_spring_offset[0] = 1; },
        "node_spring_offset[0] is not 0"},
-      {"decreasing offsets", [](WorldState& w) { w.node_spring_offset[2] = 0; },
+      {"decreasing offsets", [](SimulationState& w) { w.node_spring_offset[2] = 0; },
        "decreases at node 1"},
-      {"list length", [](WorldState& w) { w.node_spring_list.pop_back(); }, "node_spring_list has"},
-      {"zero tag", [](WorldState& w) { w.node_spring_list[4] = 0; }, "node_spring_list[4] = 0"},
+      {"list length", [](SimulationState& w) { w.node_spring_list.pop_back(); },
+       "node_spring_list has"},
+      {"zero tag", [](SimulationState& w) { w.node_spring_list[4] = 0; },
+       "node_spring_list[4] = 0"},
       {"tag past the springs",
-       [](WorldState& w) { w.node_spring_list[6] = -static_cast<int>(w.springs.size()) - 1; },
+       [](SimulationState& w) { w.node_spring_list[6] = -static_cast<int>(w.springs.size()) - 1; },
        "node_spring_list[6] = -"},
       {"most negative tag",
-       [](WorldState& w) { w.node_spring_list[1] = std::numeric_limits<std::int32_t>::min(); },
+       [](SimulationState& w) { w.node_spring_list[1] = std::numeric_limits<std::int32_t>::min(); },
        "node_spring_list[1] = -2147483648"},
   };
   for (const Corruption& c : corruptions) {
-    WorldState w = two_cube_world();
+    SimulationState w = two_cube_world();
     c.apply(w);
     try {
       check_world_consistency(w);

@@ -9,7 +9,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 #include "gl_test_context.h"
 #include "gpu/gl/gl_simulation.h"
 #include "sim_test_worlds.h"
@@ -24,7 +24,7 @@ constexpr float kRestLength = 0.5f;   // m
 constexpr float kStretch = 0.1f;      // initial elongation, m
 
 // The two-node world, along an axis that is not a coordinate axis.
-WorldState one_spring_world() {
+SimulationState one_spring_world() {
   return test::two_mass_spring(kMass1, kMass2, kRestLength, kRestLength + kStretch, kStiffness,
                                glm::vec3(0.3f, -0.2f, 0.1f),
                                glm::normalize(glm::vec3(1.0f, 2.0f, 2.0f)));
@@ -38,7 +38,7 @@ TEST_F(SpringOscillationTest, PeriodMatchesTheReducedMassFormula) {
   const float h = 1e-3f;
   const auto substeps = static_cast<int>(2.6 * period / h);
 
-  const WorldState world = one_spring_world();
+  const SimulationState world = one_spring_world();
   GlSimulation gl(context());
   gl.upload(world);
   const sim::SubstepConstants c = test::substep_constants(h);

@@ -9,7 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "deformcd/body.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 #include "support/mesh_fixtures.h"
 
 namespace deformcd::test {
@@ -52,10 +52,10 @@ inline TetMesh tet_grid(int nx, int ny, int nz, double spacing, glm::dvec3 origi
 /// Two nodes joined by one spring: masses m1 at `start` and m2 at `start + length x axis`
 /// (axis a unit vector), rest length `rest`, stiffness k (N/m), undamped. No faces and no
 /// tetrahedra: fine for a backend, not for a World.
-inline WorldState two_mass_spring(float m1, float m2, float rest, float length, float k,
-                                  glm::vec3 start = glm::vec3(0.0f),
-                                  glm::vec3 axis = glm::vec3(1.0f, 0.0f, 0.0f)) {
-  WorldState w;
+inline SimulationState two_mass_spring(float m1, float m2, float rest, float length, float k,
+                                       glm::vec3 start = glm::vec3(0.0f),
+                                       glm::vec3 axis = glm::vec3(1.0f, 0.0f, 0.0f)) {
+  SimulationState w;
   w.positions = {glm::vec4(start, 1.0f / m1), glm::vec4(start + length * axis, 1.0f / m2)};
   w.velocities = {glm::vec4(0.0f), glm::vec4(0.0f)};
   w.springs = {{0, 1, rest, k}};

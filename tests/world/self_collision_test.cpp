@@ -51,16 +51,19 @@ struct FacePairKey {
 // through the narrow phase on the current positions.
 std::vector<FacePairKey> all_pairs_self_test(const World& world) {
   const gpu::ObjectInfo& body = world.object(0);
+  // The faces' nodes are global (into every body's nodes): body 0's positions from its
+  // node_offset, read as mesh 0 (Face::body) by the narrow phase.
   const std::vector<glm::vec3> p = world.positions(0);
-  std::vector<glm::vec4> positions(world.object(0).node_offset, glm::vec4(0.0f));
+  std::vector<glm::vec4> positions(body.node_offset, glm::vec4(0.0f));
   for (const glm::vec3& x : p)
     positions.emplace_back(x, 0.0f);
+  const collision::MeshVertices mesh{&positions[0].x, 4u};
   const gpu::Face* faces = world.faces().data() + body.face_offset;
   std::vector<FacePairKey> pairs;
   for (std::uint32_t i = 0; i < body.face_count; ++i) {
     for (std::uint32_t j = i + 1; j < body.face_count; ++j) {
       if (collision::shared_nodes(faces[i], faces[j]).count >= 2) continue;
-      if (collision::face_pair_intersect(faces[i], faces[j], positions.data()).intersect)
+      if (collision::face_pair_intersect(faces[i], faces[j], &mesh).intersect)
         pairs.push_back({i, j});
     }
   }

@@ -12,7 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "deformcd/body.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 
 namespace deformcd::render {
 

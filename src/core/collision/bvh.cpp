@@ -13,8 +13,10 @@ namespace deformcd::collision {
 
 namespace {
 
-glm::vec3 centroid(const std::vector<glm::vec4>& p, const gpu::Face& f) {
-  return (glm::vec3(p[f.a]) + glm::vec3(p[f.b]) + glm::vec3(p[f.c])) / 3.0f;
+glm::vec3 centroid(VertexPositions p, const gpu::Face& f) {
+  glm::vec3 v[3];
+  face_vertices(p, f, v);
+  return (v[0] + v[1] + v[2]) / 3.0f;
 }
 
 double area(const gpu::Box& b) {
@@ -31,9 +33,9 @@ struct Pending {
 
 }  // namespace
 
-std::vector<gpu::BvhNode> build_bvh(const std::vector<glm::vec4>& positions,
-                                    const std::vector<gpu::Face>& faces, std::uint32_t face_offset,
-                                    std::uint32_t face_count, std::uint32_t node_offset) {
+std::vector<gpu::BvhNode> build_bvh(VertexPositions positions, const std::vector<gpu::Face>& faces,
+                                    std::uint32_t face_offset, std::uint32_t face_count,
+                                    std::uint32_t node_offset) {
   if (face_count == 0) throw Error("a BVH needs at least one face");
   std::vector<std::uint32_t> order(face_count);
   std::iota(order.begin(), order.end(), face_offset);
@@ -101,31 +103,17 @@ std::uint32_t bvh_depth(const std::vector<gpu::BvhNode>& nodes, std::uint32_t ro
   return deepest;
 }
 
-void assemble_bvhs(WorldState& state) {
-  state.bvh_nodes.clear();
-  state.body_bvhs.clear();
-  for (const gpu::ObjectInfo& o : state.objects) {
-    const auto offset = static_cast<std::uint32_t>(state.bvh_nodes.size());
-    std::vector<gpu::BvhNode> nodes =
-        build_bvh(state.positions, state.faces, o.face_offset, o.face_count, offset);
-    const std::uint32_t depth = bvh_depth(nodes, offset);
-    if (depth >= kBvhMaxDepth) throw Error("BVH deeper than the traversal stack");
-    state.body_bvhs.push_back({offset, static_cast<std::uint32_t>(nodes.size()), depth, 0u});
-    state.bvh_nodes.insert(state.bvh_nodes.end(), nodes.begin(), nodes.end());
-  }
-}
-
 void refit_bvh(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first, std::uint32_t count,
-               const std::vector<glm::vec4>& positions, const std::vector<gpu::Face>& faces,
+               VertexPositions positions, const std::vector<gpu::Face>& faces,
                std::vector<gpu::Box>& boxes) {
   for (std::uint32_t i = first + count; i-- > first;) {
     const gpu::BvhNode& n = nodes[i];
     gpu::Box b = empty_box();
     if (n.face != gpu::kBvhInternal) {
       const gpu::Face& f = faces[n.face];
-      grow_box(b, glm::vec3(positions[f.a]));
-      grow_box(b, glm::vec3(positions[f.b]));
-      grow_box(b, glm::vec3(positions[f.c]));
+      grow_box(b, vertex_position(positions, f.body, f.a));
+      grow_box(b, vertex_position(positions, f.body, f.b));
+      grow_box(b, vertex_position(positions, f.body, f.c));
     } else {
       const gpu::Box& l = boxes[n.left];
       const gpu::Box& r = boxes[n.right];

@@ -12,7 +12,7 @@
 
 #include "broad_phase.h"
 #include "deformcd/gpu_layout.h"
-#include "deformcd/world_state.h"
+#include "vertex_positions.h"
 
 namespace deformcd::collision {
 
@@ -26,11 +26,11 @@ inline constexpr std::uint32_t kBvhMaxDepth = 64;
 /// factor near 1 would rebuild on every wobble. The shipped scenes stay within 0.96-1.02.
 inline constexpr double kBvhRebuildFactor = 1.5;
 
-/// Builds the BVH of faces [face_offset, face_offset + face_count) (vertices in `positions`)
+/// Builds the BVH of faces [face_offset, face_offset + face_count) (vertices at `positions`)
 /// top-down: each node's faces are split at the median of their centroids along the longest
 /// axis of the centroids' bounds. Nodes in preorder, numbered from node_offset. Throws Error for
 /// zero faces.
-[[nodiscard]] std::vector<gpu::BvhNode> build_bvh(const std::vector<glm::vec4>& positions,
+[[nodiscard]] std::vector<gpu::BvhNode> build_bvh(VertexPositions positions,
                                                   const std::vector<gpu::Face>& faces,
                                                   std::uint32_t face_offset,
                                                   std::uint32_t face_count,
@@ -39,13 +39,10 @@ inline constexpr double kBvhRebuildFactor = 1.5;
 /// Depth (edges on the longest root-to-leaf path) of the tree rooted at `root`.
 [[nodiscard]] std::uint32_t bvh_depth(const std::vector<gpu::BvhNode>& nodes, std::uint32_t root);
 
-/// Fills state.bvh_nodes and state.body_bvhs for every body from the current positions.
-void assemble_bvhs(WorldState& state);
-
 /// Recomputes the boxes of nodes [first, first + count) in reverse preorder (children first):
 /// leaves from their face's vertices, internal nodes as the union of their children.
 void refit_bvh(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first, std::uint32_t count,
-               const std::vector<glm::vec4>& positions, const std::vector<gpu::Face>& faces,
+               VertexPositions positions, const std::vector<gpu::Face>& faces,
                std::vector<gpu::Box>& boxes);
 
 /// Calls visit(face) for every leaf of the tree at `root` whose box overlaps `query` (closed

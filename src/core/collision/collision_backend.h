@@ -1,18 +1,32 @@
 #pragma once
-// The line between the world and a collision backend, next to sim::SimulationBackend: the
-// backend takes the static collision data once, then runs one pass per frame over the positions
-// its simulation backend holds (the CPU one reads the CPU state, the GL one binds SSBO 0), and
-// keeps the results on its side until asked.
+// The line between a Detector and a collision backend (src/cpu: CpuCollision, src/gpu/gl:
+// GlCollision): the backend takes the collision data once (faces, mesh pairs, hierarchies),
+// is told where each mesh's positions are, then runs one pass per detect() and keeps the results
+// on its side until asked. The Detector checks every input before it reaches a backend.
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
+#include "collision_data.h"
 #include "deformcd/collision.h"
 #include "deformcd/gpu_layout.h"
-#include "deformcd/world_state.h"
 
 namespace deformcd::collision {
+
+/// Where one mesh's positions are: a host array or (GL backend) a GL buffer.
+struct PositionSource {
+  enum class Kind { kNone, kHost, kGl };
+  Kind kind = Kind::kNone;
+  const float* host = nullptr;     ///< kHost
+  std::uint32_t gl_buffer = 0;     ///< kGl
+  std::uint64_t offset_bytes = 0;  ///< kGl
+  std::uint64_t stride_bytes = 0;  ///< both
+  std::uint32_t vertex_count = 0;  ///< the mesh's (read_positions may be called before upload)
+};
 
 class CollisionBackend {
  public:
@@ -22,28 +36,42 @@ class CollisionBackend {
 
   /// "cpu" or "gl".
   [[nodiscard]] virtual std::string_view name() const = 0;
-  /// Takes the faces, leaf-box lists and body pairs (sizes are fixed from then on). Throws
-  /// Error when a buffer does not fit the device.
-  virtual void upload(const WorldState& state) = 0;
+  /// The GL renderer and version, or the CPU thread count.
+  [[nodiscard]] virtual std::string device() const = 0;
+  /// Takes the collision data with its hierarchies built (sizes are fixed from then on). Throws
+  /// Error when a buffer does not fit the device; the backend is unchanged then.
+  virtual void upload(const CollisionData& data) = 0;
+  /// Where each mesh's positions are read from (one source per mesh, checked by the Detector),
+  /// from the next detect() on. The CPU backend takes kHost sources only.
+  virtual void set_positions(const std::vector<PositionSource>& sources) = 0;
+  /// The current positions of mesh `mesh` (read back from a GL buffer), for building and
+  /// rebuilding hierarchies and for error messages. Valid after set_positions, before upload.
+  [[nodiscard]] virtual std::vector<glm::vec3> read_positions(std::uint32_t mesh) = 0;
+  /// The first vertex with a non-finite coordinate, as (mesh, vertex), or nothing. Sources in
+  /// host memory are the Detector's to check; a GL backend checks its GL buffers (on the GPU).
+  [[nodiscard]] virtual bool find_non_finite(std::uint32_t& mesh, std::uint32_t& vertex) {
+    (void)mesh;
+    (void)vertex;
+    return false;
+  }
   /// One pass over the current positions: resets the face flags and counters, then runs the
-  /// broad phase `method` and the narrow phase (kNone only resets). Throws Error for a method
-  /// the backend does not implement.
+  /// broad phase `method` and the narrow phase (kNone only resets).
   virtual void detect(BroadPhase method) = 0;
-  /// Makes sure the last pass is complete and whole: a backend whose candidate buffer
-  /// overflowed grows it and reruns the pass (on the same positions). The world calls it after
-  /// each pass, before the positions move again; results are read only after it.
+  /// Makes sure the last pass is complete and whole: a backend whose lists overflowed grows
+  /// them and reruns the pass (on the same positions). Results are read only after it.
   virtual void complete_pass() {}
-  /// The last pass's counters (on GL, waits for the pass).
+  /// The last pass's counters.
   [[nodiscard]] virtual gpu::CollisionCounters counters() = 0;
-  /// The last pass's intersecting face pairs, in no particular order; all of them (a backend
-  /// with a fixed-size result buffer grows it and reruns the pass when it overflowed).
+  /// The last pass's intersecting face pairs (face indices over every mesh, face_a < face_b),
+  /// in no particular order.
   virtual void download_face_pairs(std::vector<gpu::FacePair>& out) = 0;
   /// The last pass's per-face flags (SSBO 5): nonzero for a face in at least one contact.
   virtual void download_face_flags(std::vector<std::uint32_t>& out) = 0;
-  /// The leaf boxes as the last octree pass computed them (64 per body).
+  /// The leaf boxes as the last octree pass computed them (64 per mesh).
   virtual void download_boxes(std::vector<gpu::Box>& out) = 0;
-  /// GL buffer name of the face flags, or 0 when the backend is not GL.
+  /// GL buffer names of the face flags and of the face pairs, or 0 when the backend is not GL.
   [[nodiscard]] virtual std::uint32_t gl_face_flag_buffer() const { return 0; }
+  [[nodiscard]] virtual std::uint32_t gl_face_pair_buffer() const { return 0; }
 
  protected:
   CollisionBackend() = default;

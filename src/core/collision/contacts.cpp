@@ -8,25 +8,22 @@ namespace deformcd::collision {
 namespace {
 
 ContactFace contact_face(std::uint32_t global_face, const std::vector<gpu::Face>& faces,
-                         const std::vector<gpu::ObjectInfo>& objects) {
+                         const std::vector<gpu::MeshInfo>& meshes) {
   const gpu::Face& f = faces.at(global_face);
-  const gpu::ObjectInfo& o = objects.at(f.body);
-  return {f.body,
-          global_face - o.face_offset,
-          {f.a - o.node_offset, f.b - o.node_offset, f.c - o.node_offset}};
+  return {f.body, global_face - meshes.at(f.body).face_offset, {f.a, f.b, f.c}};
 }
 
 }  // namespace
 
 std::vector<Contact> make_contacts(const std::vector<gpu::FacePair>& pairs,
                                    const std::vector<gpu::Face>& faces,
-                                   const std::vector<gpu::ObjectInfo>& objects) {
+                                   const std::vector<gpu::MeshInfo>& meshes) {
   std::vector<Contact> contacts;
   contacts.reserve(pairs.size());
   for (const gpu::FacePair& p : pairs) {
     Contact c;
-    c.a = contact_face(p.face_a, faces, objects);
-    c.b = contact_face(p.face_b, faces, objects);
+    c.a = contact_face(p.face_a, faces, meshes);
+    c.b = contact_face(p.face_b, faces, meshes);
     c.coplanar = p.coplanar != 0u;
     c.segment = {glm::vec3(p.segment0), glm::vec3(p.segment1)};
     if (c.b.body < c.a.body) std::swap(c.a, c.b);

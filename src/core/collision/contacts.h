@@ -1,6 +1,7 @@
 #pragma once
-// From the backends' raw face pairs (global face indices) to the contacts users see (body and
-// face indices within the body), in one order that does not depend on the backend.
+// From the backends' raw face pairs (face indices over every mesh) to the contacts users see
+// (mesh and triangle indices in the caller's order), in one order that does not depend on the
+// backend.
 
 #include <vector>
 
@@ -9,9 +10,10 @@
 
 namespace deformcd::collision {
 
-/// Contacts sorted by (body a, face a, body b, face b). `faces` and `objects` are the world's.
+/// Contacts sorted by (mesh a, face a, mesh b, face b). `faces` (mesh-local vertex indices) and
+/// `meshes` are the detector's.
 [[nodiscard]] std::vector<Contact> make_contacts(const std::vector<gpu::FacePair>& pairs,
                                                  const std::vector<gpu::Face>& faces,
-                                                 const std::vector<gpu::ObjectInfo>& objects);
+                                                 const std::vector<gpu::MeshInfo>& meshes);
 
 }  // namespace deformcd::collision

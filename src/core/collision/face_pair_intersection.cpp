@@ -13,20 +13,22 @@ namespace deformcd::collision {
 namespace {
 
 std::uint32_t corner(const gpu::Face& f, int i) {
-  return i == 0 ? f.a : (i == 1 ? f.b : f.c);
+  return face_corner(f, static_cast<std::uint32_t>(i));
 }
 
 // Triangle `face` with its vertices rotated so that corner `first` comes first (a rotation
 // keeps the winding).
-void load_rotated(const gpu::Face& face, int first, const glm::vec4* positions, glm::vec3 t[3]) {
+void load_rotated(const gpu::Face& face, int first, VertexPositions positions, glm::vec3 t[3]) {
   for (int i = 0; i < 3; ++i)
-    t[i] = glm::vec3(positions[corner(face, (first + i) % 3)]);
+    t[i] = vertex_position(positions, face.body, corner(face, (first + i) % 3));
 }
 
 }  // namespace
 
 SharedNodes shared_nodes(const gpu::Face& a, const gpu::Face& b) {
   SharedNodes s;
+  // Vertex indices are local to a mesh: faces of different meshes share none.
+  if (a.body != b.body) return s;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       if (corner(a, i) != corner(b, j)) continue;
@@ -68,11 +70,11 @@ TriTriResult tri_tri_intersect_sharing_vertex(const glm::vec3 p[3], const glm::v
 }
 
 TriTriResult face_pair_intersect(const gpu::Face& fa, const gpu::Face& fb,
-                                 const glm::vec4* positions) {
-  glm::vec3 p[3] = {glm::vec3(positions[fa.a]), glm::vec3(positions[fa.b]),
-                    glm::vec3(positions[fa.c])};
-  glm::vec3 q[3] = {glm::vec3(positions[fb.a]), glm::vec3(positions[fb.b]),
-                    glm::vec3(positions[fb.c])};
+                                 VertexPositions positions) {
+  glm::vec3 p[3];
+  glm::vec3 q[3];
+  face_vertices(positions, fa, p);
+  face_vertices(positions, fb, q);
   // Most pairs a broad phase hands on (all of them for brute force) have boxes apart: that
   // exact test first, as tri_tri_intersect would, before looking for shared nodes (faces that
   // share one have touching boxes, so no answer changes).

@@ -18,6 +18,7 @@
 
 #include "deformcd/gpu_layout.h"
 #include "tri_tri_intersection.h"
+#include "vertex_positions.h"
 
 namespace deformcd::collision {
 
@@ -29,6 +30,7 @@ struct SharedNodes {
   int corner_b = 0;
 };
 
+/// Faces of different meshes (Face::body) share no node: their indices are local to their mesh.
 [[nodiscard]] SharedNodes shared_nodes(const gpu::Face& a, const gpu::Face& b);
 
 /// Whether the closed segment [s0, s1] and triangle t share a point, with the tolerances of
@@ -43,11 +45,11 @@ struct SharedNodes {
 [[nodiscard]] TriTriResult tri_tri_intersect_sharing_vertex(const glm::vec3 p[3],
                                                             const glm::vec3 q[3]);
 
-/// The narrow phase of faces fa and fb with their nodes at `positions`: nothing for faces
+/// The narrow phase of faces fa and fb with their vertices at `positions`: nothing for faces
 /// sharing an edge, tri_tri_intersect_sharing_vertex for faces sharing a node (both rotated
 /// so that it comes first, keeping their winding), tri_tri_intersect otherwise (vertices in the
 /// order a, b, c).
 [[nodiscard]] TriTriResult face_pair_intersect(const gpu::Face& fa, const gpu::Face& fb,
-                                               const glm::vec4* positions);
+                                               VertexPositions positions);
 
 }  // namespace deformcd::collision

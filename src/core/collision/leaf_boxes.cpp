@@ -19,14 +19,15 @@ std::uint32_t cell_of(double v, double lo, double extent) {
 
 }  // namespace
 
-LeafBoxLists build_leaf_box_lists(const std::vector<glm::vec4>& positions, const gpu::Face* faces,
+LeafBoxLists build_leaf_box_lists(VertexPositions positions, const gpu::Face* faces,
                                   std::uint32_t face_count, std::uint32_t face_offset) {
   glm::dvec3 lo(std::numeric_limits<double>::max());
   glm::dvec3 hi(std::numeric_limits<double>::lowest());
   for (std::uint32_t f = 0; f < face_count; ++f) {
     for (std::uint32_t node : {faces[f].a, faces[f].b, faces[f].c}) {
-      lo = glm::min(lo, glm::dvec3(positions[node]));
-      hi = glm::max(hi, glm::dvec3(positions[node]));
+      const glm::dvec3 p(vertex_position(positions, faces[f].body, node));
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
     }
   }
   const glm::dvec3 extent = hi - lo;
@@ -38,8 +39,9 @@ LeafBoxLists build_leaf_box_lists(const std::vector<glm::vec4>& positions, const
     glm::dvec3 face_lo(std::numeric_limits<double>::max());
     glm::dvec3 face_hi(std::numeric_limits<double>::lowest());
     for (std::uint32_t node : {faces[f].a, faces[f].b, faces[f].c}) {
-      face_lo = glm::min(face_lo, glm::dvec3(positions[node]));
-      face_hi = glm::max(face_hi, glm::dvec3(positions[node]));
+      const glm::dvec3 p(vertex_position(positions, faces[f].body, node));
+      face_lo = glm::min(face_lo, p);
+      face_hi = glm::max(face_hi, p);
     }
     std::uint32_t first[3];
     std::uint32_t last[3];
@@ -62,39 +64,6 @@ LeafBoxLists build_leaf_box_lists(const std::vector<glm::vec4>& positions, const
       lists.rows.push_back({face_offset + f, box});
   }
   return lists;
-}
-
-void assemble_collision_lists(WorldState& state, bool self_collision) {
-  state.box_faces.clear();
-  state.face_boxes.clear();
-  state.body_pairs.clear();
-  state.box_rows.clear();
-  for (std::size_t b = 0; b < state.objects.size(); ++b) {
-    gpu::ObjectInfo& o = state.objects[b];
-    const LeafBoxLists lists = build_leaf_box_lists(
-        state.positions, state.faces.data() + o.face_offset, o.face_count, o.face_offset);
-    o.box_offset = static_cast<std::uint32_t>(b) * gpu::kLeafBoxesPerBody;
-    o.box_count = gpu::kLeafBoxesPerBody;
-    o.box_face_offset = static_cast<std::uint32_t>(state.box_faces.size());
-    o.box_face_count = static_cast<std::uint32_t>(lists.rows.size());
-    std::uint32_t row = o.box_face_offset;
-    for (std::uint32_t box = 0; box < gpu::kLeafBoxesPerBody; ++box) {
-      std::uint32_t count = 0;
-      while (row + count - o.box_face_offset < lists.rows.size() &&
-             lists.rows[row + count - o.box_face_offset].box == box)
-        ++count;
-      state.box_rows.emplace_back(row, count);
-      row += count;
-    }
-    state.box_faces.insert(state.box_faces.end(), lists.rows.begin(), lists.rows.end());
-    state.face_boxes.insert(state.face_boxes.end(), lists.face_boxes.begin(),
-                            lists.face_boxes.end());
-  }
-  const auto bodies = static_cast<std::uint32_t>(state.objects.size());
-  for (std::uint32_t a = 0; a < bodies; ++a) {
-    for (std::uint32_t b = self_collision ? a : a + 1; b < bodies; ++b)
-      state.body_pairs.push_back({a, b});
-  }
 }
 
 }  // namespace deformcd::collision

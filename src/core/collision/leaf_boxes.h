@@ -19,7 +19,7 @@
 #include <glm/vec4.hpp>
 
 #include "deformcd/gpu_layout.h"
-#include "deformcd/world_state.h"
+#include "vertex_positions.h"
 
 namespace deformcd::collision {
 
@@ -37,15 +37,10 @@ struct LeafBoxLists {
   std::vector<glm::uvec2> face_boxes;  ///< per face of the body: bit k (x: 0-31, y: 32-63)
 };
 
-/// Lists the faces (global indices face_offset + i, vertices at positions[face.a...]) under the
-/// leaf cells of their rest-pose bounding boxes.
-[[nodiscard]] LeafBoxLists build_leaf_box_lists(const std::vector<glm::vec4>& positions,
-                                                const gpu::Face* faces, std::uint32_t face_count,
+/// Lists the faces (global indices face_offset + i, vertices at `positions`) under the leaf
+/// cells of their rest-pose bounding boxes.
+[[nodiscard]] LeafBoxLists build_leaf_box_lists(VertexPositions positions, const gpu::Face* faces,
+                                                std::uint32_t face_count,
                                                 std::uint32_t face_offset);
-
-/// Fills state.box_faces, state.face_boxes, state.box_rows, state.body_pairs (with (b, b) pairs
-/// when self_collision) and each object's box fields (box_offset = 64 x body, box_count = 64,
-/// box_face_offset/count), from the current positions.
-void assemble_collision_lists(WorldState& state, bool self_collision);
 
 }  // namespace deformcd::collision

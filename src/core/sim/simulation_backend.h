@@ -10,7 +10,7 @@
 
 #include <glm/vec4.hpp>
 
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 #include "mass_spring.h"
 
 namespace deformcd::sim {
@@ -28,7 +28,7 @@ class SimulationBackend {
 
   /// Takes the world's initial state (sizes are fixed from then on). Throws Error when it
   /// does not fit (e.g. a buffer larger than the device allows).
-  virtual void upload(const WorldState& state) = 0;
+  virtual void upload(const SimulationState& state) = 0;
   /// One substep: spring forces, node forces, integration.
   virtual void substep(const SubstepConstants& constants) = 0;
   /// Waits for the work issued so far (for timing).
@@ -39,6 +39,9 @@ class SimulationBackend {
 
   /// GL buffer name of the node positions (SSBO 0), or 0 when the backend is not GL.
   [[nodiscard]] virtual std::uint32_t gl_position_buffer() const { return 0; }
+  /// The node positions in host memory (vec4 per node), where a CPU backend steps them in
+  /// place (they do not move after upload), or null when the backend is not the CPU.
+  [[nodiscard]] virtual const glm::vec4* host_positions() const { return nullptr; }
 
  protected:
   SimulationBackend() = default;

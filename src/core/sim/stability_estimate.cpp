@@ -9,7 +9,7 @@
 
 namespace deformcd::sim {
 
-double estimate_max_stable_substep(const WorldState& w) {
+double estimate_max_stable_substep(const SimulationState& w) {
   // Row sums of |M^-1/2 K M^-1/2| by 3x3 blocks; fixed nodes (inverse mass 0) do not move.
   std::vector<double> row(w.node_count(), 0.0);
   auto inverse_mass = [&](std::uint32_t n) { return static_cast<double>(w.positions[n].w); };

@@ -4,11 +4,11 @@
 // matrix of the springs and tetrahedron volume terms at rest. The bound overestimates
 // omega_max, so the estimate errs on the safe side (the true limit is usually 1-2x larger).
 
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 
 namespace deformcd::sim {
 
 /// Seconds; +infinity for a world with nothing stiff (no springs, no tetrahedra).
-[[nodiscard]] double estimate_max_stable_substep(const WorldState& world);
+[[nodiscard]] double estimate_max_stable_substep(const SimulationState& world);
 
 }  // namespace deformcd::sim

@@ -6,16 +6,15 @@ namespace deformcd::gl {
 
 BvhWorkOrder plan_bvh_work_order(const std::vector<gpu::BvhNode>& nodes,
                                  const std::vector<gpu::BodyBvh>& trees,
-                                 const std::vector<gpu::ObjectInfo>& objects,
-                                 std::size_t face_count) {
+                                 const std::vector<gpu::MeshInfo>& meshes, std::size_t face_count) {
   BvhWorkOrder plan;
   plan.leaves.assign(face_count, 0u);
   // Preorder: a node's depth is its parent's + 1, and parents come first.
   std::vector<std::uint32_t> depth(nodes.size(), 0);
   std::vector<std::vector<std::uint32_t>> by_depth;
-  for (std::size_t b = 0; b < trees.size(); ++b) {
-    const gpu::BodyBvh& t = trees[b];
-    std::uint32_t leaf = objects[b].face_offset;
+  for (std::size_t m = 0; m < trees.size(); ++m) {
+    const gpu::BodyBvh& t = trees[m];
+    std::uint32_t leaf = meshes[m].face_offset;
     for (std::uint32_t i = t.root; i < t.root + t.node_count; ++i) {
       if (i != t.root) depth[i] = depth[nodes[i].parent] + 1;
       if (nodes[i].face != gpu::kBvhInternal) {

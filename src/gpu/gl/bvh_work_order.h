@@ -1,10 +1,10 @@
 #pragma once
 // The orders in which GlCollision's bvh shaders take the BVH nodes, derived from the trees'
 // topology on the host at upload and after each rebuild (the only times it changes). No GL here.
-//   refit      the internal nodes level by level, deepest first, every body's nodes of one depth
+//   refit      the internal nodes level by level, deepest first, every mesh's nodes of one depth
 //              in one dispatch (bvh_refit_level.comp): a node's children are always written by
 //              an earlier dispatch;
-//   traversal  each body's leaves in preorder (bvh_traverse.comp): neighbouring lanes then query
+//   traversal  each mesh's leaves in preorder (bvh_traverse.comp): neighbouring lanes then query
 //              with neighbouring faces.
 
 #include <cstddef>
@@ -24,16 +24,16 @@ struct BvhWorkOrder {
   // Per depth, deepest first: (first entry in refit_order, count). Depths without internal
   // nodes are left out.
   std::vector<glm::uvec2> levels;
-  // Per body, from its face offset: its tree's leaves in preorder (neighbouring leaves hold
+  // Per mesh, from its face offset: its tree's leaves in preorder (neighbouring leaves hold
   // neighbouring faces), one per face.
   std::vector<std::uint32_t> leaves;
 };
 
-// The orders of the trees `trees` (one per body of `objects`) over `nodes`, preorder per tree
-// (as check_collision_consistency makes sure), among `face_count` faces.
+// The orders of the trees `trees` (one per mesh of `meshes`) over `nodes`, preorder per tree
+// (as check_collision_data makes sure), among `face_count` faces.
 [[nodiscard]] BvhWorkOrder plan_bvh_work_order(const std::vector<gpu::BvhNode>& nodes,
                                                const std::vector<gpu::BodyBvh>& trees,
-                                               const std::vector<gpu::ObjectInfo>& objects,
+                                               const std::vector<gpu::MeshInfo>& meshes,
                                                std::size_t face_count);
 
 }  // namespace deformcd::gl

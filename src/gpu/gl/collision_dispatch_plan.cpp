@@ -8,9 +8,9 @@
 namespace deformcd::gl {
 
 std::vector<PairChunk> plan_pair_chunks(std::span<const gpu::BodyPair> pairs,
-                                        std::span<const gpu::ObjectInfo> objects,
+                                        std::span<const gpu::MeshInfo> meshes,
                                         std::uint32_t chunk_size,
-                                        std::uint32_t gpu::ObjectInfo::*count) {
+                                        std::uint32_t gpu::MeshInfo::*count) {
   if (chunk_size == 0) throw Error("plan_pair_chunks: the chunk size must be positive");
   std::vector<PairChunk> chunks;
   const auto pair_count = static_cast<std::uint32_t>(pairs.size());
@@ -18,8 +18,8 @@ std::vector<PairChunk> plan_pair_chunks(std::span<const gpu::BodyPair> pairs,
        first += std::min(chunk_size, pair_count - first)) {
     PairChunk chunk{first, std::min(chunk_size, pair_count - first), 0, 0};
     for (std::uint32_t p = first; p < first + chunk.count; ++p) {
-      chunk.max_a = std::max(chunk.max_a, objects[pairs[p].a].*count);
-      chunk.max_b = std::max(chunk.max_b, objects[pairs[p].b].*count);
+      chunk.max_a = std::max(chunk.max_a, meshes[pairs[p].a].*count);
+      chunk.max_b = std::max(chunk.max_b, meshes[pairs[p].b].*count);
     }
     chunks.push_back(chunk);
   }
@@ -37,7 +37,7 @@ void check_chunks_fit(std::string_view shader, std::span<const PairChunk> chunks
       if (groups[axis] <= max_groups[axis]) continue;
       throw GlError("GL collision: '" + std::string(shader) + "' would need " +
                     std::to_string(groups[axis]) + " work groups along " + "xyz"[axis] +
-                    " for body pairs " + std::to_string(chunk.first) + " to " +
+                    " for mesh pairs " + std::to_string(chunk.first) + " to " +
                     std::to_string(chunk.first + chunk.count - 1) + " (extents " +
                     std::to_string(chunk.max_a) + " x " + std::to_string(chunk.max_b) + " x " +
                     std::to_string(chunk.count) +

@@ -12,6 +12,7 @@ inline constexpr std::uint32_t kBoxPairListBinding = 30;    // uvec2 per listed 
 inline constexpr std::uint32_t kBvhLevelsBinding = 31;      // uint per internal BVH node
 inline constexpr std::uint32_t kTouchingPairsBinding = 32;  // uvec2 per touching body pair
 inline constexpr std::uint32_t kBvhLeavesBinding = 33;      // uint per face: leaves in preorder
+inline constexpr std::uint32_t kNonFiniteBinding = 34;      // uint per mesh: first bad vertex
 
 // The dispatch-args buffer's size in uints, and its words (DISPATCH_ARGS_*): the argument
 // triples of octree_candidates.comp, tri_tri_candidates.comp and bvh_traverse.comp, and the

@@ -11,6 +11,7 @@
 #include "buffer_from.h"
 #include "core/collision/broad_phase.h"
 #include "deformcd/error.h"
+#include "device_summary.h"
 #include "gl_check.h"
 
 namespace deformcd::gl {
@@ -37,12 +38,11 @@ std::uint32_t checked_check_interval(std::uint32_t passes) {
   return passes;
 }
 
-// The largest face count of the smaller body of any body pair.
-std::uint32_t largest_query_body(const WorldState& state) {
+// The largest face count of the smaller mesh of any mesh pair.
+std::uint32_t largest_query_mesh(const collision::CollisionData& data) {
   std::uint32_t most = 0;
-  for (const gpu::BodyPair& pair : state.body_pairs) {
-    most = std::max(most,
-                    std::min(state.objects[pair.a].face_count, state.objects[pair.b].face_count));
+  for (const gpu::BodyPair& pair : data.mesh_pairs) {
+    most = std::max(most, std::min(data.meshes[pair.a].face_count, data.meshes[pair.b].face_count));
   }
   return most;
 }
@@ -54,18 +54,18 @@ std::uint32_t largest_row_count(const std::vector<glm::uvec2>& box_rows) {
   return most;
 }
 
+std::uint64_t device_limit(const DeviceInfo& device, std::uint64_t option) {
+  return option > 0 ? std::min(option, device.max_ssbo_block_bytes) : device.max_ssbo_block_bytes;
+}
+
 }  // namespace
 
-GlCollision::GlCollision(Context& context, const GlSimulation& simulation,
-                         const GlCollisionOptions& options)
-    : GlCollision(query_device_info(context), simulation, options) {}
+GlCollision::GlCollision(Context& context, const GlCollisionOptions& options)
+    : GlCollision(query_device_info(context), options) {}
 
-GlCollision::GlCollision(const DeviceInfo& device, const GlSimulation& simulation,
-                         const GlCollisionOptions& options)
-    : simulation_(simulation),
-      max_buffer_bytes_(options.max_buffer_bytes > 0
-                            ? std::min(options.max_buffer_bytes, device.max_ssbo_block_bytes)
-                            : device.max_ssbo_block_bytes),
+GlCollision::GlCollision(const DeviceInfo& device, const GlCollisionOptions& options)
+    : device_(device_summary(device)),
+      max_buffer_bytes_(device_limit(device, options.max_buffer_bytes)),
       limit_is_device_(options.max_buffer_bytes == 0 ||
                        options.max_buffer_bytes >= device.max_ssbo_block_bytes),
       max_work_groups_(device.max_work_group_count),
@@ -82,89 +82,161 @@ GlCollision::GlCollision(const DeviceInfo& device, const GlSimulation& simulatio
       octree_candidates_("collision/octree_candidates.comp"),
       bvh_refit_("collision/bvh_refit.comp"),
       bvh_refit_level_("collision/bvh_refit_level.comp"),
-      bvh_body_pairs_("collision/bvh_body_pairs.comp"),
+      bvh_mesh_pairs_("collision/bvh_mesh_pairs.comp"),
       bvh_traverse_("collision/bvh_traverse.comp"),
       dispatch_args_("collision/dispatch_args.comp"),
-      tri_tri_candidates_("collision/tri_tri_candidates.comp") {}
+      tri_tri_candidates_("collision/tri_tri_candidates.comp"),
+      vertex_check_(device.max_work_group_count[0]),
+      staging_({.max_block_bytes = device.max_ssbo_block_bytes,
+                .max_gathered_bytes = max_buffer_bytes_,
+                .limit_name = limit_name()}) {}
 
-void GlCollision::upload(const WorldState& state) {
+void GlCollision::upload(const collision::CollisionData& data) {
   // Everything is checked before the first allocation, so a failed upload keeps the old state.
-  check_collision_consistency(state);
-  const CollisionCapacities capacities = initial_capacities(state);
-  check_buffer_sizes(collision_buffer_sizes(state, capacities), max_buffer_bytes_, limit_name(),
+  check_collision_data(data);
+  const CollisionCapacities capacities = initial_capacities(data);
+  check_buffer_sizes(collision_buffer_sizes(data, capacities), max_buffer_bytes_, limit_name(),
                      "GL collision");
-  const auto box_count = static_cast<std::uint32_t>(gpu::kLeafBoxesPerBody * state.body_count());
-  BvhRebuilder rebuilder(state, bvh_check_interval_);
+  const auto box_count = static_cast<std::uint32_t>(gpu::kLeafBoxesPerBody * data.mesh_count());
+  // The trees' reference quality on the positions they were built on: the current ones, if
+  // every mesh has some yet (a read-back of GL sources, before anything changes).
+  const bool positions_known = positions_cover(data.meshes);
+  collision::BvhUpkeep upkeep =
+      positions_known ? measured_bvh_upkeep(data) : collision::BvhUpkeep{};
   BvhWorkOrder order =
-      plan_bvh_work_order(state.bvh_nodes, state.body_bvhs, state.objects, state.faces.size());
+      plan_bvh_work_order(data.bvh_nodes, data.mesh_bvhs, data.meshes, data.faces.size());
 
   // The new buffers are all allocated before the old ones are released: if GL runs out of
   // memory (GlError from BufferObject), the previous state stays intact.
   const std::vector<gpu::Box> empty_boxes(box_count, collision::empty_box());
   CollisionBuffers b{
       .boxes = make_buffer(empty_boxes),
-      .face_flags = Ssbo<std::uint32_t>(std::max<std::size_t>(state.faces.size(), 1)),
-      .faces = make_buffer(state.faces),
-      .objects = make_buffer(state.objects),
-      .box_faces = make_buffer(state.box_faces),
+      .face_flags = Ssbo<std::uint32_t>(std::max<std::size_t>(data.faces.size(), 1)),
+      .faces = make_buffer(data.faces),
+      .meshes = make_buffer(data.meshes),
+      .box_faces = make_buffer(data.box_faces),
       .face_pairs = Ssbo<gpu::FacePair>(capacities.face_pairs),
       .box_mask = Ssbo<std::int32_t>(capacities.mask_slots * gpu::kLeafBoxesPerBody *
                                      gpu::kLeafBoxesPerBody),
-      .face_boxes = make_buffer(state.face_boxes),
-      .body_pairs = make_buffer(state.body_pairs),
+      .face_boxes = make_buffer(data.face_boxes),
+      .mesh_pairs = make_buffer(data.mesh_pairs),
       .counters = Ssbo<gpu::CollisionCounters>(1),
-      .box_rows = make_buffer(state.box_rows),
-      .bvh_nodes = make_buffer(state.bvh_nodes),
-      .bvh_boxes = Ssbo<gpu::Box>(std::max<std::size_t>(state.bvh_nodes.size(), 1)),
-      .body_bvhs = make_buffer(state.body_bvhs),
+      .box_rows = make_buffer(data.box_rows),
+      .bvh_nodes = make_buffer(data.bvh_nodes),
+      .bvh_boxes = Ssbo<gpu::Box>(std::max<std::size_t>(data.bvh_nodes.size(), 1)),
+      .mesh_bvhs = make_buffer(data.mesh_bvhs),
       .candidates = Ssbo<glm::uvec2>(capacities.candidates),
       .dispatch_args = Ssbo<std::uint32_t>(kDispatchArgsWords),
       .box_pair_list = Ssbo<glm::uvec2>(capacities.box_pairs),
       .bvh_levels = make_buffer(order.refit_order),
-      .touching_pairs = Ssbo<gpu::BodyPair>(std::max<std::size_t>(state.body_pairs.size(), 1)),
+      .touching_pairs = Ssbo<gpu::BodyPair>(std::max<std::size_t>(data.mesh_pairs.size(), 1)),
       .bvh_leaves = make_buffer(order.leaves),
-      .node_count = static_cast<std::uint32_t>(state.node_count()),
-      .face_count = static_cast<std::uint32_t>(state.faces.size()),
+      .face_count = static_cast<std::uint32_t>(data.faces.size()),
       .box_count = box_count,
       .pair_capacity = static_cast<std::uint32_t>(capacities.face_pairs),
-      .bvh_node_count = static_cast<std::uint32_t>(state.bvh_nodes.size()),
+      .bvh_node_count = static_cast<std::uint32_t>(data.bvh_nodes.size()),
       .bvh_levels_ranges = std::move(order.levels),
       .candidate_capacity = static_cast<std::uint32_t>(capacities.candidates),
       .box_pair_capacity = static_cast<std::uint32_t>(capacities.box_pairs),
-      .max_box_rows = largest_row_count(state.box_rows),
-      .body_pair_count = static_cast<std::uint32_t>(state.body_pairs.size()),
-      .max_query_faces = largest_query_body(state),
-      .octree_chunks = plan_pair_chunks(state.body_pairs, state.objects, mask_slots_,
-                                        &gpu::ObjectInfo::box_face_count),
-      .brute_chunks = plan_pair_chunks(state.body_pairs, state.objects, max_work_groups_[2],
-                                       &gpu::ObjectInfo::face_count),
+      .max_box_rows = largest_row_count(data.box_rows),
+      .mesh_pair_count = static_cast<std::uint32_t>(data.mesh_pairs.size()),
+      .max_query_faces = largest_query_mesh(data),
+      .octree_chunks = plan_pair_chunks(data.mesh_pairs, data.meshes, mask_slots_,
+                                        &gpu::MeshInfo::box_face_count),
+      .brute_chunks = plan_pair_chunks(data.mesh_pairs, data.meshes, max_work_groups_[2],
+                                       &gpu::MeshInfo::face_count),
   };
   check_dispatches(b);
   buffers_.emplace(std::move(b));
-  rebuilder_.emplace(std::move(rebuilder));
+  meshes_ = data.meshes;
+  staging_.set_labels(data.mesh_names);
+  staging_.restart();  // the new mesh buffer needs the position words
   bb_update_.set_uniform("u_box_count", box_count);
   bvh_refit_.set_uniform("u_node_count", buffers_->bvh_node_count);
-  bvh_body_pairs_.set_uniform("u_pair_count", buffers_->body_pair_count);
+  bvh_mesh_pairs_.set_uniform("u_pair_count", buffers_->mesh_pair_count);
   set_capacity_uniforms(*buffers_);
   clear_to_zero(buffers_->face_flags);
   clear_to_zero(buffers_->counters);
   last_method_ = BroadPhase::kNone;
   pass_pending_ = false;
+  bvh_passes_ = 0;
+  upkeep_ = std::move(upkeep);
+  upkeep_pending_.reset();
+  if (!positions_known) upkeep_pending_.emplace(data);
+}
+
+void GlCollision::set_positions(const std::vector<collision::PositionSource>& sources) {
+  staging_.set_sources(sources);
+}
+
+std::vector<glm::vec3> GlCollision::read_positions(std::uint32_t mesh) {
+  return staging_.read_source(mesh);
+}
+
+bool GlCollision::find_non_finite(std::uint32_t& mesh, std::uint32_t& vertex) {
+  return vertex_check_.find(staging_, mesh, vertex);
 }
 
 void GlCollision::detect(BroadPhase method) {
-  const CollisionBuffers& b = buffers("detect");
-  bind_positions(b);
+  CollisionBuffers& b = buffers("detect");
+  if (method != BroadPhase::kNone) {
+    stage_positions(b);
+    if (upkeep_pending_) {
+      upkeep_ = measured_bvh_upkeep(*upkeep_pending_);
+      upkeep_pending_.reset();
+    }
+  }
+  last_method_ = method;
+  pass_pending_ = true;
+  run_pass(method, b);
+}
+
+void GlCollision::stage_positions(CollisionBuffers& b) {
+  if (!staging_.stage(meshes_)) return;
+  const PositionLayout& layout = staging_.layout();
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    meshes_[m].position_offset = layout.meshes[m].word_offset;
+    meshes_[m].position_stride = layout.meshes[m].word_stride;
+  }
+  b.meshes.upload(std::span<const gpu::MeshInfo>(meshes_));
+}
+
+void GlCollision::run_pass(BroadPhase method, const CollisionBuffers& b) {
+  if (method != BroadPhase::kNone) staging_.bind();
   b.bind();
-  memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the last pass's shader writes land first
+  // The last pass's shader writes land before the clears; the callers' writes to their
+  // position buffers before this pass reads them.
+  memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   clear_to_zero(b.face_flags);
   clear_to_zero(b.counters);
   if (method == BroadPhase::kBvh) clear_to_zero(b.dispatch_args);  // the touching pairs' count
-  last_method_ = method;
-  pass_pending_ = true;
   run(method, b);
   // Downloads, the next pass and renderers reading the flags see this pass's results.
   memory_barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+}
+
+bool GlCollision::positions_cover(const std::vector<gpu::MeshInfo>& meshes) const {
+  const std::vector<collision::PositionSource>& sources = staging_.sources();
+  if (sources.size() != meshes.size()) return false;
+  for (std::size_t m = 0; m < sources.size(); ++m) {
+    if (sources[m].kind == collision::PositionSource::Kind::kNone ||
+        sources[m].vertex_count != meshes[m].vertex_count) {
+      return false;
+    }
+  }
+  return true;
+}
+
+collision::BvhUpkeep GlCollision::measured_bvh_upkeep(const collision::CollisionData& data) const {
+  std::vector<std::vector<glm::vec3>> positions(data.mesh_count());
+  std::vector<collision::MeshVertices> pose(data.mesh_count());
+  for (std::uint32_t m = 0; m < data.mesh_count(); ++m) {
+    positions[m] = staging_.read_source(m);
+    pose[m] = {positions[m].empty() ? nullptr : &positions[m][0].x, 3u};
+  }
+  collision::BvhUpkeep upkeep;
+  upkeep.reset(data, pose.data());
+  return upkeep;
 }
 
 gpu::CollisionCounters GlCollision::counters() {
@@ -201,8 +273,16 @@ void GlCollision::download_bvh_nodes(std::vector<gpu::BvhNode>& out) {
   out = b.bvh_nodes.download(0, b.bvh_node_count);
 }
 
+void GlCollision::download_meshes(std::vector<gpu::MeshInfo>& out) {
+  out = buffers("download_meshes").meshes.download(0, meshes_.size());
+}
+
 std::uint32_t GlCollision::gl_face_flag_buffer() const {
   return buffers_ ? buffers_->face_flags.name() : 0;
+}
+
+std::uint32_t GlCollision::gl_face_pair_buffer() const {
+  return buffers_ ? buffers_->face_pairs.name() : 0;
 }
 
 std::uint32_t GlCollision::face_pair_capacity() const {
@@ -217,8 +297,8 @@ std::uint32_t GlCollision::box_pair_capacity() const {
   return buffers_ ? buffers_->box_pair_capacity : 0;
 }
 
-std::uint32_t GlCollision::bvh_rebuilds() const {
-  return rebuilder_ ? rebuilder_->rebuilds() : 0;
+bool GlCollision::positions_in_place() const {
+  return staging_.staged() && staging_.layout().in_place();
 }
 
 CollisionBuffers& GlCollision::buffers(const char* operation) {
@@ -226,7 +306,7 @@ CollisionBuffers& GlCollision::buffers(const char* operation) {
   return *buffers_;
 }
 
-std::string_view GlCollision::limit_name() const {
+std::string GlCollision::limit_name() const {
   return limit_is_device_ ? "the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE"
                           : "GlCollisionOptions::max_buffer_bytes";
 }
@@ -236,29 +316,29 @@ std::uint64_t GlCollision::most_elements(std::uint64_t element_bytes) const {
                                  std::numeric_limits<std::uint32_t>::max());
 }
 
-CollisionCapacities GlCollision::initial_capacities(const WorldState& state) const {
+CollisionCapacities GlCollision::initial_capacities(const collision::CollisionData& data) const {
   // A default never exceeds the limit (a given one may, and is then reported).
   const auto fit = [this](std::uint32_t given, std::uint64_t wanted, std::uint64_t bytes) {
     if (given > 0) return std::uint64_t{given};
     return std::clamp<std::uint64_t>(wanted, 1, std::max<std::uint64_t>(most_elements(bytes), 1));
   };
-  const std::uint64_t faces = state.faces.size();
+  const std::uint64_t faces = data.faces.size();
   CollisionCapacities c;
   // Room for every face in a few contacts; more only in deep interpenetration, which grows it.
   c.face_pairs =
       fit(initial_pair_capacity_, std::max<std::uint64_t>(1024, 4 * faces), sizeof(gpu::FacePair));
-  c.mask_slots = std::clamp<std::uint64_t>(state.body_pairs.size(), 1, mask_slots_);
+  c.mask_slots = std::clamp<std::uint64_t>(data.mesh_pairs.size(), 1, mask_slots_);
   // Candidates are face pairs whose boxes overlap: in contact, a few per face near the contact.
   c.candidates = fit(initial_candidate_capacity_, std::max<std::uint64_t>(4096, 16 * faces),
                      sizeof(glm::uvec2));
-  // Every leaf-box pair of every body pair for two or three bodies; with more, a body seldom
+  // Every leaf-box pair of every mesh pair for two or three meshes; with more, a mesh seldom
   // touches all the others at once.
-  const std::uint64_t box_pairs_per_body_pair =
+  const std::uint64_t box_pairs_per_mesh_pair =
       std::uint64_t{gpu::kLeafBoxesPerBody} * gpu::kLeafBoxesPerBody;
-  c.box_pairs = fit(initial_box_pair_capacity_,
-                    box_pairs_per_body_pair *
-                        std::min<std::uint64_t>(state.body_pairs.size(), state.body_count()),
-                    sizeof(glm::uvec2));
+  c.box_pairs = fit(
+      initial_box_pair_capacity_,
+      box_pairs_per_mesh_pair * std::min<std::uint64_t>(data.mesh_pairs.size(), data.mesh_count()),
+      sizeof(glm::uvec2));
   return c;
 }
 
@@ -281,8 +361,8 @@ void GlCollision::check_dispatches(const CollisionBuffers& b) const {
   // bb_pair_list.comp runs over the brute chunks' z extents too, with x extents of 64 boxes.
   check_chunks_fit(tri_tri_brute_.shader_name(), b.brute_chunks, tri_tri_brute_.work_group_size(),
                    max_work_groups_);
-  check_x(bvh_body_pairs_, b.body_pair_count, "body pairs");
-  check_x(bvh_traverse_, b.max_query_faces, "faces of a query body");
+  check_x(bvh_mesh_pairs_, b.mesh_pair_count, "mesh pairs");
+  check_x(bvh_traverse_, b.max_query_faces, "faces of a query mesh");
   // The indirect dispatches clamp their lists' axis to the limit and loop; octree_candidates'
   // x covers the largest leaf box's rows.
   const std::uint32_t row_groups =
@@ -294,24 +374,6 @@ void GlCollision::check_dispatches(const CollisionBuffers& b) const {
                   " rows, more than the device's GL_MAX_COMPUTE_WORK_GROUP_COUNT of " +
                   std::to_string(max_work_groups_[0]));
   }
-}
-
-void GlCollision::bind_positions(const CollisionBuffers& b) const {
-  const std::uint32_t positions = simulation_.gl_position_buffer();
-  if (positions == 0) {
-    throw Error("GlCollision::detect: the simulation holds no positions (upload the world to it)");
-  }
-  // The shaders index positions by the faces' nodes: the buffer must hold them all.
-  GLint64 bytes = 0;
-  DEFORMCD_GL_CHECK(glBindBuffer(GL_SHADER_STORAGE_BUFFER, positions));
-  DEFORMCD_GL_CHECK(glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &bytes));
-  const std::uint64_t needed = std::uint64_t{b.node_count} * sizeof(glm::vec4);
-  if (static_cast<std::uint64_t>(bytes) < needed) {
-    throw Error("GlCollision::detect: the simulation holds " + std::to_string(bytes) +
-                " bytes of positions, but the uploaded faces need " + std::to_string(b.node_count) +
-                " nodes (" + std::to_string(needed) + " bytes)");
-  }
-  DEFORMCD_GL_CHECK(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kNodePosition, positions));
 }
 
 void GlCollision::set_capacity_uniforms(const CollisionBuffers& b) {

@@ -40,12 +40,13 @@ void GlCollision::complete_pass() {
       throw Error("GlCollision::complete_pass: the pass still overflowed after " +
                   std::to_string(kMaxReruns) + " reruns (" + std::to_string(found.box_pairs) +
                   " box pairs, " + std::to_string(found.candidates) + " candidates, " +
-                  std::to_string(found.face_pairs) + " face pairs; did the positions change?)");
+                  std::to_string(found.face_pairs) +
+                  " face pairs; did the positions in a GL buffer read in place change?)");
     }
     grow_overflowed(b, found);
     // A pass is deterministic in what it counts (only the slots' order varies): on the same
-    // positions, the grown lists hold what overflowed.
-    detect(last_method_);
+    // (staged) positions, the grown lists hold what overflowed.
+    run_pass(last_method_, b);
   }
   pass_pending_ = false;
   if (last_method_ == BroadPhase::kBvh) maintain_bvhs(b);
@@ -87,36 +88,29 @@ void GlCollision::grow_overflowed(CollisionBuffers& b, const gpu::CollisionCount
 }
 
 void GlCollision::maintain_bvhs(CollisionBuffers& b) {
-  if (!rebuilder_->count_pass()) return;
-  const std::vector<gpu::Box> boxes = b.bvh_boxes.download(0, b.bvh_node_count);
-  const std::vector<std::uint32_t> degraded = rebuilder_->degraded_bodies(boxes);
-  if (degraded.empty()) return;
-  const std::vector<glm::vec4> positions = download_positions(b);
-  for (std::uint32_t body : degraded) {
-    rebuilder_->rebuild(body, positions);
-    const gpu::BodyBvh& t = rebuilder_->body_bvhs()[body];
-    const std::span<const gpu::BvhNode> nodes(rebuilder_->nodes().data() + t.root, t.node_count);
-    b.bvh_nodes.upload(nodes, t.root);
-    b.body_bvhs.upload(std::span<const gpu::BodyBvh>(&t, 1), body);
+  bvh_passes_ = (bvh_passes_ + 1) % bvh_check_interval_;
+  if (bvh_passes_ != 0) return;
+  std::vector<gpu::Box> boxes = b.bvh_boxes.download(0, b.bvh_node_count);
+  bool rebuilt = false;
+  for (std::uint32_t m = 0; m < meshes_.size(); ++m) {
+    if (!upkeep_.degraded(m, upkeep_.area_ratio(m, boxes))) continue;
+    // The pass's positions (the staged ones): those the boxes were refitted to.
+    const std::vector<glm::vec3> positions = staging_.read_staged(m);
+    std::vector<collision::MeshVertices> pose(meshes_.size());
+    pose[m] = {&positions[0].x, 3u};
+    upkeep_.rebuild(m, pose.data(), boxes);
+    const gpu::BodyBvh& t = upkeep_.tree(m);
+    b.bvh_nodes.upload(std::span<const gpu::BvhNode>(upkeep_.nodes().data() + t.root, t.node_count),
+                       t.root);
+    b.mesh_bvhs.upload(std::span<const gpu::BodyBvh>(&t, 1), m);
+    rebuilt = true;
   }
+  if (!rebuilt) return;
   // The depths changed: so did the refit's levels (the internal nodes are as many as before).
-  BvhWorkOrder order = plan_bvh_work_order(rebuilder_->nodes(), rebuilder_->body_bvhs(),
-                                           rebuilder_->objects(), b.face_count);
+  BvhWorkOrder order = plan_bvh_work_order(upkeep_.nodes(), upkeep_.trees(), meshes_, b.face_count);
   b.bvh_levels.upload(std::span<const std::uint32_t>(order.refit_order));
   b.bvh_leaves.upload(std::span<const std::uint32_t>(order.leaves));
   b.bvh_levels_ranges = std::move(order.levels);
-}
-
-std::vector<glm::vec4> GlCollision::download_positions(const CollisionBuffers& b) const {
-  std::vector<glm::vec4> positions(b.node_count);
-  if (positions.empty()) return positions;
-  // The simulation's buffer: detect() checked that it holds node_count positions.
-  DEFORMCD_GL_CHECK(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT));
-  DEFORMCD_GL_CHECK(glBindBuffer(GL_SHADER_STORAGE_BUFFER, simulation_.gl_position_buffer()));
-  DEFORMCD_GL_CHECK(glGetBufferSubData(
-      GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec4)),
-      positions.data()));
-  return positions;
 }
 
 }  // namespace deformcd::gl

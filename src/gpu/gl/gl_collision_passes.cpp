@@ -1,6 +1,6 @@
 // GlCollision's passes: the dispatches of each broad phase and of the narrow phases, in order,
-// with the barriers between them. detect() (gl_collision.cpp) has bound every buffer and reset
-// the outputs before, and issues the final barrier after.
+// with the barriers between them. run_pass() (gl_collision.cpp) has bound every buffer and
+// reset the outputs before, and issues the final barrier after.
 
 #include <epoxy/gl.h>
 
@@ -108,12 +108,12 @@ void GlCollision::run_bvh(const CollisionBuffers& b) {
     bvh_refit_level_.dispatch_covering(level.y);
   }
   storage_barrier();  // the culling and the traversal read the boxes
-  bvh_body_pairs_.dispatch_covering(b.body_pair_count);
+  bvh_mesh_pairs_.dispatch_covering(b.mesh_pair_count);
   storage_barrier();  // dispatch_args reads the touching pairs' count
-  // x covers the largest query body's faces, y the touching pairs (one per work group row).
+  // x covers the largest query mesh's faces, y the touching pairs (one per work group row).
   write_dispatch_args(
       {.source = 2,
-       .capacity = b.body_pair_count,
+       .capacity = b.mesh_pair_count,
        .count_axis = 1,
        .other_groups = groups_covering(b.max_query_faces, bvh_traverse_.work_group_size()[0])},
       bvh_traverse_.work_group_size()[1], kTraverseArgsWord);

@@ -9,6 +9,7 @@
 #include "buffer_from.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/device_info.h"
+#include "device_summary.h"
 #include "gl_check.h"
 #include "simulation_upload_checks.h"
 
@@ -27,17 +28,13 @@ void check_fits_one_dispatch(const ComputeProgram& program, std::size_t invocati
   }
 }
 
-std::string describe(const DeviceInfo& info) {
-  return info.renderer + ", OpenGL " + info.gl_version + ", " + info.platform;
-}
-
 }  // namespace
 
 GlSimulation::GlSimulation(Context& context, const GlSimulationOptions& options)
     : GlSimulation(query_device_info(context), options) {}
 
 GlSimulation::GlSimulation(const DeviceInfo& device, const GlSimulationOptions& options)
-    : device_(describe(device)),
+    : device_(device_summary(device)),
       max_buffer_bytes_(options.max_buffer_bytes > 0
                             ? std::min(options.max_buffer_bytes, device.max_ssbo_block_bytes)
                             : device.max_ssbo_block_bytes),
@@ -49,7 +46,7 @@ GlSimulation::GlSimulation(const DeviceInfo& device, const GlSimulationOptions& 
       node_force_("sim/node_force.comp"),
       node_update_("sim/node_update.comp") {}
 
-void GlSimulation::upload(const WorldState& state) {
+void GlSimulation::upload(const SimulationState& state) {
   // Everything is checked before the first allocation, so a failed upload keeps the old state.
   check_world_consistency(state);
   check_buffer_sizes(simulation_buffer_sizes(state), max_buffer_bytes_,

@@ -67,7 +67,7 @@ class GlSimulation final : public sim::SimulationBackend {
   // fits one dispatch) before allocating anything, then replaces the buffers. Throws Error for
   // an inconsistent state and GlError naming every buffer that is too large, with its size and
   // the limit; the previous buffers are kept then.
-  void upload(const WorldState& state) override;
+  void upload(const SimulationState& state) override;
   // Binds the buffers (other passes may have rebound the points since), dispatches the three
   // shaders with storage barriers between them, and ends with a barrier so that later shaders
   // and vertex fetches see the new positions. Throws Error before upload().

@@ -15,7 +15,7 @@ BufferSize size_of(std::string_view name, gpu::Binding binding, const std::vecto
 }
 
 [[noreturn]] void inconsistent(const std::string& what) {
-  throw Error("WorldState is inconsistent: " + what);
+  throw Error("SimulationState is inconsistent: " + what);
 }
 
 void expect_length(std::string_view array, std::size_t length, std::string_view reference,
@@ -26,7 +26,7 @@ void expect_length(std::string_view array, std::size_t length, std::string_view 
   }
 }
 
-void check_springs(const WorldState& w) {
+void check_springs(const SimulationState& w) {
   for (std::size_t s = 0; s < w.springs.size(); ++s) {
     const gpu::Spring& spring = w.springs[s];
     if (spring.a >= w.node_count() || spring.b >= w.node_count()) {
@@ -49,7 +49,7 @@ void check_csr_offsets(const std::string& name, const std::vector<std::uint32_t>
   expect_length(name + "_list", list_length, name + "_offset's last entry", offset.back());
 }
 
-void check_node_springs(const WorldState& w) {
+void check_node_springs(const SimulationState& w) {
   check_csr_offsets("node_spring", w.node_spring_offset, w.node_spring_list.size());
   for (std::size_t e = 0; e < w.node_spring_list.size(); ++e) {
     // 64 bits: negating INT32_MIN would overflow.
@@ -62,7 +62,7 @@ void check_node_springs(const WorldState& w) {
   }
 }
 
-void check_tets(const WorldState& w) {
+void check_tets(const SimulationState& w) {
   for (std::size_t t = 0; t < w.tets.size(); ++t) {
     const gpu::Tetra& tet = w.tets[t];
     for (std::uint32_t n : {tet.a, tet.b, tet.c, tet.d}) {
@@ -83,7 +83,7 @@ void check_tets(const WorldState& w) {
 
 }  // namespace
 
-std::vector<BufferSize> simulation_buffer_sizes(const WorldState& w) {
+std::vector<BufferSize> simulation_buffer_sizes(const SimulationState& w) {
   return {
       size_of("Node Position", gpu::kNodePosition, w.positions),
       size_of("Node Velocity", gpu::kNodeVelocity, w.velocities),
@@ -116,7 +116,7 @@ void check_buffer_sizes(std::span<const BufferSize> buffers, std::uint64_t max_b
   }
 }
 
-void check_world_consistency(const WorldState& w) {
+void check_world_consistency(const SimulationState& w) {
   const std::size_t nodes = w.node_count();
   expect_length("velocities", w.velocities.size(), "positions", nodes);
   expect_length("forces", w.forces.size(), "positions", nodes);

@@ -1,6 +1,6 @@
 #pragma once
-// What GlSimulation::upload checks before it allocates anything: that a WorldState's arrays fit
-// together, so that no shader can index past a buffer, and that every buffer fits the device
+// What GlSimulation::upload checks before it allocates anything: that a SimulationState's arrays
+// fit together, so that no shader can index past a buffer, and that every buffer fits the device
 // (check_buffer_sizes serves GlCollision::upload too). No GL here: these run, and are tested,
 // without a context.
 
@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 
 namespace deformcd::gl {
 
@@ -24,7 +24,7 @@ struct BufferSize {
 };
 
 // The buffers GlSimulation creates for `state`, in binding order.
-[[nodiscard]] std::vector<BufferSize> simulation_buffer_sizes(const WorldState& state);
+[[nodiscard]] std::vector<BufferSize> simulation_buffer_sizes(const SimulationState& state);
 
 // Throws GlError when any buffer holds more than `max_bytes`, naming each such buffer with its
 // size and the limit; `limit_name` says whose limit it is, `owner` whose buffers they are (the
@@ -35,6 +35,6 @@ void check_buffer_sizes(std::span<const BufferSize> buffers, std::uint64_t max_b
 // Throws Error naming the first array or element that does not fit: a per-node array whose
 // length differs from positions', a per-spring one from springs', a node, body or spring index
 // out of range, CSR offsets that are not a non-decreasing cover of the spring list.
-void check_world_consistency(const WorldState& state);
+void check_world_consistency(const SimulationState& state);
 
 }  // namespace deformcd::gl

@@ -1,9 +1,7 @@
 #include <string>
 
-#include "collision/bvh.h"
-#include "collision/leaf_boxes.h"
 #include "deformcd/error.h"
-#include "deformcd/world_state.h"
+#include "deformcd/simulation_state.h"
 
 namespace deformcd {
 
@@ -17,12 +15,13 @@ float volume_force_coefficient(float volume_stiffness, float mean_edge) {
   return volume_stiffness / (mean_edge * mean_edge * mean_edge);
 }
 
-void append_body(WorldState& w, const BodyInit& init, std::uint32_t body_index) {
+void append_body(SimulationState& w, const BodyInit& init, std::uint32_t body_index,
+                 std::uint32_t face_offset) {
   const Body& b = init.body;
   gpu::ObjectInfo info{};
   info.node_offset = static_cast<std::uint32_t>(w.positions.size());
   info.node_count = static_cast<std::uint32_t>(b.positions.size());
-  info.face_offset = static_cast<std::uint32_t>(w.faces.size());
+  info.face_offset = face_offset;
   info.face_count = static_cast<std::uint32_t>(b.faces.size());
   info.spring_offset = static_cast<std::uint32_t>(w.springs.size());
   info.spring_count = static_cast<std::uint32_t>(b.springs.size());
@@ -57,10 +56,6 @@ void append_body(WorldState& w, const BodyInit& init, std::uint32_t body_index) 
                       volume_force_coefficient(init.volume_stiffness, b.tet_rest_edge[t]), 0.0f,
                       0.0f});
   }
-  for (const gpu::Face& f : b.faces) {
-    w.faces.push_back(
-        {f.a + info.node_offset, f.b + info.node_offset, f.c + info.node_offset, body_index});
-  }
   w.body_params.push_back({glm::vec4(init.carry_velocity, 0.0f), init.damping, 0.0f, 0.0f, 0.0f});
   w.body_names.push_back(name);
 }
@@ -80,7 +75,7 @@ void build_csr(std::size_t nodes, const ForEachEntry& for_each_entry,
 }
 
 // Per-node incident springs, in increasing spring order: +(s+1) at end a, -(s+1) at end b.
-void build_node_springs(WorldState& w) {
+void build_node_springs(SimulationState& w) {
   build_csr<std::int32_t>(
       w.positions.size(),
       [&](auto emit) {
@@ -94,7 +89,7 @@ void build_node_springs(WorldState& w) {
 }
 
 // Per-node tetrahedron corners: slot 4 t + k for corner k of tetrahedron t, in slot order.
-void build_node_tets(WorldState& w) {
+void build_node_tets(SimulationState& w) {
   build_csr<std::uint32_t>(
       w.positions.size(),
       [&](auto emit) {
@@ -111,18 +106,18 @@ void build_node_tets(WorldState& w) {
 
 }  // namespace
 
-WorldState assemble_world(const std::vector<BodyInit>& bodies, const AssemblyOptions& options) {
-  WorldState w;
+SimulationState assemble_simulation(const std::vector<BodyInit>& bodies) {
+  SimulationState w;
+  std::uint32_t faces = 0;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    append_body(w, bodies[i], static_cast<std::uint32_t>(i));
+    append_body(w, bodies[i], static_cast<std::uint32_t>(i), faces);
+    faces += static_cast<std::uint32_t>(bodies[i].body.faces.size());
   }
   w.forces.assign(w.positions.size(), glm::vec4(0.0f));
   w.spring_forces.assign(w.springs.size(), glm::vec4(0.0f));
   w.tet_forces.assign(4 * w.tets.size(), glm::vec4(0.0f));
   build_node_springs(w);
   build_node_tets(w);
-  collision::assemble_collision_lists(w, options.self_collision);
-  collision::assemble_bvhs(w);
   return w;
 }
 

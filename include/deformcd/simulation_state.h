@@ -1,8 +1,9 @@
 #pragma once
-/// \file world_state.h
-/// The state of every body of a world, concatenated into the arrays the GPU buffers hold (one
-/// array per buffer, see gpu_layout.h). Both backends start from it; the CPU backend steps it in
-/// place, the GL backend uploads it.
+/// \file simulation_state.h
+/// The mass-spring state of every body of a world, concatenated into the arrays the GPU buffers
+/// hold (one array per buffer, see gpu_layout.h). Both simulation backends start from it; the
+/// CPU backend steps it in place, the GL backend uploads it. Collision detection keeps its own
+/// data (a Detector over the bodies' surfaces) and only reads the positions.
 
 #include <cstdint>
 #include <vector>
@@ -21,7 +22,9 @@ struct BodyInit {
   Body body;             ///< positions already transformed into the scene
   float damping = 0.0f;  ///< s: each spring's damping = damping x its stiffness
   /// Pa: resistance of each tetrahedron to volume change, force from the energy
-  /// k (V - V0)^2 / (2 V0) (Teschner et al. 2004); 0 keeps the paper's springs-only model.
+  /// k (V - V0)^2 / (2 L^3), L the tetrahedron's mean rest edge length (after Teschner et al.
+  /// 2004, who divide by 2 V0; L^3 keeps slivers from becoming arbitrarily stiff); 0 keeps the
+  /// paper's springs-only model.
   float volume_stiffness = 0.0f;
   glm::vec3 carry_velocity{0.0f};    ///< m/s, the body's path
   std::vector<std::uint32_t> fixed;  ///< local indices of nodes held in place
@@ -37,12 +40,11 @@ struct StepSettings {
 };
 
 /// Every body's data, concatenated; indices are global.
-struct WorldState {
+struct SimulationState {
   std::vector<glm::vec4> positions;               ///< SSBO 0: xyz, w = inverse mass (0 = fixed)
   std::vector<glm::vec4> velocities;              ///< SSBO 1: xyz, w = 0
   std::vector<gpu::Spring> springs;               ///< SSBO 2
   std::vector<glm::vec4> forces;                  ///< SSBO 3: summed spring forces per node
-  std::vector<gpu::Face> faces;                   ///< SSBO 7
   std::vector<gpu::ObjectInfo> objects;           ///< SSBO 8
   std::vector<gpu::BodyParams> body_params;       ///< SSBO 12
   std::vector<std::uint32_t> node_body;           ///< SSBO 13
@@ -53,34 +55,16 @@ struct WorldState {
   std::vector<std::uint32_t> node_tet_offset;     ///< SSBO 19, nodes + 1 entries
   std::vector<std::uint32_t> node_tet_list;       ///< SSBO 20, 4 x tetrahedra entries
   std::vector<std::int32_t> node_spring_list;     ///< SSBO 16, 2 x springs entries
-  /// SSBO 9: the BoundingBox Face List, body by body, and within a body box by box (Fig. 7).
-  std::vector<gpu::BoxFace> box_faces;
-  std::vector<glm::uvec2> face_boxes;  ///< SSBO 21: per face, bit k set if leaf box k lists it
-  std::vector<glm::uvec2> box_rows;    ///< SSBO 24: per leaf box, first row in box_faces, count
-  /// SSBO 22: every pair of different bodies (a < b), in (a, b) order; with self-collision
-  /// also (b, b) for each body, before (b, b + 1).
-  std::vector<gpu::BodyPair> body_pairs;
-  std::vector<gpu::BvhNode> bvh_nodes;  ///< SSBO 25: every body's BVH, body by body
-  std::vector<gpu::BodyBvh> body_bvhs;  ///< SSBO 27: per body
   std::vector<std::string> body_names;
 
   [[nodiscard]] std::size_t node_count() const { return positions.size(); }
   [[nodiscard]] std::size_t body_count() const { return objects.size(); }
 };
 
-/// Choices made when assembling a world.
-struct AssemblyOptions {
-  /// Each body also collides with itself: body_pairs lists (b, b), and every broad phase tests
-  /// the body's faces against each other (faces sharing an edge excepted).
-  bool self_collision = false;
-};
-
 /// Concatenates bodies into one world state: offsets indices, sets inverse masses (0 for fixed
 /// nodes), builds the per-node spring lists (CSR, springs in increasing index order, so that
-/// the force sum has one fixed order on every backend), and the collision lists (leaf boxes of
-/// each body's rest pose, see core/collision/leaf_boxes.h; all body pairs). Throws InputError for a
-/// fixed node index out of range or a body without surface faces.
-[[nodiscard]] WorldState assemble_world(const std::vector<BodyInit>& bodies,
-                                        const AssemblyOptions& options = {});
+/// the force sum has one fixed order on every backend). Throws InputError for a fixed node index
+/// out of range or a body without surface faces.
+[[nodiscard]] SimulationState assemble_simulation(const std::vector<BodyInit>& bodies);
 
 }  // namespace deformcd

@@ -1,0 +1,23 @@
+#pragma once
+/// \file backend.h
+/// Which backend runs a world or a detector: OpenGL 4.3 compute shaders or the CPU.
+
+#include <string_view>
+
+namespace deformcd {
+
+/// Which backend runs a world or a detector.
+enum class BackendKind {
+  /// GL when a 4.3 context on a hardware device can be had, else the CPU (with a notice saying
+  /// why): a software rasterizer (llvmpipe, softpipe, swrast) is slower than the CPU backend,
+  /// so kAuto never picks it; ask for kGl to run on it anyway.
+  kAuto,
+  kGl,   ///< OpenGL 4.3 compute shaders (any device, software ones included); throws GlError
+         ///< when no 4.3 context can be had
+  kCpu,  ///< multithreaded CPU (oneTBB)
+};
+
+/// "auto", "gl" or "cpu"; throws Error listing the valid names otherwise.
+[[nodiscard]] BackendKind parse_backend(std::string_view name);
+
+}  // namespace deformcd

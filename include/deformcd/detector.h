@@ -1,0 +1,183 @@
+#pragma once
+/// \file detector.h
+/// Collision detection for any triangle meshes, on their own: the caller owns the meshes and
+/// their positions (a host array, or on the GL backend a buffer such as the VBO a renderer
+/// draws from), moves them as it likes, and asks for the intersecting triangle pairs.
+///
+///     deformcd::Detector detector({{.vertex_count = n0, .triangles = t0},
+///                                  {.vertex_count = n1, .triangles = t1}},
+///                                 {.backend = deformcd::BackendKind::kCpu});
+///     detector.set_positions(0, deformcd::HostPositions{&xyz0[0], 3 * sizeof(float)});
+///     detector.set_positions(1, deformcd::HostPositions{&xyz1[0], 3 * sizeof(float)});
+///     for (;;) {
+///       move_my_meshes(xyz0, xyz1);  // in place: the detector reads the arrays every detect()
+///       detector.detect();
+///       for (const deformcd::Contact& c : detector.contacts()) { ... }
+///     }
+///
+/// Meshes are triangle soups with indices into their own vertices: open, non-closed and
+/// non-manifold surfaces are fine. A triangle whose corners are (nearly) collinear, or which
+/// repeats a vertex, is degenerate: it intersects nothing (its neighbours in a surface still
+/// report the contact), on both backends. The hierarchies the broad phases use (the BVH, the
+/// paper's octree boxes) are built from the positions of the first detect() (or prepare()),
+/// refitted every detect() and rebuilt when deformation has loosened them: never the caller's
+/// business.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "deformcd/backend.h"
+#include "deformcd/collision.h"
+#include "deformcd/gpu_layout.h"
+#include "deformcd/mesh.h"
+
+namespace deformcd {
+
+namespace gl {
+class Context;
+}
+
+/// One mesh as the detector sees it: triangles indexing its vertices [0, vertex_count).
+struct CollisionMesh {
+  std::uint32_t vertex_count = 0;
+  /// Counter-clockwise or not, in any order: contacts name them by their index here.
+  std::vector<Triangle> triangles = {};
+  /// Also test the mesh's triangles against each other (triangles sharing an edge are never a
+  /// contact; triangles sharing a vertex are when they also meet elsewhere).
+  bool self_collision = false;
+  /// For messages ("mesh 1 ('cloth')"); may be empty.
+  std::string name = {};
+};
+
+/// Two meshes whose triangles are tested against each other (a != b; a == b means the mesh
+/// with itself, as CollisionMesh::self_collision).
+struct MeshPair {
+  std::uint32_t a = 0;
+  std::uint32_t b = 0;
+};
+
+struct DetectorOptions {
+  BackendKind backend = BackendKind::kAuto;
+  /// GL context to run in (e.g. gl::adopt_current_context() in an application that renders
+  /// with OpenGL). When null, the detector creates a headless one.
+  gl::Context* gl_context = nullptr;
+  /// Every broad phase finds the same contacts; kBvh is the fastest by far.
+  BroadPhase broadphase = BroadPhase::kBvh;
+  /// The pairs of different meshes to test (e.g. leave out two glued meshes). When empty, every
+  /// pair of different meshes; a mesh is tested with itself when its self_collision is set or
+  /// the list names (m, m).
+  std::optional<std::vector<MeshPair>> mesh_pairs = std::nullopt;
+  /// CPU threads; 0 uses every core. Results do not depend on it.
+  int threads = 0;
+};
+
+/// Positions in host memory: vertex i's x, y, z are the floats at
+/// `data + i * stride_bytes` (e.g. 12 for packed xyz, 16 for vec4). The array stays the
+/// caller's: it is read in place by every detect() and must outlive the detector or the next
+/// set_positions() of the mesh.
+struct HostPositions {
+  const float* data = nullptr;
+  std::size_t stride_bytes = 3 * sizeof(float);
+};
+
+/// Positions in a GL buffer the caller owns (GL backend only): vertex i's x, y, z are the floats
+/// at byte `offset_bytes + i * stride_bytes` of buffer `buffer` (both multiples of 4). The
+/// shaders read the buffer where it is when every GL-positioned mesh uses the same buffer;
+/// meshes spread over several buffers are first copied, on the GPU, into one of the
+/// detector's. The buffer must stay alive, and must not be written between a detect() and the
+/// reading of its results (or complete()).
+struct GlPositions {
+  std::uint32_t buffer = 0;
+  std::size_t offset_bytes = 0;
+  std::size_t stride_bytes = 4 * sizeof(float);
+};
+
+class Detector {
+ public:
+  /// Checks the meshes (every index below vertex_count; at least one triangle each), the mesh
+  /// pairs and the options, and creates the backend. Throws InputError naming the mesh and the
+  /// triangle or pair, GlError for kGl without OpenGL 4.3.
+  explicit Detector(std::vector<CollisionMesh> meshes, const DetectorOptions& options = {});
+  ~Detector();
+  Detector(Detector&&) noexcept;
+  Detector& operator=(Detector&&) noexcept;
+  Detector(const Detector&) = delete;
+  Detector& operator=(const Detector&) = delete;
+
+  [[nodiscard]] std::size_t mesh_count() const;
+  [[nodiscard]] const CollisionMesh& mesh(std::size_t mesh) const;
+  /// Where mesh `mesh`'s triangles start in face_flags() and in the GL buffers.
+  [[nodiscard]] std::uint32_t face_offset(std::size_t mesh) const;
+  /// Triangles of every mesh.
+  [[nodiscard]] std::size_t face_count() const;
+
+  /// Where mesh `mesh`'s positions are read from, from the next detect() on. Throws
+  /// InputError for a mesh that does not exist, a null array or a stride below 12 bytes, and
+  /// for GL positions: Error on the CPU backend, InputError for buffer 0, an offset or stride
+  /// not a multiple of 4, or a buffer smaller than offset + stride x (vertex_count - 1) + 12.
+  /// The detector is unchanged when it throws.
+  void set_positions(std::size_t mesh, const HostPositions& positions);
+  void set_positions(std::size_t mesh, const GlPositions& positions);
+  /// The same as HostPositions{&v[0].x, sizeof(glm::vec3)}; `v` must hold vertex_count
+  /// positions (InputError otherwise) and stay where it is.
+  void set_positions(std::size_t mesh, std::span<const glm::vec3> v);
+
+  /// The broad phase detect() runs; every one finds the same contacts.
+  [[nodiscard]] BroadPhase broadphase() const;
+  void set_broadphase(BroadPhase method);
+
+  /// Builds the hierarchies from the current positions now (otherwise the first detect() does).
+  void prepare();
+  /// One pass over the current positions. Throws InputError when a mesh has no positions set,
+  /// or (then the last results stay) when a position is NaN or infinite, naming the mesh and
+  /// the vertex; on GL, positions in a buffer are checked on the GPU. On GL the pass is queued:
+  /// the results' getters (or complete()) wait for it.
+  void detect();
+  /// Waits for the last pass; a GL pass whose lists overflowed is grown and rerun on the same
+  /// positions. Call it before overwriting positions held in a GL buffer. Cheap when complete.
+  void complete();
+
+  /// The intersecting triangle pairs of the last pass, sorted by (a.body, a.face, b.body,
+  /// b.face), a.body <= b.body (body = mesh index, face = triangle index in the caller's
+  /// order, nodes = its vertex indices); the same on every backend and broad phase.
+  [[nodiscard]] std::vector<Contact> contacts() const;
+  /// Counts of the last pass (all 0 before the first).
+  [[nodiscard]] CollisionCounts counts() const;
+  /// One flag per triangle of every mesh (mesh m's from face_offset(m)): 1 when the triangle is
+  /// in a contact of the last pass, else 0.
+  [[nodiscard]] std::vector<std::uint32_t> face_flags() const;
+  /// The 64 octree leaf boxes per mesh as the last octree pass computed them (mesh m's at 64 m).
+  [[nodiscard]] std::vector<gpu::Box> leaf_boxes() const;
+
+  /// GL backend: the buffer of face flags (one uint per triangle, as face_flags()), ready for a
+  /// shader once the last pass is complete; 0 on the CPU.
+  [[nodiscard]] std::uint32_t gl_face_flag_buffer() const;
+  /// GL backend: the buffer of the last pass's intersecting pairs as gpu::FacePair records
+  /// (face indices over every mesh, i.e. face_offset(m) + triangle; in no particular order),
+  /// the first counts().contacts of them valid; 0 on the CPU.
+  [[nodiscard]] std::uint32_t gl_contact_buffer() const;
+
+  /// "gl" or "cpu".
+  [[nodiscard]] std::string_view backend_name() const;
+  /// The GL renderer and version, or the CPU thread count.
+  [[nodiscard]] std::string device() const;
+  /// Why kAuto chose the CPU, if it did; else empty.
+  [[nodiscard]] const std::string& notice() const;
+
+  struct Impl;
+
+ private:
+  explicit Detector(std::unique_ptr<Impl> impl);
+  friend class World;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace deformcd

@@ -1,0 +1,79 @@
+#include "backend_choice.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string_view>
+
+#include "deformcd/error.h"
+#include "deformcd/gl/context.h"  // declarations only: fine without the GL backend
+#ifdef DEFORMCD_HAS_GL
+#include "deformcd/gl/device_info.h"
+#endif
+
+namespace deformcd {
+
+namespace {
+
+BackendChoice choose_gl(gl::Context* context) {
+#ifdef DEFORMCD_HAS_GL
+  BackendChoice choice;
+  choice.kind = BackendKind::kGl;
+  if (context == nullptr) {
+    choice.owned_context = gl::create_headless_context();
+    context = choice.owned_context.get();
+  }
+  context->make_current();
+  choice.context = context;
+  return choice;
+#else
+  (void)context;
+  throw GlError(
+      "this deformcd was built without the OpenGL backend (DEFORMCD_WITH_GL=OFF); the CPU "
+      "backend (--backend cpu) is available");
+#endif
+}
+
+}  // namespace
+
+bool is_software_renderer(const std::string& renderer) {
+  std::string lower = renderer;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (std::string_view name : {"llvmpipe", "softpipe", "swrast", "software rasterizer"}) {
+    if (lower.find(name) != std::string::npos) return true;
+  }
+  return false;
+}
+
+BackendKind parse_backend(std::string_view name) {
+  if (name == "auto") return BackendKind::kAuto;
+  if (name == "gl") return BackendKind::kGl;
+  if (name == "cpu") return BackendKind::kCpu;
+  throw Error("unknown backend '" + std::string(name) + "' (valid: auto, gl, cpu)");
+}
+
+BackendChoice choose_backend(BackendKind kind, gl::Context* context) {
+  if (kind == BackendKind::kGl) return choose_gl(context);
+  if (kind == BackendKind::kCpu) return {};
+  BackendChoice choice;
+  try {
+    choice = choose_gl(context);
+  } catch (const GlError& e) {
+    BackendChoice cpu;
+    cpu.notice = std::string("OpenGL 4.3 is not available, using the CPU backend: ") + e.what();
+    return cpu;
+  }
+#ifdef DEFORMCD_HAS_GL
+  const std::string renderer = gl::query_device_info(*choice.context).renderer;
+  if (is_software_renderer(renderer)) {
+    BackendChoice cpu;
+    cpu.notice = "the only OpenGL device is a software renderer (" + renderer +
+                 "), slower than the CPU backend: using the CPU (ask for the GL backend to "
+                 "run on it anyway)";
+    return cpu;
+  }
+#endif
+  return choice;
+}
+
+}  // namespace deformcd

@@ -1,0 +1,315 @@
+#include "deformcd/detector.h"
+
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include "backend_choice.h"
+#include "core/collision/contacts.h"
+#include "cpu/cpu_collision.h"
+#include "deformcd/error.h"
+#include "deformcd/gl/context.h"  // declarations only: fine without the GL backend
+#include "detector_impl.h"
+#ifdef DEFORMCD_HAS_GL
+#include "gpu/gl/gl_collision.h"
+#endif
+
+namespace deformcd {
+
+namespace {
+
+using collision::PositionSource;
+
+const std::string& label_of(const collision::CollisionData& data, std::size_t mesh) {
+  return data.mesh_names[mesh];
+}
+
+std::string describe(const glm::vec3& p) {
+  std::ostringstream out;
+  out << "(" << p.x << ", " << p.y << ", " << p.z << ")";
+  return out.str();
+}
+
+}  // namespace
+
+std::unique_ptr<Detector::Impl> Detector::Impl::create(std::vector<CollisionMesh> meshes,
+                                                       const DetectorOptions& options,
+                                                       BackendKind kind, gl::Context* context,
+                                                       std::shared_ptr<cpu::Executor> executor,
+                                                       bool check_positions) {
+  auto impl = std::make_unique<Impl>();
+  impl->data = collision::lay_out_meshes(
+      meshes, options.mesh_pairs.has_value() ? &*options.mesh_pairs : nullptr);
+  impl->meshes = std::move(meshes);
+  impl->broadphase = options.broadphase;
+  impl->check_positions = check_positions;
+  impl->sources.resize(impl->meshes.size());
+  for (std::size_t m = 0; m < impl->meshes.size(); ++m)
+    impl->sources[m].vertex_count = impl->meshes[m].vertex_count;
+  if (kind == BackendKind::kGl) {
+#ifdef DEFORMCD_HAS_GL
+    impl->context = context;
+    impl->backend = std::make_unique<gl::GlCollision>(*context);
+#else
+    (void)context;
+    throw GlError("this deformcd was built without the OpenGL backend (DEFORMCD_WITH_GL=OFF)");
+#endif
+  } else {
+    impl->backend = std::make_unique<cpu::CpuCollision>(std::move(executor));
+  }
+  return impl;
+}
+
+void Detector::Impl::make_current() const {
+  if (context != nullptr) context->make_current();
+}
+
+void Detector::Impl::push_sources(std::vector<PositionSource> next) {
+  make_current();
+  backend->set_positions(next);  // checks what only the backend can (a GL buffer's size)
+  sources = std::move(next);
+}
+
+void Detector::Impl::require_positions() const {
+  for (std::size_t m = 0; m < sources.size(); ++m) {
+    if (sources[m].kind == PositionSource::Kind::kNone) {
+      throw InputError(label_of(data, m), "has no positions (call set_positions first)");
+    }
+  }
+}
+
+// Host arrays are checked here, on the host, before anything changes; GL buffers by the backend.
+void Detector::Impl::check_finite() {
+  for (std::size_t m = 0; m < sources.size(); ++m) {
+    const PositionSource& s = sources[m];
+    if (s.kind != PositionSource::Kind::kHost) continue;
+    const std::size_t stride = s.stride_bytes / sizeof(float);
+    for (std::uint32_t v = 0; v < s.vertex_count; ++v) {
+      const float* p = s.host + v * stride;
+      if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) continue;
+      throw InputError(label_of(data, m), "vertex " + std::to_string(v) +
+                                              " has a non-finite position " +
+                                              describe({p[0], p[1], p[2]}));
+    }
+  }
+  std::uint32_t mesh = 0;
+  std::uint32_t vertex = 0;
+  make_current();
+  if (backend->find_non_finite(mesh, vertex)) {
+    const std::vector<glm::vec3> p = backend->read_positions(mesh);
+    throw InputError(label_of(data, mesh), "vertex " + std::to_string(vertex) +
+                                               " has a non-finite position " +
+                                               describe(p.at(vertex)) + " (in its GL buffer)");
+  }
+}
+
+// The hierarchies are built on the positions now: host arrays in place, GL buffers read back.
+void Detector::Impl::prepare() {
+  require_positions();
+  check_finite();
+  std::vector<std::vector<glm::vec3>> read_back(sources.size());
+  std::vector<collision::MeshVertices> pose(sources.size());
+  for (std::size_t m = 0; m < sources.size(); ++m) {
+    const PositionSource& s = sources[m];
+    if (s.kind == PositionSource::Kind::kHost) {
+      pose[m] = {s.host, static_cast<std::uint32_t>(s.stride_bytes / sizeof(float))};
+    } else {
+      read_back[m] = backend->read_positions(static_cast<std::uint32_t>(m));
+      pose[m] = {&read_back[m][0].x, 3u};
+    }
+  }
+  collision::CollisionData next = data;
+  collision::build_hierarchies(next, pose.data());
+  make_current();
+  backend->upload(next);
+  data = std::move(next);
+  prepared = true;
+  detected = false;
+  pending = false;
+}
+
+void Detector::Impl::complete() {
+  if (!pending) return;
+  make_current();
+  backend->complete_pass();
+  pending = false;
+}
+
+Detector::Detector(std::vector<CollisionMesh> meshes, const DetectorOptions& options) {
+  if (options.threads < 0) throw Error("threads must be 0 (every core) or positive");
+  BackendChoice choice = choose_backend(options.backend, options.gl_context);
+  impl_ = Impl::create(std::move(meshes), options, choice.kind, choice.context,
+                       std::make_shared<cpu::Executor>(options.threads), true);
+  impl_->owned_context = std::move(choice.owned_context);
+  impl_->notice = std::move(choice.notice);
+}
+
+Detector::Detector(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Detector::~Detector() {
+  if (impl_) impl_->make_current();  // GL objects are deleted in their context
+}
+Detector::Detector(Detector&&) noexcept = default;
+Detector& Detector::operator=(Detector&&) noexcept = default;
+
+std::size_t Detector::mesh_count() const {
+  return impl_->meshes.size();
+}
+const CollisionMesh& Detector::mesh(std::size_t mesh) const {
+  return impl_->meshes.at(mesh);
+}
+std::uint32_t Detector::face_offset(std::size_t mesh) const {
+  return impl_->data.meshes.at(mesh).face_offset;
+}
+std::size_t Detector::face_count() const {
+  return impl_->data.faces.size();
+}
+
+void Detector::set_positions(std::size_t mesh, const HostPositions& positions) {
+  if (mesh >= impl_->meshes.size()) {
+    throw InputError("set_positions", "mesh " + std::to_string(mesh) +
+                                          " does not exist (there are " +
+                                          std::to_string(impl_->meshes.size()) + " meshes)");
+  }
+  const std::string& label = label_of(impl_->data, mesh);
+  if (positions.data == nullptr) throw InputError(label, "positions: null array");
+  if (positions.stride_bytes < 3 * sizeof(float) || positions.stride_bytes % sizeof(float) != 0) {
+    throw InputError(label, "positions: stride of " + std::to_string(positions.stride_bytes) +
+                                " bytes; it must be a multiple of 4, at least 12 (x, y, z)");
+  }
+  std::vector<PositionSource> next = impl_->sources;
+  PositionSource& s = next[mesh];
+  s.kind = PositionSource::Kind::kHost;
+  s.host = positions.data;
+  s.gl_buffer = 0;
+  s.offset_bytes = 0;
+  s.stride_bytes = positions.stride_bytes;
+  impl_->push_sources(std::move(next));
+}
+
+void Detector::set_positions(std::size_t mesh, std::span<const glm::vec3> v) {
+  if (mesh < impl_->meshes.size() && v.size() != impl_->meshes[mesh].vertex_count) {
+    throw InputError(label_of(impl_->data, mesh),
+                     "positions: " + std::to_string(v.size()) + " given, the mesh has " +
+                         std::to_string(impl_->meshes[mesh].vertex_count) + " vertices");
+  }
+  set_positions(mesh, HostPositions{v.empty() ? nullptr : &v[0].x, sizeof(glm::vec3)});
+}
+
+void Detector::set_positions(std::size_t mesh, const GlPositions& positions) {
+  if (mesh >= impl_->meshes.size()) {
+    throw InputError("set_positions", "mesh " + std::to_string(mesh) +
+                                          " does not exist (there are " +
+                                          std::to_string(impl_->meshes.size()) + " meshes)");
+  }
+  const std::string& label = label_of(impl_->data, mesh);
+  if (impl_->backend->name() != "gl") {
+    throw Error(label + ": positions in a GL buffer need the GL backend (this detector runs on " +
+                std::string(impl_->backend->name()) + ")");
+  }
+  if (positions.buffer == 0) throw InputError(label, "positions: GL buffer 0");
+  if (positions.offset_bytes % sizeof(float) != 0 || positions.stride_bytes % sizeof(float) != 0 ||
+      positions.stride_bytes < 3 * sizeof(float)) {
+    throw InputError(label, "positions: GL buffer offset " +
+                                std::to_string(positions.offset_bytes) + " and stride " +
+                                std::to_string(positions.stride_bytes) +
+                                " bytes; both must be multiples of 4, the stride at least 12");
+  }
+  std::vector<PositionSource> next = impl_->sources;
+  PositionSource& s = next[mesh];
+  s.kind = PositionSource::Kind::kGl;
+  s.host = nullptr;
+  s.gl_buffer = positions.buffer;
+  s.offset_bytes = positions.offset_bytes;
+  s.stride_bytes = positions.stride_bytes;
+  try {
+    impl_->push_sources(std::move(next));
+  } catch (const GlError&) {
+    throw;  // the device's limits, not the caller's input
+  } catch (const InputError&) {
+    throw;
+  } catch (const Error& e) {
+    // The backend checked what only GL can tell (the buffer exists, is large enough).
+    throw InputError(label, std::string("positions: ") + e.what());
+  }
+}
+
+BroadPhase Detector::broadphase() const {
+  return impl_->broadphase;
+}
+void Detector::set_broadphase(BroadPhase method) {
+  impl_->broadphase = method;
+}
+
+void Detector::prepare() {
+  impl_->complete();
+  impl_->prepare();
+}
+
+void Detector::detect() {
+  Impl& d = *impl_;
+  d.require_positions();
+  d.complete();
+  if (d.check_positions) d.check_finite();
+  if (!d.prepared) d.prepare();
+  d.make_current();
+  d.backend->detect(d.broadphase);
+  d.pending = true;
+  d.detected = d.broadphase != BroadPhase::kNone;
+}
+
+void Detector::complete() {
+  impl_->complete();
+}
+
+std::vector<Contact> Detector::contacts() const {
+  if (!impl_->detected) return {};
+  impl_->complete();
+  std::vector<gpu::FacePair> pairs;
+  impl_->backend->download_face_pairs(pairs);
+  return collision::make_contacts(pairs, impl_->data.faces, impl_->data.meshes);
+}
+
+CollisionCounts Detector::counts() const {
+  if (!impl_->detected) return {};
+  impl_->complete();
+  const gpu::CollisionCounters c = impl_->backend->counters();
+  return {c.face_pairs, c.box_pairs, c.colliding_faces, c.candidates};
+}
+
+std::vector<std::uint32_t> Detector::face_flags() const {
+  const std::size_t faces = impl_->data.faces.size();
+  if (!impl_->detected) return std::vector<std::uint32_t>(faces, 0u);
+  impl_->complete();
+  std::vector<std::uint32_t> flags;
+  impl_->backend->download_face_flags(flags);
+  flags.resize(faces);  // a GL buffer holds at least one element
+  return flags;
+}
+
+std::vector<gpu::Box> Detector::leaf_boxes() const {
+  const std::size_t count = impl_->meshes.size() * gpu::kLeafBoxesPerBody;
+  if (!impl_->prepared) return std::vector<gpu::Box>(count, gpu::Box{});
+  impl_->complete();
+  std::vector<gpu::Box> boxes;
+  impl_->backend->download_boxes(boxes);
+  boxes.resize(count);
+  return boxes;
+}
+
+std::uint32_t Detector::gl_face_flag_buffer() const {
+  return impl_->backend->gl_face_flag_buffer();
+}
+std::uint32_t Detector::gl_contact_buffer() const {
+  return impl_->backend->gl_face_pair_buffer();
+}
+std::string_view Detector::backend_name() const {
+  return impl_->backend->name();
+}
+std::string Detector::device() const {
+  return impl_->backend->device();
+}
+const std::string& Detector::notice() const {
+  return impl_->notice;
+}
+
+}  // namespace deformcd

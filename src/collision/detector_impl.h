@@ -1,0 +1,47 @@
+#pragma once
+// The Detector's insides, for the World that composes one with its simulation (sharing the GL
+// context and the CPU threads). Nothing else includes this.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/collision/collision_backend.h"
+#include "core/collision/collision_data.h"
+#include "cpu/executor.h"
+#include "deformcd/detector.h"
+
+namespace deformcd {
+
+struct Detector::Impl {
+  /// A detector on backend `kind` (kGl or kCpu, already chosen) running in `context` (kGl) or on
+  /// `executor`'s threads (kCpu). `check_positions`: whether detect() checks that positions are
+  /// finite (a World checks its own state instead).
+  static std::unique_ptr<Impl> create(std::vector<CollisionMesh> meshes,
+                                      const DetectorOptions& options, BackendKind kind,
+                                      gl::Context* context,
+                                      std::shared_ptr<cpu::Executor> executor,
+                                      bool check_positions);
+
+  std::vector<CollisionMesh> meshes;
+  collision::CollisionData data;
+  std::unique_ptr<gl::Context> owned_context;  // before the backend: destroyed after it
+  gl::Context* context = nullptr;
+  std::unique_ptr<collision::CollisionBackend> backend;
+  std::vector<collision::PositionSource> sources;
+  BroadPhase broadphase = BroadPhase::kBvh;
+  std::string notice;
+  bool check_positions = true;
+  bool prepared = false;
+  bool detected = false;  // a pass ran: its results are there
+  bool pending = false;   // a pass was issued and not yet completed
+
+  void make_current() const;
+  void push_sources(std::vector<collision::PositionSource> next);
+  void require_positions() const;
+  void check_finite();
+  void prepare();
+  void complete();
+};
+
+}  // namespace deformcd

@@ -1,0 +1,49 @@
+#pragma once
+// What a collision backend holds for a detector: the meshes' triangles (vertex indices local to
+// each mesh), the mesh pairs to test, and the hierarchies built on a pose (the paper's leaf-box
+// lists, one BVH per mesh). One array per GPU buffer, as the GL backend uploads them.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "deformcd/detector.h"
+#include "deformcd/gpu_layout.h"
+#include "vertex_positions.h"
+
+namespace deformcd::collision {
+
+struct CollisionData {
+  std::vector<gpu::Face> faces;       ///< SSBO 7: mesh by mesh; Face::body is the mesh
+  std::vector<gpu::MeshInfo> meshes;  ///< per mesh (position_* set by the GL backend)
+  /// SSBO 22: the mesh pairs to test, sorted by (a, b), a <= b ((m, m): m with itself).
+  std::vector<gpu::BodyPair> mesh_pairs;
+  std::vector<std::string> mesh_names;  ///< "mesh 1 ('cloth')", for messages
+  // Built on a pose by build_hierarchies (empty before):
+  /// SSBO 9: the BoundingBox Face List, mesh by mesh, and within a mesh box by box (Fig. 7).
+  std::vector<gpu::BoxFace> box_faces;
+  std::vector<glm::uvec2> face_boxes;   ///< SSBO 21: per face, bit k set if leaf box k lists it
+  std::vector<glm::uvec2> box_rows;     ///< SSBO 24: per leaf box, first row in box_faces, count
+  std::vector<gpu::BvhNode> bvh_nodes;  ///< SSBO 25: every mesh's BVH, mesh by mesh
+  std::vector<gpu::BodyBvh> mesh_bvhs;  ///< SSBO 27: per mesh
+
+  [[nodiscard]] std::size_t mesh_count() const { return meshes.size(); }
+  [[nodiscard]] bool has_hierarchies() const { return !mesh_bvhs.empty(); }
+};
+
+/// Checks the meshes and the pairs and lays out faces, meshes and mesh pairs. `pairs` empty:
+/// every pair of different meshes, plus (m, m) for each mesh with self_collision. Throws
+/// InputError naming the mesh and the triangle (index out of range), a mesh without triangles,
+/// or the pair naming a mesh that does not exist.
+[[nodiscard]] CollisionData lay_out_meshes(const std::vector<CollisionMesh>& meshes,
+                                           const std::vector<MeshPair>* pairs);
+
+/// Builds the leaf-box lists and the BVHs of every mesh on `pose`.
+void build_hierarchies(CollisionData& data, VertexPositions pose);
+
+/// "mesh 1" or "mesh 1 ('cloth')".
+[[nodiscard]] std::string mesh_label(std::size_t mesh, const std::string& name);
+
+}  // namespace deformcd::collision

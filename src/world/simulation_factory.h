@@ -1,0 +1,21 @@
+#pragma once
+// Creates a world's simulation backend on the backend already chosen (backend_choice.h). The
+// only place in the World that knows whether the GL backend was compiled in.
+
+#include <memory>
+
+#include "core/sim/simulation_backend.h"
+#include "cpu/executor.h"
+#include "deformcd/backend.h"
+
+namespace deformcd {
+
+namespace gl {
+class Context;
+}
+
+/// The GL simulation in `context` (kGl) or the CPU one on `executor` (kCpu).
+[[nodiscard]] std::unique_ptr<sim::SimulationBackend> create_simulation(
+    BackendKind kind, gl::Context* context, std::shared_ptr<cpu::Executor> executor);
+
+}  // namespace deformcd
