@@ -1,0 +1,125 @@
+"""deformcd.World from Python: a shipped scene stepped, its state and contacts as arrays, equal
+to what `deformcd run` writes for the same frames."""
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import deformcd
+from conftest import SOURCE_DIR, contact_rows
+
+PHASE2 = SOURCE_DIR / "scenes" / "phase2.json"
+FRAMES = 30
+
+
+@pytest.fixture(scope="module")
+def stepped():
+    """phase2 on the CPU over 30 frames: the world after them, and each frame's contacts
+    (frame 0, the initial pose, through detect())."""
+    w = deformcd.World.from_scene(PHASE2, frames=FRAMES, backend="cpu", broadphase="bvh")
+    assert w.frame == 0 and w.frames == FRAMES
+    w.detect()
+    per_frame = [w.contacts()]
+    for _ in range(FRAMES):
+        w.step()
+        per_frame.append(w.contacts())
+    return w, per_frame
+
+
+def test_positions_velocities_faces_have_the_right_shapes(stepped):
+    w, _ = stepped
+    assert w.frame == FRAMES
+    assert w.body_count == 2 and w.body_names == ["bunny", "dragon"]
+    assert w.body_name(1) == "dragon" and w.backend == "cpu"
+    nodes = 0
+    for b in range(w.body_count):
+        p, v, f = w.positions(b), w.velocities(b), w.faces(b)
+        assert p.dtype == np.float32 and p.ndim == 2 and p.shape[1] == 3
+        assert v.dtype == np.float32 and v.shape == p.shape
+        assert f.ndim == 2 and f.shape[1] == 3 and f.min() >= 0 and f.max() < len(p)
+        assert np.isfinite(p).all() and np.isfinite(v).all()
+        nodes += len(p)
+    assert nodes == 2751  # as `deformcd run` reports for phase2
+    # the bodies moved toward each other along x (bunny from -x, dragon from +x)
+    assert w.positions(0)[:, 0].mean() > -1.4775 + 0.1
+    assert w.positions(1)[:, 0].mean() < 1.4775 - 0.1
+
+
+def test_contacts_are_consistent_with_the_faces_and_flags(stepped):
+    w, per_frame = stepped
+    c = per_frame[-1]
+    in_contact = [len(c["face_a"]) > 0 for c in per_frame]
+    assert any(in_contact) and not in_contact[0]
+    k = max(range(len(per_frame)), key=lambda i: len(per_frame[i]["face_a"]))
+    c = per_frame[k]
+    assert (c["body_a"] == 0).all() and (c["body_b"] == 1).all()
+    np.testing.assert_array_equal(c["nodes_a"], w.faces(0)[c["face_a"]])
+    np.testing.assert_array_equal(c["nodes_b"], w.faces(1)[c["face_b"]])
+    last = per_frame[-1]
+    flags = w.face_flags(0)
+    assert flags.shape == (len(w.faces(0)),)
+    assert set(np.flatnonzero(flags)) == set(last["face_a"].tolist())
+    assert w.counts()["contacts"] == len(last["face_a"])
+
+
+def test_every_frame_equals_deformcd_run(stepped, cli, tmp_path):
+    w, per_frame = stepped
+    contacts_file, positions_file = tmp_path / "contacts.jsonl", tmp_path / "positions.json"
+    subprocess.run([cli, "run", str(PHASE2), "--backend", "cpu", "--broadphase", "bvh",
+                    "--frames", str(FRAMES), "--contacts", str(contacts_file),
+                    "--positions-out", str(positions_file)], check=True, capture_output=True)
+    lines = [json.loads(line) for line in contacts_file.read_text().splitlines()]
+    assert [line["frame"] for line in lines] == list(range(FRAMES + 1))
+    for line, c in zip(lines, per_frame):
+        expected = [[e["a"]["body"], e["a"]["face"], e["b"]["body"], e["b"]["face"]]
+                    for e in line["contacts"]]
+        assert contact_rows(c).tolist() == expected, f"frame {line['frame']}"
+        for i, e in enumerate(line["contacts"]):
+            if e.get("segment") is not None:
+                np.testing.assert_array_equal(c["segment"][i], np.float32(e["segment"]))
+    final = json.loads(positions_file.read_text())
+    assert final["frame"] == FRAMES == w.frame
+    for b, body in enumerate(final["bodies"]):
+        assert body["name"] == w.body_name(b)
+        np.testing.assert_array_equal(w.positions(b), np.float32(body["positions"]))
+
+
+def test_broadphase_can_change_between_steps_and_agrees():
+    w = deformcd.World.from_scene(str(PHASE2), frames=FRAMES, backend="cpu")
+    w.step(13)  # in contact
+    bvh = w.contacts()
+    assert len(bvh["face_a"]) > 0
+    w.broadphase = "octree"
+    assert w.broadphase == "octree"
+    w.detect()
+    octree = w.contacts()
+    for field in bvh:
+        np.testing.assert_array_equal(octree[field], bvh[field])
+    assert w.frame == 13
+    assert "World" in repr(w) and "bunny" in repr(w)
+
+
+def test_world_errors(tmp_path):
+    with pytest.raises(deformcd.InputError, match="nothing.json"):
+        deformcd.World.from_scene(tmp_path / "nothing.json")
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"settings": {"dt": 0.01, "substepz": 2}, "bodies": []}')
+    with pytest.raises(deformcd.InputError, match="substepz"):
+        deformcd.World.from_scene(bad)
+    with pytest.raises(ValueError, match="frames must be at least 1"):
+        deformcd.World.from_scene(PHASE2, frames=0)
+    with pytest.raises(deformcd.Error, match="bvh"):
+        deformcd.World.from_scene(PHASE2, broadphase="kd-tree")
+    w = deformcd.World.from_scene(PHASE2, frames=FRAMES, backend="cpu")
+    with pytest.raises(IndexError, match="positions: body 2 does not exist"):
+        w.positions(2)
+    with pytest.raises(ValueError, match="step: n must be 0 or more"):
+        w.step(-1)
+    surface_scene = tmp_path / "surface.json"
+    (tmp_path / "tri.off").write_text("OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                                      "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+    surface_scene.write_text('{"bodies": [{"model": "tri.off"}]}')
+    with pytest.raises(deformcd.InputError, match="TetGen"):
+        deformcd.World.from_scene(surface_scene)
