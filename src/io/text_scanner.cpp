@@ -121,6 +121,18 @@ double TextScanner::real(std::size_t i) const {
   fail_token(i, "is out of range");
 }
 
+void TextScanner::check_line_count(std::uint64_t count, const char* singular,
+                                   const char* plural) const {
+  // Each non-blank line takes at least one character and a newline (the last one none).
+  const std::uint64_t bytes = text_.size() - pos_;
+  const std::uint64_t room = (bytes + 1) / 2;
+  if (count > room) {
+    fail("declares " + std::to_string(count) + " " + (count == 1 ? singular : plural) +
+         ", but the " + std::to_string(bytes) + " bytes after this line hold at most " +
+         std::to_string(room) + " lines: a wrong count or a truncated file");
+  }
+}
+
 void TextScanner::fail(const std::string& message) const {
   throw InputError(file_, line_, message);
 }

@@ -60,6 +60,14 @@ class TextScanner {
   /// Token `i` as a double; throws "'x' is not a number" / "'x' is out of range".
   [[nodiscard]] double real(std::size_t i) const;
 
+  /// Checks a header's count of one-per-line records against the rest of the text, which holds
+  /// at most (bytes + 1) / 2 non-blank lines: throws at the current record ("declares 5000000
+  /// nodes, but the 120 bytes after this line hold at most 60 lines") when `count` cannot fit.
+  /// Readers call it before reserving anything for `count`, so that a corrupt count fails at
+  /// once; a few missing records are left to the record loop, whose error names the line
+  /// where the file ends.
+  void check_line_count(std::uint64_t count, const char* singular, const char* plural) const;
+
   /// Throws InputError at the current record's line.
   [[noreturn]] void fail(const std::string& message) const;
   /// Throws InputError at the last line read, for "file ends after ..." messages once
