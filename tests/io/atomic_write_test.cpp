@@ -20,10 +20,44 @@ TEST(AtomicFile, RemovesItsTemporaryWhenNotCommitted) {
   {
     io::AtomicFile file(dir / "a.txt");
     file.write("contents");
-    EXPECT_TRUE(std::filesystem::exists(file.temporary()));
-    EXPECT_EQ(file.temporary().parent_path(), dir.path());
+    EXPECT_TRUE(file.is_open());
+    if (!file.named_temporary().empty()) {  // a file system without O_TMPFILE
+      EXPECT_TRUE(std::filesystem::exists(file.named_temporary()));
+      EXPECT_EQ(file.named_temporary().parent_path(), dir.path());
+    }
   }
   EXPECT_TRUE(dir.files().empty());
+}
+
+TEST(AtomicFile, CommitCreatesTheTarget) {
+  TempDir dir;
+  io::AtomicFile file(dir / "new.txt");
+  file.write("line 1\n");
+  file.write("line 2\n");
+  EXPECT_TRUE(dir.files().empty()) << "visible before the commit";
+  file.commit();
+  EXPECT_EQ(test::read_text(dir / "new.txt"), "line 1\nline 2\n");
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"new.txt"});
+  EXPECT_THROW(file.write("more"), Error);
+}
+
+TEST(AtomicFile, CommitWithoutWriteThrows) {
+  TempDir dir;
+  io::AtomicFile file(dir / "a.txt");
+  EXPECT_THROW(file.commit(), Error);
+  EXPECT_TRUE(dir.files().empty());
+}
+
+TEST(AtomicFile, CommitOntoADirectoryThrowsAndLeavesIt) {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "d");
+  {
+    io::AtomicFile file(dir / "d");
+    file.write("x");
+    EXPECT_THROW(file.commit(), Error);
+  }
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"d"});
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "d"));
 }
 
 TEST(AtomicFile, CommitReplacesTheTarget) {
