@@ -33,12 +33,13 @@ declare -A target_of=()  # pid -> target
 status=0
 report() {
   local t="$1" rc="$2" log="$out/logs/$1.log"
-  local execs rate
+  local execs rate took
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  took=$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -1)
   if ((rc == 0)); then
     printf 'fuzz %-7s ok: %s executions in %s s (%s/s), no finding\n' "$t" "${execs:-?}" \
-      "$seconds" "${rate:-?}"
+      "${took:-$seconds}" "${rate:-?}"
   else
     printf 'fuzz %-7s FINDING (status %s): log %s\n' "$t" "$rc" "$log"
     grep -E "ERROR|FINDING|SUMMARY|Test unit written|runtime error" "$log" | head -20 || true

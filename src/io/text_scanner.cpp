@@ -35,8 +35,14 @@ bool has_negative_exponent(std::string_view token) {
 
 std::string read_whole_file(const std::filesystem::path& file) {
   std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) {
+  const std::filesystem::file_status status = std::filesystem::status(file, ec);
+  if (std::filesystem::is_directory(status)) {
     throw InputError(file.string(), "is a directory, not a file");
+  }
+  // A FIFO, a socket or a device (/dev/zero) could block or never end: memory is bounded by
+  // the input only when the input is a file.
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw InputError(file.string(), "is not a regular file (a FIFO, socket or device)");
   }
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
   if (!f) throw InputError(file.string(), std::string("cannot open: ") + std::strerror(errno));

@@ -14,7 +14,8 @@
 
 namespace deformcd::io {
 
-/// Reads the whole of `file` into memory. Throws InputError naming the file when it cannot.
+/// Reads the whole of `file`, a regular file (or a link to one), into memory. Throws InputError
+/// naming the file when it cannot, or when it is a directory, FIFO, socket or device.
 std::string read_whole_file(const std::filesystem::path& file);
 
 enum class NumberParse { kOk, kNotANumber, kOutOfRange };

@@ -4,6 +4,7 @@
 // count's size. (The fuzz targets check the same with libFuzzer's -malloc_limit_mb=64.)
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdint>
 #include <string>
@@ -152,6 +153,20 @@ TEST_F(DeclaredCounts, StlBinaryTriangleCountAgainstTheFileSize) {
   surface_error("huge.stl", stl.data(), 0,
                 {"announces 4294967295 triangles (214748364834 bytes), but the file has 134 "
                  "bytes"});
+}
+
+TEST_F(DeclaredCounts, OnlyRegularFilesAreRead) {
+  // A FIFO would block (and /dev/zero never end): refused before opening.
+  ASSERT_EQ(::mkfifo((dir_ / "fifo.off").c_str(), 0600), 0);
+  expect_input_error([&] { (void)read_surface(dir_ / "fifo.off"); }, "fifo.off", 0,
+                     {"is not a regular file"});
+  ASSERT_EQ(::mkfifo((dir_ / "fifo.node").c_str(), 0600), 0);
+  expect_input_error([&] { (void)read_tetgen(dir_ / "fifo"); }, "fifo.node", 0,
+                     {"is not a regular file"});
+  // A link to a file is read.
+  write_file(dir_ / "t.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  std::filesystem::create_symlink(dir_ / "t.off", dir_ / "link.off");
+  EXPECT_EQ(read_surface(dir_ / "link.off").triangles.size(), 1u);
 }
 
 }  // namespace
