@@ -34,6 +34,13 @@ void kill_while_writing(int sig, Write&& write) {
   const pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
+    // As a CLI in a terminal has them: a shell without job control (CI scripts) starts
+    // background commands with SIGINT ignored, and this child inherits that.
+    ::signal(SIGINT, SIG_DFL);
+    ::signal(SIGTERM, SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
     ::close(ready[0]);
     write([fd = ready[1]] {
       const char byte = 'r';
