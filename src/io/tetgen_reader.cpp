@@ -83,7 +83,9 @@ NodeFile read_node_file(const io::TetGenText& file) {
 
   in.check_line_count(count, "node", "nodes");
   NodeFile result;
-  result.nodes.reserve(count);
+  // A node line takes at least 8 bytes ("i x y z\n"): a count within the lines but past that
+  // (a wrong count, or a file whose lines are short) reserves no more than the file can hold.
+  result.nodes.reserve(std::min<std::size_t>(count, file.text.size() / 8));
   result.lines.reserve(result.nodes.capacity());
   for (std::uint32_t i = 0; i < count; ++i) {
     if (!in.next_record()) {
@@ -144,7 +146,8 @@ ElementFile<N> read_element_records(TextScanner& in, std::uint32_t count,
 
   in.check_line_count(count, layout.singular, layout.plural);
   ElementFile<N> result;
-  result.elements.reserve(count);
+  // Likewise: an element line takes at least 2 (N + 1) bytes.
+  result.elements.reserve(std::min<std::size_t>(count, in.text_size() / (2 * (N + 1))));
   result.lines.reserve(result.elements.capacity());
   for (std::uint32_t i = 0; i < count; ++i) {
     if (!in.next_record()) {

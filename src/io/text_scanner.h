@@ -43,6 +43,8 @@ class TextScanner {
   [[nodiscard]] std::string_view token(std::size_t i) const { return tokens_[i]; }
   [[nodiscard]] std::size_t line() const { return line_; }
   [[nodiscard]] const std::string& file() const { return file_; }
+  /// The whole text's size in bytes.
+  [[nodiscard]] std::size_t text_size() const { return text_.size(); }
   /// Byte offset just past the current record's line (where the next line starts).
   [[nodiscard]] std::size_t offset_after_record() const { return pos_; }
 
