@@ -10,6 +10,7 @@
 // concurrency is the machine's: on a 2-core machine 3, 4 and 8 threads run on 2.
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -131,6 +132,30 @@ std::vector<std::string> shipped_scenes() {
   }
   std::sort(names.begin(), names.end());
   return names;
+}
+
+// The comparison itself: bytes, not values.
+TEST(DeterminismComparison, SeesSignedZerosAndSegmentBits) {
+  Frame frame;
+  frame.positions = {{glm::vec3(0.0f, 1.0f, 2.0f)}};
+  Contact contact;
+  contact.b.body = 1;
+  contact.segment = {glm::vec3(0.5f), glm::vec3(1.0f)};
+  frame.contacts = {contact};
+  const std::vector<Frame> expected = {frame, frame};
+  EXPECT_EQ(difference(expected, expected), "");
+
+  std::vector<Frame> other = expected;
+  other[1].positions[0][0].x = -0.0f;  // == 0.0f, but not the same bits
+  EXPECT_EQ(difference(expected, other), "frame 2, body 0, node 0: (0, 1, 2) vs (-0, 1, 2)");
+
+  other = expected;
+  other[0].contacts[0].segment[1].y = std::nextafter(1.0f, 2.0f);
+  EXPECT_NE(difference(expected, other).find("frame 1, contact 0"), std::string::npos);
+
+  other = expected;
+  other[1].contacts.push_back(contact);
+  EXPECT_EQ(difference(expected, other), "frame 2: 1 vs 2 contacts");
 }
 
 class DeterminismAcrossThreads : public ::testing::TestWithParam<std::string> {};
