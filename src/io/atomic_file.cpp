@@ -82,6 +82,20 @@ void AtomicFile::write(std::string_view contents) {
   }
 }
 
+std::string AtomicFile::path_for_child_process() {
+  if (committed_) fail(target_, "written after commit");
+  if (!file_) open();
+  if (!temporary_.empty()) return temporary_.string();
+  // Our buffered bytes first, as the child writes through its own descriptor.
+  if (std::fflush(file_) != 0) fail(target_, std::strerror(errno));
+  const int fd = ::fileno(file_);
+  const int flags = ::fcntl(fd, F_GETFD);
+  if (flags < 0 || ::fcntl(fd, F_SETFD, flags & ~FD_CLOEXEC) != 0) {
+    fail(target_, std::strerror(errno));
+  }
+  return proc_fd_path(fd);
+}
+
 void AtomicFile::commit() {
   if (!file_) fail(target_, "nothing was written");
   // A full disk may only show when the buffer is flushed.
@@ -151,6 +165,10 @@ void StreamedFileWriter::append(std::string_view text) {
 
 void StreamedFileWriter::commit() {
   file_->file.commit();
+}
+
+std::string StreamedFileWriter::path_for_child_process() {
+  return file_->file.path_for_child_process();
 }
 
 void write_file_atomically(const std::filesystem::path& file, std::string_view contents) {

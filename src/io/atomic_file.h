@@ -36,6 +36,10 @@ class AtomicFile {
   /// replace a file): a kill between those two calls leaves the hidden name behind.
   void commit();
 
+  /// A path a child process can open to write the temporary (StreamedFileWriter's contract):
+  /// "/proc/self/fd/N" with FD_CLOEXEC cleared, or the named temporary. Creates the temporary.
+  [[nodiscard]] std::string path_for_child_process();
+
   [[nodiscard]] const std::filesystem::path& target() const { return target_; }
   /// The temporary's name when it has one: a file system without O_TMPFILE, or during commit().
   /// Empty while the temporary is unnamed (or before write()).

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "deformcd/error.h"
 #include "deformcd/io.h"
@@ -68,6 +71,29 @@ TEST(AtomicFile, CommitReplacesTheTarget) {
   file.commit();
   EXPECT_EQ(test::read_text(dir / "a.txt"), "new");
   EXPECT_EQ(dir.files(), std::vector<std::string>{"a.txt"});
+}
+
+TEST(StreamedFileWriter, AChildProcessWritesTheTemporary) {
+  TempDir dir;
+  test::write_file(dir / "plot.png", "old");
+  StreamedFileWriter plot(dir / "plot.png");
+  const std::string path = plot.path_for_child_process();
+  // What gnuplot's `set output PATH` or ffmpeg's output argument would do: open and truncate.
+  ASSERT_EQ(std::system(("printf 'new image' > '" + path + "'").c_str()), 0) << path;
+  EXPECT_EQ(test::read_text(dir / "plot.png"), "old") << "replaced before the commit";
+  plot.commit();
+  EXPECT_EQ(test::read_text(dir / "plot.png"), "new image");
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"plot.png"});
+}
+
+TEST(StreamedFileWriter, AChildProcessOutputIsDroppedWithoutCommit) {
+  TempDir dir;
+  {
+    StreamedFileWriter video(dir / "v.mp4");
+    ASSERT_EQ(std::system(("printf 'frames' > '" + video.path_for_child_process() + "'").c_str()),
+              0);
+  }
+  EXPECT_TRUE(dir.files().empty());
 }
 
 TEST(WriteTetgen, IntoAMissingDirectoryThrowsAndWritesNothing) {

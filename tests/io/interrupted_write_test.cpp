@@ -2,13 +2,15 @@
 // opens a StreamedFileWriter (what `deformcd run --contacts` streams each frame into), writes,
 // and is killed by SIGINT (Ctrl-C), SIGTERM or SIGKILL before committing. The directory must
 // then hold nothing new: no target, no temporary. Before O_TMPFILE, each kill left a hidden
-// ".contacts.jsonl.tmp-PID-0" behind.
+// ".contacts.jsonl.tmp-PID-0" behind. Outputs written by a child process (ffmpeg) through
+// StreamedFileWriter::path_for_child_process() are covered too.
 
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -97,6 +99,18 @@ TEST_P(InterruptedWrite, AfterTheCommitTheFileIsWhole) {
   });
   EXPECT_EQ(dir.files(), std::vector<std::string>{"contacts.jsonl"}) << signal_name(GetParam());
   EXPECT_EQ(test::read_text(dir / "contacts.jsonl"), "frame 0\nframe 1\n");
+}
+
+TEST_P(InterruptedWrite, AnOutputOfAChildProcessLeavesNothingEither) {
+  // As `render --video` would have ffmpeg write the video: through path_for_child_process().
+  TempDir dir;
+  kill_while_writing(GetParam(), [&](auto wait_for_the_signal) {
+    StreamedFileWriter video(dir / "run.mp4");
+    const std::string command = "printf 'partial video' > '" + video.path_for_child_process() + "'";
+    if (std::system(command.c_str()) != 0) ::_exit(1);
+    wait_for_the_signal();
+  });
+  EXPECT_EQ(dir.files(), std::vector<std::string>{}) << signal_name(GetParam());
 }
 
 INSTANTIATE_TEST_SUITE_P(Signals, InterruptedWrite, ::testing::Values(SIGINT, SIGTERM, SIGKILL),
