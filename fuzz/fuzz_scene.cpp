@@ -9,8 +9,10 @@
 // through instead of an InputError, so the CLI reports an "unexpected error" (exit status 2).
 // DEFORMCD_FUZZ_STRICT=1 reports it like any other finding (to check the fix).
 
-#include <stdlib.h>
+#include <signal.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -36,14 +38,31 @@ void remove_work() {
   fs::remove_all(g_work, ignored);
 }
 
+// libFuzzer often ends without running atexit handlers (a finding, -max_total_time), so each
+// run also removes the scratch directories of runs that are gone: they are named by pid.
+void remove_stale_work(const fs::path& tmp) {
+  constexpr std::string_view kPrefix = "deformcd_fuzz_scene_";
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(tmp, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (!name.starts_with(kPrefix)) continue;
+    const long pid = std::strtol(name.c_str() + kPrefix.size(), nullptr, 10);
+    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      fs::remove_all(entry.path(), ignored);
+    }
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  std::string pattern = (fs::temp_directory_path() / "deformcd_fuzz_scene_XXXXXX").string();
-  if (!mkdtemp(pattern.data())) deformcd::fuzz::finding("cannot create a scratch directory");
-  g_work = pattern;
+  const fs::path tmp = fs::temp_directory_path();
+  remove_stale_work(tmp);
+  g_work = tmp / ("deformcd_fuzz_scene_" + std::to_string(::getpid()));
+  fs::remove_all(g_work);
+  fs::create_directories(g_work / "scenes");
   std::atexit(remove_work);
-  fs::create_directory(g_work / "scenes");
   fs::create_directory_symlink(fs::path(DEFORMCD_SOURCE_DIR) / "assets", g_work / "assets");
   g_scene = g_work / "scenes" / "fuzz.json";
   return 0;
