@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   # toolchain
   g++ cmake ninja-build pkg-config ccache clang-format clang-tidy
+  # fuzzing (preset fuzz, scripts/fuzz.sh): clang with libFuzzer and the sanitizer runtimes
+  clang libclang-rt-14-dev
   # core, io, command line
   libglm-dev libtbb-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
   # OpenGL 4.3 compute, headless through EGL (Mesa's llvmpipe when there is no GPU), windows

@@ -41,10 +41,12 @@ void write_tetgen(const TetMesh& mesh, const std::filesystem::path& prefix);
 /// same checks, as write_tetgen).
 void write_off(const SurfaceMesh& mesh, const std::filesystem::path& file);
 
-/// A file written piece by piece (e.g. one line per frame) under a temporary name next to
-/// `target`, and renamed onto it by commit(). Destroyed without commit() (an error on the way),
-/// it leaves nothing behind, and an existing target is untouched. Throws Error naming the
-/// target when the temporary cannot be created or written.
+/// A file written piece by piece (e.g. one line per frame) under a temporary next to `target`,
+/// which commit() gives the target's name. Destroyed without commit() (an error on the way),
+/// or the process killed (SIGINT, SIGTERM, SIGKILL) before it, it leaves nothing behind, and an
+/// existing target is untouched: the temporary is an unnamed file (O_TMPFILE) where the file
+/// system allows it. Throws Error naming the target when the temporary cannot be created or
+/// written.
 class StreamedFileWriter {
  public:
   explicit StreamedFileWriter(const std::filesystem::path& target);
@@ -53,6 +55,13 @@ class StreamedFileWriter {
   StreamedFileWriter& operator=(const StreamedFileWriter&) = delete;
   void append(std::string_view text);
   void commit();
+
+  /// A path through which a child process (ffmpeg, gnuplot) can write the temporary itself,
+  /// for outputs that another program produces: "/proc/self/fd/N", whose descriptor children
+  /// spawned from now on inherit (so that /proc/self in the child names the same file), or the
+  /// temporary's own name where it has one. The path has no extension: tell the program the
+  /// format (ffmpeg -f mp4). The child opens and truncates the temporary; commit() names it.
+  [[nodiscard]] std::string path_for_child_process();
 
  private:
   struct File;

@@ -2,6 +2,7 @@
 
 #include "deformcd/io.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -22,8 +23,8 @@ namespace {
   throw Error("cannot write " + target.string() + ": " + what);
 }
 
-// Unique within this process by the counter and across processes by the pid; "x" mode below
-// refuses to reuse a name that exists anyway.
+// Unique within this process by the counter and across processes by the pid; O_EXCL and link()
+// refuse to reuse a name that exists anyway.
 std::filesystem::path temporary_name_for(const std::filesystem::path& target) {
   static std::atomic<unsigned> counter{0};
   const std::string name = "." + target.filename().string() + ".tmp-" + std::to_string(getpid()) +
@@ -31,36 +32,91 @@ std::filesystem::path temporary_name_for(const std::filesystem::path& target) {
   return target.parent_path() / name;
 }
 
+std::string proc_fd_path(int fd) {
+  return "/proc/self/fd/" + std::to_string(fd);
+}
+
 }  // namespace
 
 AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {}
 
 AtomicFile::~AtomicFile() {
-  if (file_) std::fclose(file_);
+  if (file_) std::fclose(file_);  // frees an unnamed temporary
   if (!committed_ && !temporary_.empty()) {
     std::error_code ignored;  // nothing sensible to do if removal fails during unwinding
     std::filesystem::remove(temporary_, ignored);
   }
 }
 
-void AtomicFile::write(std::string_view contents) {
-  if (committed_) fail(target_, "written after commit");
-  if (!file_) {
+void AtomicFile::open() {
+  const std::filesystem::path dir =
+      target_.has_parent_path() ? target_.parent_path() : std::filesystem::path(".");
+  // O_TMPFILE: no name, so nothing to clean up if the process dies. Naming it at commit goes
+  // through /proc/self/fd (linkat with AT_EMPTY_PATH would need CAP_DAC_READ_SEARCH).
+  int fd = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  if (fd >= 0 && ::access(proc_fd_path(fd).c_str(), F_OK) != 0) {
+    ::close(fd);
+    fd = -1;
+  }
+  if (fd < 0) {
+    // A file system without O_TMPFILE (or a missing directory, reported below): a named
+    // temporary. O_EXCL refuses to reuse a name that exists anyway.
     const std::filesystem::path temporary = temporary_name_for(target_);
-    file_ = std::fopen(temporary.c_str(), "wbx");
-    if (!file_) fail(target_, std::strerror(errno));
+    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0) fail(target_, std::strerror(errno));
     temporary_ = temporary;  // from here on the destructor removes it
   }
+  file_ = ::fdopen(fd, "wb");
+  if (!file_) {
+    const int error = errno;
+    ::close(fd);
+    fail(target_, std::strerror(error));
+  }
+}
+
+void AtomicFile::write(std::string_view contents) {
+  if (committed_) fail(target_, "written after commit");
+  if (!file_) open();
   if (std::fwrite(contents.data(), 1, contents.size(), file_) != contents.size()) {
     fail(target_, std::strerror(errno));
   }
 }
 
+std::string AtomicFile::path_for_child_process() {
+  if (committed_) fail(target_, "written after commit");
+  if (!file_) open();
+  if (!temporary_.empty()) return temporary_.string();
+  // Our buffered bytes first, as the child writes through its own descriptor.
+  if (std::fflush(file_) != 0) fail(target_, std::strerror(errno));
+  const int fd = ::fileno(file_);
+  const int flags = ::fcntl(fd, F_GETFD);
+  if (flags < 0 || ::fcntl(fd, F_SETFD, flags & ~FD_CLOEXEC) != 0) {
+    fail(target_, std::strerror(errno));
+  }
+  return proc_fd_path(fd);
+}
+
 void AtomicFile::commit() {
-  if (temporary_.empty()) fail(target_, "nothing was written");
-  // fclose flushes; a full disk may only show here.
+  if (!file_) fail(target_, "nothing was written");
+  // A full disk may only show when the buffer is flushed.
+  if (std::fflush(file_) != 0) fail(target_, std::strerror(errno));
+  if (temporary_.empty()) {
+    const std::string proc = proc_fd_path(::fileno(file_));
+    if (::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD, target_.c_str(), AT_SYMLINK_FOLLOW) == 0) {
+      committed_ = true;
+    } else if (errno == EEXIST) {
+      const std::filesystem::path temporary = temporary_name_for(target_);
+      if (::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD, temporary.c_str(), AT_SYMLINK_FOLLOW) != 0) {
+        fail(target_, std::strerror(errno));
+      }
+      temporary_ = temporary;
+    } else {
+      fail(target_, std::strerror(errno));
+    }
+  }
   std::FILE* file = std::exchange(file_, nullptr);
   if (std::fclose(file) != 0) fail(target_, std::strerror(errno));
+  if (committed_) return;
   std::error_code ec;
   std::filesystem::rename(temporary_, target_, ec);
   if (ec) fail(target_, ec.message());
@@ -109,6 +165,10 @@ void StreamedFileWriter::append(std::string_view text) {
 
 void StreamedFileWriter::commit() {
   file_->file.commit();
+}
+
+std::string StreamedFileWriter::path_for_child_process() {
+  return file_->file.path_for_child_process();
 }
 
 void write_file_atomically(const std::filesystem::path& file, std::string_view contents) {

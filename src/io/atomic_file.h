@@ -1,7 +1,10 @@
 #pragma once
-// Writing files so that a failure leaves nothing behind: contents go to a temporary file in the
-// target's directory (so the final rename stays within one file system and is atomic), and are
-// renamed into place only once everything was written.
+// Writing files so that each appears whole or not at all, even when the process is killed
+// (SIGINT, SIGTERM, SIGKILL) while writing: contents go to an unnamed temporary file
+// (O_TMPFILE) in the target's directory, which the kernel frees if the process dies, and which
+// is given the target's name only once everything was written. Where the file system has no
+// O_TMPFILE (or /proc is not mounted) the temporary is a hidden named file next to the target,
+// removed on errors but left behind if the process is killed.
 
 #include <cstdio>
 #include <filesystem>
@@ -11,8 +14,9 @@
 
 namespace deformcd::io {
 
-/// One file written under a temporary name and renamed onto its target by commit(). Destroyed
-/// without a commit (an exception on the way), it removes the temporary file.
+/// One file written under a temporary and given its target's name by commit(). Destroyed
+/// without a commit (an exception on the way), it leaves nothing; killed before the commit, it
+/// leaves nothing either (unless it had to use a named temporary, see named_temporary()).
 class AtomicFile {
  public:
   explicit AtomicFile(std::filesystem::path target);
@@ -20,18 +24,32 @@ class AtomicFile {
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
 
-  /// Appends `contents` to the temporary file next to the target (created by the first call).
-  /// Throws Error naming the target when the file cannot be created or written in full.
+  /// Appends `contents` to the temporary (created by the first call).
+  /// Throws Error naming the target when it cannot be created or written in full.
   void write(std::string_view contents);
 
-  /// Closes the temporary file and renames it onto the target. Throws Error naming the target.
+  /// Flushes the temporary and gives it the target's name, replacing an existing target
+  /// atomically. Throws Error naming the target.
+  ///
+  /// An unnamed temporary becomes the target with one link when there is no target yet. To
+  /// replace a target it is linked under a hidden name and renamed onto it (a link cannot
+  /// replace a file): a kill between those two calls leaves the hidden name behind.
   void commit();
 
+  /// A path a child process can open to write the temporary (StreamedFileWriter's contract):
+  /// "/proc/self/fd/N" with FD_CLOEXEC cleared, or the named temporary. Creates the temporary.
+  [[nodiscard]] std::string path_for_child_process();
+
   [[nodiscard]] const std::filesystem::path& target() const { return target_; }
-  /// The temporary file's path (empty before write()).
-  [[nodiscard]] const std::filesystem::path& temporary() const { return temporary_; }
+  /// The temporary's name when it has one: a file system without O_TMPFILE, or during commit().
+  /// Empty while the temporary is unnamed (or before write()).
+  [[nodiscard]] const std::filesystem::path& named_temporary() const { return temporary_; }
+  /// True once write() has created the temporary.
+  [[nodiscard]] bool is_open() const { return file_ != nullptr; }
 
  private:
+  void open();
+
   std::filesystem::path target_;
   std::filesystem::path temporary_;
   std::FILE* file_ = nullptr;
@@ -44,11 +62,11 @@ struct FileContents {
   std::string contents;
 };
 
-/// Writes every file to its temporary first and renames them all only after every write
+/// Writes every file to its temporary first and names them all only after every write
 /// succeeded, and after checking that no target is a directory, so that the usual failures
 /// (missing directory, no permission, disk full, a directory in the way) leave no file,
-/// temporary or final. A rename failing after others succeeded could still leave some targets
-/// replaced; within one directory that would take a concurrent change to the directory.
+/// temporary or final. A commit failing after others succeeded, or the process being killed
+/// between two commits, could still leave some targets replaced and not others.
 void write_files_atomically(std::span<const FileContents> files);
 
 }  // namespace deformcd::io

@@ -35,11 +35,14 @@ namespace deformcd::io {
 
 namespace {
 
-// The file's text as an istream for tinyobjloader, without copying it.
+// The file's text as an istream for tinyobjloader, without copying it. The buffer is never
+// written through: std::streambuf only moves its pointers when reading, and putting back a
+// character that differs from the one read (the only write) goes to pbackfail(), which fails.
 class MemoryStreamBuf : public std::streambuf {
  public:
-  explicit MemoryStreamBuf(std::string& text) {
-    setg(text.data(), text.data(), text.data() + text.size());
+  explicit MemoryStreamBuf(std::string_view text) {
+    char* begin = const_cast<char*>(text.data());
+    setg(begin, begin, begin + text.size());
   }
 };
 
@@ -145,9 +148,8 @@ std::size_t line_in_message(const std::string& message) {
 
 }  // namespace
 
-ParsedSurface read_obj(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::string text = read_whole_file(file);
+ParsedSurface read_obj(std::string_view text, const std::string& file) {
+  const std::string& name = file;
   ObjScan scan = scan_obj(text, name);
 
   MemoryStreamBuf buffer(text);

@@ -58,9 +58,8 @@ VertexExtras parse_off_keyword(const TextScanner& in) {
 
 }  // namespace
 
-ParsedSurface read_off(const std::filesystem::path& file) {
-  const std::string text = read_whole_file(file);
-  TextScanner in(text, file.string());
+ParsedSurface read_off(std::string_view text, const std::string& file) {
+  TextScanner in(text, file);
   if (!in.next_record()) in.fail_at_end("is empty: expected the 'OFF' header");
   const VertexExtras extras = parse_off_keyword(in);
 
@@ -78,8 +77,10 @@ ParsedSurface read_off(const std::filesystem::path& file) {
   const auto vertex_count = in.integer<std::uint32_t>(first);
   const auto face_count = in.integer<std::uint32_t>(first + 1);
   if (count_fields == 3) (void)in.integer<std::uint64_t>(first + 2);  // edges: unused
+  in.check_line_count(std::uint64_t{vertex_count} + face_count, "vertex or face",
+                      "vertices and faces");
 
-  SurfaceBuilder builder(file.string(), 0);
+  SurfaceBuilder builder(file, 0);
   builder.reserve(vertex_count, face_count, text.size());
   for (std::uint32_t i = 0; i < vertex_count; ++i) {
     if (!in.next_record()) {
@@ -129,9 +130,7 @@ ParsedSurface read_off(const std::filesystem::path& file) {
   return std::move(builder).finish();
 }
 
-}  // namespace io
-
-void write_off(const SurfaceMesh& mesh, const std::filesystem::path& file) {
+std::string off_text(const SurfaceMesh& mesh) {
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const glm::dvec3& p = mesh.vertices[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
@@ -140,14 +139,14 @@ void write_off(const SurfaceMesh& mesh, const std::filesystem::path& file) {
   }
   std::string out = "OFF\n";
   out.reserve(mesh.vertices.size() * 64 + mesh.triangles.size() * 32);
-  io::append_integer(out, mesh.vertices.size());
+  append_integer(out, mesh.vertices.size());
   out += ' ';
-  io::append_integer(out, mesh.triangles.size());
+  append_integer(out, mesh.triangles.size());
   out += " 0\n";
   for (const glm::dvec3& p : mesh.vertices) {
     for (int k = 0; k < 3; ++k) {
       if (k > 0) out += ' ';
-      io::append_real(out, p[k]);
+      append_real(out, p[k]);
     }
     out += '\n';
   }
@@ -160,11 +159,17 @@ void write_off(const SurfaceMesh& mesh, const std::filesystem::path& file) {
                     std::to_string(mesh.vertices.size()) + " vertices");
       }
       out += ' ';
-      io::append_integer(out, v);
+      append_integer(out, v);
     }
     out += '\n';
   }
-  const io::FileContents contents[] = {{file, std::move(out)}};
+  return out;
+}
+
+}  // namespace io
+
+void write_off(const SurfaceMesh& mesh, const std::filesystem::path& file) {
+  const io::FileContents contents[] = {{file, io::off_text(mesh)}};
   io::write_files_atomically(contents);
 }
 

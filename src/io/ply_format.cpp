@@ -235,9 +235,8 @@ void read_body(Values& values, const PlyHeader& header, const SurfaceLayout& lay
 
 }  // namespace
 
-ParsedSurface read_ply(const std::filesystem::path& file) {
-  const std::string data = read_whole_file(file);
-  const std::string name = file.string();
+ParsedSurface read_ply(std::string_view data, const std::string& file) {
+  const std::string& name = file;
   const PlyHeader header = parse_ply_header(data, name);
   const SurfaceLayout layout = find_surface(header, name);
   // Faces are read after vertices so that add_polygon can check their indices.
@@ -248,11 +247,11 @@ ParsedSurface read_ply(const std::filesystem::path& file) {
     if (&element == layout.vertex) break;
   }
 
+  check_ply_counts(header, data.size(), name);
   SurfaceBuilder builder(name, 0);
   builder.reserve(layout.vertex->count, layout.face->count, data.size());
   if (header.encoding == PlyEncoding::kAscii) {
-    AsciiValues values(std::string_view(data).substr(header.body_offset), name,
-                       header.body_first_line);
+    AsciiValues values(data.substr(header.body_offset), name, header.body_first_line);
     read_body(values, header, layout, builder);
   } else {
     BinaryValues values(data, header.body_offset, header.encoding == PlyEncoding::kBinaryBigEndian,

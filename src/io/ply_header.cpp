@@ -1,6 +1,7 @@
 #include "ply_header.h"
 
 #include <array>
+#include <string>
 #include <utility>
 
 #include "deformcd/error.h"
@@ -115,7 +116,8 @@ PlyHeader parse_ply_header(std::string_view data, const std::string& file) {
       has_format = true;
     } else if (keyword == "element") {
       if (in.size() != 3) in.fail("expected 'element <name> <count>'");
-      header.elements.push_back({std::string(in.token(1)), in.integer<std::uint64_t>(2), {}});
+      header.elements.push_back(
+          {std::string(in.token(1)), in.integer<std::uint64_t>(2), {}, in.line()});
     } else if (keyword == "property") {
       if (header.elements.empty()) in.fail("'property' before any 'element'");
       header.elements.back().properties.push_back(parse_property(in));
@@ -127,6 +129,35 @@ PlyHeader parse_ply_header(std::string_view data, const std::string& file) {
   header.body_offset = in.offset_after_record();
   header.body_first_line = in.line() + 1;
   return header;
+}
+
+void check_ply_counts(const PlyHeader& header, std::size_t file_size, const std::string& file) {
+  const bool ascii = header.encoding == PlyEncoding::kAscii;
+  const std::uint64_t body = file_size - header.body_offset;
+  // ASCII: one element per non-blank line, at least a character and a newline (the last line
+  // may lack it, hence the + 1).
+  const std::uint64_t room = ascii ? body + 1 : body;
+  std::uint64_t used = 0;
+  for (const PlyElement& element : header.elements) {
+    std::uint64_t size = 0;  // the fewest bytes one element takes
+    for (const PlyProperty& property : element.properties) {
+      size += size_of(property.list_count ? *property.list_count : property.type);
+    }
+    if (ascii && size > 0) size = 2;
+    if (size == 0) continue;  // no properties: takes no bytes, and the reader skips it
+    if (element.count > (room - used) / size) {
+      const std::string each =
+          ascii ? "one per line"
+                : "at least " + std::to_string(size) + (size == 1 ? " byte each" : " bytes each");
+      throw InputError(
+          file, element.line,
+          "declares " + std::to_string(element.count) + " '" + element.name + "' elements (" +
+              each + "), but the body after the header has " + std::to_string(body) + " bytes" +
+              (used > 0 ? ", " + std::to_string(used) + " of them for the elements before" : "") +
+              ": a wrong count or a truncated file");
+    }
+    used += element.count * size;
+  }
 }
 
 }  // namespace deformcd::io

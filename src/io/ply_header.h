@@ -35,6 +35,7 @@ struct PlyElement {
   std::string name;
   std::uint64_t count = 0;
   std::vector<PlyProperty> properties;
+  std::size_t line = 0;  ///< the header line declaring it
 };
 
 enum class PlyEncoding : std::uint8_t { kAscii, kBinaryLittleEndian, kBinaryBigEndian };
@@ -48,5 +49,10 @@ struct PlyHeader {
 
 /// Parses the header at the start of `data`. Throws InputError with `file` and the line.
 [[nodiscard]] PlyHeader parse_ply_header(std::string_view data, const std::string& file);
+
+/// Checks the elements' counts against the body's size before anything is reserved for them:
+/// a binary element takes at least its scalars' and list counts' bytes, an ASCII one a line
+/// (at least 2 bytes). Throws InputError at the line of the first element that cannot fit.
+void check_ply_counts(const PlyHeader& header, std::size_t file_size, const std::string& file);
 
 }  // namespace deformcd::io

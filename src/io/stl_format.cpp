@@ -164,9 +164,8 @@ ParsedSurface read_ascii(std::string_view text, const std::string& file) {
 
 }  // namespace
 
-ParsedSurface read_stl(const std::filesystem::path& file) {
-  const std::string data = read_whole_file(file);
-  const std::string name = file.string();
+ParsedSurface read_stl(std::string_view data, const std::string& file) {
+  const std::string& name = file;
   if (data.size() >= kBinaryHeader) {
     const auto count = ByteReader(data, 80, false).read<std::uint32_t>();
     const std::uint64_t expected = kBinaryHeader + std::uint64_t{count} * kBinaryTriangle;

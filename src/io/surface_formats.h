@@ -5,8 +5,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 
 #include "deformcd/mesh.h"
 #include "deformcd/mesh_validation.h"
@@ -48,11 +50,25 @@ class SurfaceBuilder {
   ParsedSurface parsed_;
 };
 
-// Each reader parses one format strictly, throwing InputError with the file and (for text) the
-// line; none validates geometry, read_surface does.
-ParsedSurface read_off(const std::filesystem::path& file);
-ParsedSurface read_stl(const std::filesystem::path& file);
-ParsedSurface read_ply(const std::filesystem::path& file);
-ParsedSurface read_obj(const std::filesystem::path& file);
+// Each reader parses one format strictly from the file's contents, throwing InputError with
+// `file` (the name for messages) and, for text, the line; none validates geometry,
+// parse_surface does.
+ParsedSurface read_off(std::string_view text, const std::string& file);
+ParsedSurface read_stl(std::string_view data, const std::string& file);
+ParsedSurface read_ply(std::string_view data, const std::string& file);
+ParsedSurface read_obj(std::string_view text, const std::string& file);
+
+enum class SurfaceFormat : std::uint8_t { kOff, kObj, kStl, kPly };
+
+/// The format `file`'s extension names (any case), if read_surface knows it.
+[[nodiscard]] std::optional<SurfaceFormat> surface_format_of(const std::filesystem::path& file);
+
+/// write_off's contents: the mesh as OFF text. Throws Error as write_off does.
+[[nodiscard]] std::string off_text(const SurfaceMesh& mesh);
+
+/// read_surface on contents already in memory (the fuzz targets' entry point): parses `data`
+/// as `format` and validates the mesh. Errors name `file`.
+[[nodiscard]] SurfaceMesh parse_surface(std::string_view data, SurfaceFormat format,
+                                        const std::string& file);
 
 }  // namespace deformcd::io

@@ -16,42 +16,56 @@
 #include "deformcd/io.h"
 #include "deformcd/mesh_validation.h"
 #include "surface_formats.h"
+#include "text_scanner.h"
 
 namespace deformcd {
 
-namespace {
+namespace io {
 
-std::string lowercase_extension(const std::filesystem::path& file) {
+std::optional<SurfaceFormat> surface_format_of(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
+  if (ext == ".off") return SurfaceFormat::kOff;
+  if (ext == ".obj") return SurfaceFormat::kObj;
+  if (ext == ".stl") return SurfaceFormat::kStl;
+  if (ext == ".ply") return SurfaceFormat::kPly;
+  return std::nullopt;
 }
 
-}  // namespace
-
-bool is_surface_file(const std::filesystem::path& file) {
-  const std::string ext = lowercase_extension(file);
-  return ext == ".off" || ext == ".obj" || ext == ".stl" || ext == ".ply";
-}
-
-SurfaceMesh read_surface(const std::filesystem::path& file) {
-  const std::string ext = lowercase_extension(file);
-  io::ParsedSurface parsed;
-  if (ext == ".off") {
-    parsed = io::read_off(file);
-  } else if (ext == ".obj") {
-    parsed = io::read_obj(file);
-  } else if (ext == ".stl") {
-    parsed = io::read_stl(file);
-  } else if (ext == ".ply") {
-    parsed = io::read_ply(file);
-  } else {
-    throw InputError(file.string(),
-                     "unknown surface format '" + ext + "' (expected .off, .obj, .stl or .ply)");
+SurfaceMesh parse_surface(std::string_view data, SurfaceFormat format, const std::string& file) {
+  ParsedSurface parsed;
+  switch (format) {
+    case SurfaceFormat::kOff:
+      parsed = read_off(data, file);
+      break;
+    case SurfaceFormat::kObj:
+      parsed = read_obj(data, file);
+      break;
+    case SurfaceFormat::kStl:
+      parsed = read_stl(data, file);
+      break;
+    case SurfaceFormat::kPly:
+      parsed = read_ply(data, file);
+      break;
   }
   validate_surface_mesh(parsed.mesh, parsed.source);
   return std::move(parsed.mesh);
+}
+
+}  // namespace io
+
+bool is_surface_file(const std::filesystem::path& file) {
+  return io::surface_format_of(file).has_value();
+}
+
+SurfaceMesh read_surface(const std::filesystem::path& file) {
+  const std::optional<io::SurfaceFormat> format = io::surface_format_of(file);
+  if (!format) {
+    throw InputError(file.string(), "unknown surface format '" + file.extension().string() +
+                                        "' (expected .off, .obj, .stl or .ply)");
+  }
+  return io::parse_surface(io::read_whole_file(file), *format, file.string());
 }
 
 }  // namespace deformcd

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,9 +52,8 @@ struct NodeFile {
   unsigned base = 0;
 };
 
-NodeFile read_node_file(const std::filesystem::path& file) {
-  const std::string text = io::read_whole_file(file);
-  TextScanner in(text, file.string());
+NodeFile read_node_file(const io::TetGenText& file) {
+  TextScanner in(file.text, file.name);
   if (!in.next_record()) {
     in.fail_at_end(
         "no header: expected '<#points> <dimension> <#attributes> <boundary markers 0/1>'");
@@ -81,8 +81,11 @@ NodeFile read_node_file(const std::filesystem::path& file) {
   if (markers) parts.emplace_back("a boundary marker");
   const std::size_t fields = 4 + std::size_t{attributes} + static_cast<std::size_t>(markers);
 
+  in.check_line_count(count, "node", "nodes");
   NodeFile result;
-  result.nodes.reserve(std::min<std::size_t>(count, text.size() / 8));
+  // A node line takes at least 8 bytes ("i x y z\n"): a count within the lines but past that
+  // (a wrong count, or a file whose lines are short) reserves no more than the file can hold.
+  result.nodes.reserve(std::min<std::size_t>(count, file.text.size() / 8));
   result.lines.reserve(result.nodes.capacity());
   for (std::uint32_t i = 0; i < count; ++i) {
     if (!in.next_record()) {
@@ -129,7 +132,7 @@ struct ElementFile {
 
 // Reads `count` records of `index n1..nN [attributes] [marker]` after the header.
 template <std::size_t N>
-ElementFile<N> read_element_records(TextScanner& in, std::size_t text_size, std::uint32_t count,
+ElementFile<N> read_element_records(TextScanner& in, std::uint32_t count,
                                     const ElementLayout& layout, const NodeFile& nodes) {
   std::vector<std::string> parts = {"index", std::to_string(N) + " nodes"};
   if (layout.real_attributes > 0) {
@@ -141,8 +144,10 @@ ElementFile<N> read_element_records(TextScanner& in, std::size_t text_size, std:
   const std::int64_t base = nodes.base;
   const std::int64_t node_count = static_cast<std::int64_t>(nodes.nodes.size());
 
+  in.check_line_count(count, layout.singular, layout.plural);
   ElementFile<N> result;
-  result.elements.reserve(std::min<std::size_t>(count, text_size / (2 * (N + 1))));
+  // Likewise: an element line takes at least 2 (N + 1) bytes.
+  result.elements.reserve(std::min<std::size_t>(count, in.text_size() / (2 * (N + 1))));
   result.lines.reserve(result.elements.capacity());
   for (std::uint32_t i = 0; i < count; ++i) {
     if (!in.next_record()) {
@@ -183,9 +188,8 @@ ElementFile<N> read_element_records(TextScanner& in, std::size_t text_size, std:
   return result;
 }
 
-ElementFile<4> read_ele_file(const std::filesystem::path& file, const NodeFile& nodes) {
-  const std::string text = io::read_whole_file(file);
-  TextScanner in(text, file.string());
+ElementFile<4> read_ele_file(const io::TetGenText& file, const NodeFile& nodes) {
+  TextScanner in(file.text, file.name);
   if (!in.next_record()) {
     in.fail_at_end(
         "no header: expected '<#tetrahedra> <nodes per tetrahedron> <#region attributes>'");
@@ -207,12 +211,14 @@ ElementFile<4> read_ele_file(const std::filesystem::path& file, const NodeFile& 
   }
   ElementLayout layout{"tetrahedron", "tetrahedra"};
   layout.real_attributes = in.size() > 2 ? in.integer<std::uint32_t>(2) : 0u;
-  return read_element_records<4>(in, text.size(), count, layout, nodes);
+  return read_element_records<4>(in, count, layout, nodes);
 }
 
-ElementFile<3> read_face_file(const std::filesystem::path& file, const NodeFile& nodes) {
-  const std::string text = io::read_whole_file(file);
-  TextScanner in(text, file.string());
+// `tetrahedra`, read from `ele`, bound the count: each face is a face of one of them (TetGen
+// writes the boundary faces, or with -f every face), so there are at most 4 per tetrahedron.
+ElementFile<3> read_face_file(const io::TetGenText& file, const NodeFile& nodes,
+                              std::size_t tetrahedra, const std::string& ele) {
+  TextScanner in(file.text, file.name);
   if (!in.next_record()) in.fail_at_end("no header: expected '<#faces> <boundary markers 0/1>'");
   if (in.size() > 2) {
     in.fail("expected at most 2 integers in the header (#faces, boundary markers 0/1), found " +
@@ -223,34 +229,56 @@ ElementFile<3> read_face_file(const std::filesystem::path& file, const NodeFile&
   if (markers != 0 && markers != 1) {
     in.fail("the boundary marker flag must be 0 or 1, found " + std::to_string(markers));
   }
+  if (count > 4 * std::uint64_t{tetrahedra}) {
+    in.fail("declares " + count_of(count, "face", "faces") + ", but the " +
+            count_of(tetrahedra, "tetrahedron", "tetrahedra") + " of " + ele + " have only " +
+            std::to_string(4 * std::uint64_t{tetrahedra}) +
+            " faces: the .face does not belong to this .ele");
+  }
   ElementLayout layout{"face", "faces"};
   layout.marker = markers == 1;
-  return read_element_records<3>(in, text.size(), count, layout, nodes);
+  return read_element_records<3>(in, count, layout, nodes);
 }
 
 }  // namespace
 
-TetMesh read_tetgen(const std::filesystem::path& prefix) {
-  const io::TetGenFiles files = io::tetgen_files(prefix);
-  NodeFile nodes = read_node_file(files.node);
-  ElementFile<4> tetrahedra = read_ele_file(files.ele, nodes);
+namespace io {
+
+TetMesh parse_tetgen(const TetGenText& node, const TetGenText& ele,
+                     const std::optional<TetGenText>& face) {
+  NodeFile nodes = read_node_file(node);
+  ElementFile<4> tetrahedra = read_ele_file(ele, nodes);
 
   TetMesh mesh;
-  std::error_code ec;
-  if (std::filesystem::exists(files.face, ec)) {
-    mesh.faces = std::move(read_face_file(files.face, nodes).elements);
+  if (face) {
+    mesh.faces =
+        std::move(read_face_file(*face, nodes, tetrahedra.elements.size(), ele.name).elements);
   }
   mesh.nodes = std::move(nodes.nodes);
   mesh.tetrahedra = std::move(tetrahedra.elements);
 
   MeshSource source;
-  source.vertex_file = files.node.string();
+  source.vertex_file = node.name;
   source.vertex_lines = std::move(nodes.lines);
-  source.element_file = files.ele.string();
+  source.element_file = ele.name;
   source.element_lines = std::move(tetrahedra.lines);
   source.index_base = nodes.base;
   validate_tet_mesh(mesh, source);
   return mesh;
+}
+
+}  // namespace io
+
+TetMesh read_tetgen(const std::filesystem::path& prefix) {
+  const io::TetGenFiles files = io::tetgen_files(prefix);
+  const std::string node = io::read_whole_file(files.node);
+  const std::string ele = io::read_whole_file(files.ele);
+  std::optional<std::string> face;
+  std::error_code ec;
+  if (std::filesystem::exists(files.face, ec)) face = io::read_whole_file(files.face);
+  std::optional<io::TetGenText> face_text;
+  if (face) face_text = io::TetGenText{files.face.string(), *face};
+  return io::parse_tetgen({files.node.string(), node}, {files.ele.string(), ele}, face_text);
 }
 
 }  // namespace deformcd

@@ -90,13 +90,23 @@ std::string element_text(const std::vector<Element>& elements, const std::string
 
 }  // namespace
 
-void write_tetgen(const TetMesh& mesh, const std::filesystem::path& prefix) {
+namespace io {
+
+TetGenFileTexts tetgen_texts(const TetMesh& mesh, const TetGenFiles& files) {
   check_writable(mesh);
+  return {node_text(mesh, files.node), element_text(mesh.tetrahedra, " 4 0\n", "\n", files.ele),
+          element_text(mesh.faces, " 1\n", " 1\n", files.face)};
+}
+
+}  // namespace io
+
+void write_tetgen(const TetMesh& mesh, const std::filesystem::path& prefix) {
   const io::TetGenFiles files = io::tetgen_files(prefix);
+  io::TetGenFileTexts texts = io::tetgen_texts(mesh, files);
   const io::FileContents contents[] = {
-      {files.node, node_text(mesh, files.node)},
-      {files.ele, element_text(mesh.tetrahedra, " 4 0\n", "\n", files.ele)},
-      {files.face, element_text(mesh.faces, " 1\n", " 1\n", files.face)},
+      {files.node, std::move(texts.node)},
+      {files.ele, std::move(texts.ele)},
+      {files.face, std::move(texts.face)},
   };
   io::write_files_atomically(contents);
 }

@@ -35,8 +35,14 @@ bool has_negative_exponent(std::string_view token) {
 
 std::string read_whole_file(const std::filesystem::path& file) {
   std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) {
+  const std::filesystem::file_status status = std::filesystem::status(file, ec);
+  if (std::filesystem::is_directory(status)) {
     throw InputError(file.string(), "is a directory, not a file");
+  }
+  // A FIFO, a socket or a device (/dev/zero) could block or never end: memory is bounded by
+  // the input only when the input is a file.
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw InputError(file.string(), "is not a regular file (a FIFO, socket or device)");
   }
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
   if (!f) throw InputError(file.string(), std::string("cannot open: ") + std::strerror(errno));
@@ -119,6 +125,18 @@ double TextScanner::real(std::size_t i) const {
       break;
   }
   fail_token(i, "is out of range");
+}
+
+void TextScanner::check_line_count(std::uint64_t count, const char* singular,
+                                   const char* plural) const {
+  // Each non-blank line takes at least one character and a newline (the last one none).
+  const std::uint64_t bytes = text_.size() - pos_;
+  const std::uint64_t room = (bytes + 1) / 2;
+  if (count > room) {
+    fail("declares " + std::to_string(count) + " " + (count == 1 ? singular : plural) +
+         ", but the " + std::to_string(bytes) + " bytes after this line hold at most " +
+         std::to_string(room) + " lines: a wrong count or a truncated file");
+  }
 }
 
 void TextScanner::fail(const std::string& message) const {

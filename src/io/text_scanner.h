@@ -14,7 +14,8 @@
 
 namespace deformcd::io {
 
-/// Reads the whole of `file` into memory. Throws InputError naming the file when it cannot.
+/// Reads the whole of `file`, a regular file (or a link to one), into memory. Throws InputError
+/// naming the file when it cannot, or when it is a directory, FIFO, socket or device.
 std::string read_whole_file(const std::filesystem::path& file);
 
 enum class NumberParse { kOk, kNotANumber, kOutOfRange };
@@ -42,6 +43,8 @@ class TextScanner {
   [[nodiscard]] std::string_view token(std::size_t i) const { return tokens_[i]; }
   [[nodiscard]] std::size_t line() const { return line_; }
   [[nodiscard]] const std::string& file() const { return file_; }
+  /// The whole text's size in bytes.
+  [[nodiscard]] std::size_t text_size() const { return text_.size(); }
   /// Byte offset just past the current record's line (where the next line starts).
   [[nodiscard]] std::size_t offset_after_record() const { return pos_; }
 
@@ -59,6 +62,14 @@ class TextScanner {
 
   /// Token `i` as a double; throws "'x' is not a number" / "'x' is out of range".
   [[nodiscard]] double real(std::size_t i) const;
+
+  /// Checks a header's count of one-per-line records against the rest of the text, which holds
+  /// at most (bytes + 1) / 2 non-blank lines: throws at the current record ("declares 5000000
+  /// nodes, but the 120 bytes after this line hold at most 60 lines") when `count` cannot fit.
+  /// Readers call it before reserving anything for `count`, so that a corrupt count fails at
+  /// once; a few missing records are left to the record loop, whose error names the line
+  /// where the file ends.
+  void check_line_count(std::uint64_t count, const char* singular, const char* plural) const;
 
   /// Throws InputError at the current record's line.
   [[noreturn]] void fail(const std::string& message) const;

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "deformcd/error.h"
 #include "deformcd/io.h"
@@ -20,10 +23,44 @@ TEST(AtomicFile, RemovesItsTemporaryWhenNotCommitted) {
   {
     io::AtomicFile file(dir / "a.txt");
     file.write("contents");
-    EXPECT_TRUE(std::filesystem::exists(file.temporary()));
-    EXPECT_EQ(file.temporary().parent_path(), dir.path());
+    EXPECT_TRUE(file.is_open());
+    if (!file.named_temporary().empty()) {  // a file system without O_TMPFILE
+      EXPECT_TRUE(std::filesystem::exists(file.named_temporary()));
+      EXPECT_EQ(file.named_temporary().parent_path(), dir.path());
+    }
   }
   EXPECT_TRUE(dir.files().empty());
+}
+
+TEST(AtomicFile, CommitCreatesTheTarget) {
+  TempDir dir;
+  io::AtomicFile file(dir / "new.txt");
+  file.write("line 1\n");
+  file.write("line 2\n");
+  EXPECT_TRUE(dir.files().empty()) << "visible before the commit";
+  file.commit();
+  EXPECT_EQ(test::read_text(dir / "new.txt"), "line 1\nline 2\n");
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"new.txt"});
+  EXPECT_THROW(file.write("more"), Error);
+}
+
+TEST(AtomicFile, CommitWithoutWriteThrows) {
+  TempDir dir;
+  io::AtomicFile file(dir / "a.txt");
+  EXPECT_THROW(file.commit(), Error);
+  EXPECT_TRUE(dir.files().empty());
+}
+
+TEST(AtomicFile, CommitOntoADirectoryThrowsAndLeavesIt) {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "d");
+  {
+    io::AtomicFile file(dir / "d");
+    file.write("x");
+    EXPECT_THROW(file.commit(), Error);
+  }
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"d"});
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "d"));
 }
 
 TEST(AtomicFile, CommitReplacesTheTarget) {
@@ -34,6 +71,29 @@ TEST(AtomicFile, CommitReplacesTheTarget) {
   file.commit();
   EXPECT_EQ(test::read_text(dir / "a.txt"), "new");
   EXPECT_EQ(dir.files(), std::vector<std::string>{"a.txt"});
+}
+
+TEST(StreamedFileWriter, AChildProcessWritesTheTemporary) {
+  TempDir dir;
+  test::write_file(dir / "plot.png", "old");
+  StreamedFileWriter plot(dir / "plot.png");
+  const std::string path = plot.path_for_child_process();
+  // What gnuplot's `set output PATH` or ffmpeg's output argument would do: open and truncate.
+  ASSERT_EQ(std::system(("printf 'new image' > '" + path + "'").c_str()), 0) << path;
+  EXPECT_EQ(test::read_text(dir / "plot.png"), "old") << "replaced before the commit";
+  plot.commit();
+  EXPECT_EQ(test::read_text(dir / "plot.png"), "new image");
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"plot.png"});
+}
+
+TEST(StreamedFileWriter, AChildProcessOutputIsDroppedWithoutCommit) {
+  TempDir dir;
+  {
+    StreamedFileWriter video(dir / "v.mp4");
+    ASSERT_EQ(std::system(("printf 'frames' > '" + video.path_for_child_process() + "'").c_str()),
+              0);
+  }
+  EXPECT_TRUE(dir.files().empty());
 }
 
 TEST(WriteTetgen, IntoAMissingDirectoryThrowsAndWritesNothing) {
