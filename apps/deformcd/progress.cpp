@@ -26,7 +26,8 @@ std::string format_duration(double seconds) {
 std::string progress_counts(long done, long total, const std::string& unit, double elapsed_s) {
   std::string text = std::to_string(done) + "/" + std::to_string(total) + " " + unit + " | " +
                      format_duration(elapsed_s);
-  if (done <= 0 || elapsed_s <= 0.0) return text;
+  // No rate in the first second: too few frames, or a bar created at the first one.
+  if (done <= 0 || elapsed_s < 1.0) return text;
   const double rate = static_cast<double>(done) / elapsed_s;
   char figure[64];
   // "frames" -> "frame" for the per-unit form.

@@ -17,7 +17,7 @@ void status(const std::string& text);
 [[nodiscard]] std::string format_duration(double seconds);
 
 /// "12/450 frames | 0:03 | 3.8 frames/s | 1:55 left" (the rate as "2.5 s/frame" below one a
-/// second; no rate or time left before the first unit is done).
+/// second; no rate or time left before the first unit is done or the first second is over).
 [[nodiscard]] std::string progress_counts(long done, long total, const std::string& unit,
                                           double elapsed_s);
 

@@ -32,7 +32,8 @@ TEST(Progress, DurationsReadAsClockTimes) {
 }
 
 TEST(Progress, CountsGiveTheElapsedTimeTheRateAndTheTimeLeft) {
-  EXPECT_EQ(progress_counts(0, 450, "frames", 0.5), "0/450 frames | 0:01");
+  EXPECT_EQ(progress_counts(0, 450, "frames", 2.0), "0/450 frames | 0:02");
+  EXPECT_EQ(progress_counts(30, 450, "frames", 0.2), "30/450 frames | 0:00");  // too early
   EXPECT_EQ(progress_counts(12, 450, "frames", 3.0),
             "12/450 frames | 0:03 | 4.0 frames/s | 1:50 left");  // 438 / 4 = 109.5 s
   // Below one a second, the time per unit.
