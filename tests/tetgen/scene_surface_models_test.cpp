@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -49,6 +50,27 @@ TEST_F(SceneSurfaceModels, TheSceneSetsTheMeshing) {
                                              load_model, 10)[0]
                                .body.tetrahedra.size();
   EXPECT_GT(fine, 2 * coarse);  // volume 0.2 m^3: at least 10,000 tetrahedra
+}
+
+TEST_F(SceneSurfaceModels, TheReadmesSceneExampleLoads) {
+  // The README's "Scene files" example, its ../assets paths made absolute.
+  std::ifstream in(fs::path(DEFORMCD_SOURCE_DIR) / "README.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string readme = text.str();
+  const std::size_t begin = readme.find("```json\n", readme.find("## Scene files")) + 8;
+  std::string json = readme.substr(begin, readme.find("```", begin) - begin);
+  const std::string assets = std::string(DEFORMCD_SOURCE_DIR) + "/assets";
+  for (std::size_t at; (at = json.find("../assets")) != std::string::npos;)
+    json.replace(at, 9, assets);
+  const fs::path file = dir_.path() / "readme_scene.json";
+  std::ofstream(file) << json;
+  const Scene scene = read_scene(file);
+  ASSERT_EQ(scene.bodies.size(), 2u);
+  EXPECT_EQ(scene.bodies[1].meshing.quality, 1.4);
+  const std::vector<BodyInit> bodies = make_scene_bodies(scene, load_model, 10);
+  EXPECT_EQ(bodies[1].body.faces.size(), 5156u);  // the lion's surface, kept
+  EXPECT_GE(bodies[0].fixed.size(), 3u);          // the fixed box holds nodes
 }
 
 }  // namespace
