@@ -36,7 +36,7 @@ if "$bin" info --gpu >/dev/null 2>&1; then
     --json "$out/bench_gl.json" --csv "$out/bench_gl.csv" --plot "$out/bench_gl.png"
   echo
   echo "== images of phase 1 (wireframe, colliding faces red and blue) =="
-  "$bin" render scenes/phase1.json --total-frames 150 --frames 30,75,120 --size 960x540 \
+  "$bin" render scenes/phase1.json --frames 150 --at 30,75,120 --size 960x540 --broadphase bvh \
     --out "$out/images"
 else
   echo "(no OpenGL 4.3 here: GL bench and images skipped; the CPU results above stand)"

@@ -1,10 +1,13 @@
 // `deformcd bench SCENE...`: the paper's experiment, each collision method on each backend over
 // the same frames; prints the paper's table and writes JSON, CSV and a chart.
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "bench_plot.h"
@@ -12,7 +15,10 @@
 #include "bench_runner.h"
 #include "commands.h"
 #include "deformcd/io.h"
+#include "option_values.h"
+#include "output_paths.h"
 #include "progress.h"
+#include "usage_error.h"
 
 namespace deformcd::app {
 
@@ -30,59 +36,101 @@ struct BenchArgs {
   std::string plot;
 };
 
-int bench(const BenchArgs& a) {
+// The command line as options for the runner; every mistake is a UsageError, found before any
+// work.
+BenchOptions bench_options(const BenchArgs& a) {
   BenchOptions o;
   for (const std::string& s : a.scenes)
     o.scenes.emplace_back(s);
   for (const std::string& b : a.backends) {
-    const BackendKind kind = parse_backend(b);
-    if (kind == BackendKind::kAuto) throw Error("--backend takes gl and/or cpu, not auto");
-    o.backends.push_back(kind);
+    if (b != "gl" && b != "cpu") {
+      throw UsageError(
+          "--backend takes gl and/or cpu (each is measured and named in the "
+          "results), not '" +
+          b + "'");
+    }
+    o.backends.push_back(parse_backend(b));
   }
+  const std::vector<std::string>& known = broadphase_names();
   for (const std::string& m : a.methods) {
     if (m == "all") {  // the baseline first, then the paper's method, then ours
-      for (const std::string& name : broadphase_names())
+      for (const std::string& name : known)
         o.methods.push_back(parse_broadphase(name));
-    } else {
+    } else if (std::find(known.begin(), known.end(), m) != known.end()) {
       o.methods.push_back(parse_broadphase(m));
+    } else {
+      std::string list;
+      for (const std::string& name : known)
+        list += ", " + name;
+      throw UsageError("--methods: '" + m + "' is not a collision method to compare (valid: all" +
+                       list + ")");
     }
   }
-  if (a.frames < 1) throw Error("--frames must be at least 1");
+  check_at_least("--frames", a.frames, 1);
+  check_at_least("--repeat", a.repeat, 1);
+  check_at_least("--threads", a.threads, 0);
   o.frames = a.frames;
   o.repeat = a.repeat;
   o.cpu_threads = a.threads;
+  return o;
+}
+
+int bench(const BenchArgs& a) {
+  const BenchOptions o = bench_options(a);
+  if (!a.json.empty()) check_output_file("--json", a.json);
+  if (!a.csv.empty()) check_output_file("--csv", a.csv);
+  std::optional<std::filesystem::path> gnuplot;
+  if (!a.plot.empty()) {
+    check_output_file("--plot", a.plot);
+    gnuplot = require_program("--plot", a.plot, "gnuplot",
+                              "Debian: apt-get install gnuplot-nox; scripts/install_deps.sh "
+                              "installs it");
+  }
 
   std::unique_ptr<Progress> bar;
-  const std::vector<SceneBench> results = run_bench(o, [&](long done, long total) {
+  BenchProgress progress;
+  progress.status = [&](const std::string& text) {
+    if (bar) bar->clear();
+    status(text);
+  };
+  progress.frame = [&](long done, long total, const std::string& what) {
     if (!bar) bar = std::make_unique<Progress>("benchmarking", total);
+    bar->set_label(what);
     bar->update(done);
-  });
+  };
+  const std::vector<SceneBench> results = run_bench(o, progress);
   if (bar) bar->done();
 
+  BenchRecord record;
+  record.version = DEFORMCD_VERSION;
+  record.repeat = o.repeat;
+  record.warmup_frames = o.warmup_frames;
+  record.threads =
+      o.cpu_threads > 0 ? o.cpu_threads : static_cast<int>(std::thread::hardware_concurrency());
   print_bench_table(std::cout, results);
   std::cout << "\nTimes: wall clock around each stage after waiting for the backend (glFinish "
                "on GL, no timer queries); warm-up runs excluded"
             << (a.repeat > 1 ? "; the median of the repeats" : "") << ".\n";
   if (!a.json.empty()) {
-    write_file_atomically(a.json, bench_json(results));
+    write_file_atomically(a.json, bench_json(results, record));
     std::cout << "json       " << a.json << '\n';
   }
   if (!a.csv.empty()) {
-    write_file_atomically(a.csv, bench_csv(results));
+    write_file_atomically(a.csv, bench_csv(results, record));
     std::cout << "csv        " << a.csv << '\n';
   }
-  if (!a.plot.empty()) {
-    plot_bench(results, a.plot);
+  if (gnuplot) {
+    plot_bench(results, *gnuplot, a.plot);
     std::cout << "plot       " << a.plot << '\n';
   }
   for (const SceneBench& b : results) {
     if (!b.disagreements.empty()) {
       std::cerr << "deformcd: error: the methods found different contacts on " << b.scene << " ("
                 << b.backend << ")\n";
-      return 1;
+      return kExitFailure;
     }
   }
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace
@@ -95,8 +143,8 @@ Command add_bench_command(CLI::App& app) {
       "experiment)");
   cmd->add_option("scenes", a->scenes, "Scene files (JSON)")->required();
   cmd->add_option("--frames", a->frames,
-                  "Frames per run: the scene's whole trajectory in this many (4500 in the "
-                  "paper)")
+                  "Length of each run in frames: the scene's whole trajectory in this many "
+                  "(4500 in the paper)")
       ->capture_default_str();
   cmd->add_option("--backend", a->backends, "Backends, comma-separated: gl, cpu")
       ->delimiter(',')
@@ -108,7 +156,8 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--repeat", a->repeat, "Runs per measurement; the median is reported")
       ->capture_default_str();
-  cmd->add_option("--threads", a->threads, "CPU backend threads (0: all cores)");
+  cmd->add_option("--threads", a->threads, "CPU backend threads (0: all cores)")
+      ->capture_default_str();
   cmd->add_option("--json", a->json, "Write the results as JSON");
   cmd->add_option("--csv", a->csv, "Write the results as CSV");
   cmd->add_option("--plot", a->plot, "Draw a bar chart (PNG, with gnuplot)");

@@ -1,13 +1,19 @@
 #include "bench_plot.h"
 
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include "deformcd/error.h"
+
+extern char** environ;
 
 namespace deformcd::app {
 
@@ -22,97 +28,130 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
-std::string shell_quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s)
-    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+// Bars of one group sit one unit apart; groups are separated by one empty slot.
+double bar_x(std::size_t group, std::size_t methods, std::size_t method) {
+  return static_cast<double>(group * (methods + 1) + method);
 }
 
-// One row per (scene, backend): label, then simulation and collision seconds per method.
-std::string data_rows(const std::vector<SceneBench>& results) {
-  std::ostringstream out;
-  for (const SceneBench& b : results) {
-    out << '"' << fs::path(b.scene).stem().string() << " (" << b.backend << ")\"";
-    for (const MethodRun& r : b.runs)
-      out << ' ' << r.total_simulation_s() << ' ' << r.total_collision_s();
-    out << '\n';
-  }
-  return out.str();
+std::string group_label(const SceneBench& b) {
+  return fs::path(b.scene).stem().string() + ", " + b.backend + ", " + std::to_string(b.frames) +
+         " frames";
 }
 
-// Each method's bars sit side by side in a group (one group per scene and backend), each bar
-// stacked: simulation below, collision detection above. gnuplot's "rowstacked" histograms do
-// not cluster, so the bars are drawn as boxes at computed x positions.
-std::string script(const std::vector<SceneBench>& results, const fs::path& data,
-                   const fs::path& output) {
-  const std::size_t methods = results.front().runs.size();
-  const double width = 0.8 / static_cast<double>(methods);
-  std::ostringstream s;
-  s << "set terminal pngcairo size 1000,560 noenhanced font 'sans,10'\n"
-    << "set output " << quoted(output.string()) << "\n"
-    << "set title 'Total run time V per method and scene: simulation + collision detection'\n"
-    << "set ylabel 'V (s)'\nset yrange [0:*]\nset grid ytics\nset key top left\n"
-    << "set style fill solid 0.85 border -1\nset boxwidth " << width << "\n"
-    << "set xtics nomirror\nset xrange [-0.6:" << static_cast<double>(results.size()) - 0.4
-    << "]\n";
-  // Per method: a dark colour (collision detection, on top) and a light one (simulation).
-  const char* dark[] = {"#a93226", "#1f618d", "#1e8449", "#6c3483", "#b9770e", "#424949"};
-  const char* light[] = {"#f1948a", "#85c1e9", "#82e0aa", "#c39bd3", "#f8c471", "#aab7b8"};
-  s << "plot " << quoted(data.string()) << " using 0:(NaN):xtic(1) notitle";
-  for (std::size_t m = 0; m < methods; ++m) {
-    const double offset = (static_cast<double>(m) - 0.5 * static_cast<double>(methods - 1)) * width;
-    const std::size_t sim_col = 2 + 2 * m;
-    const std::size_t cd_col = sim_col + 1;
-    const std::string name(broadphase_name(results.front().runs[m].method));
-    // The full height (simulation + collision) in the dark colour, then the simulation part
-    // over it in the light one.
-    s << ", '' using ($0+" << offset << "):($" << sim_col << "+$" << cd_col
-      << ") with boxes lc rgb '" << dark[m % 6] << "' title " << quoted(name + ": collision")
-      << ", '' using ($0+" << offset << "):" << sim_col << " with boxes lc rgb '" << light[m % 6]
-      << "' title " << quoted(name + ": simulation");
-  }
-  s << "\n";
-  return s.str();
-}
-
-void write_text(const fs::path& file, const std::string& text) {
+void write_text(const fs::path& file, const std::string& text, const fs::path& target) {
   std::ofstream out(file);
   out << text;
-  if (!out.flush()) throw Error("cannot write " + file.string());
+  if (!out.flush()) {
+    throw Error("--plot " + target.string() + ": cannot write gnuplot's input " + file.string());
+  }
+}
+
+// A private directory for gnuplot's input, removed with everything in it.
+struct ScratchDirectory {
+  fs::path path;
+  explicit ScratchDirectory(const fs::path& target) {
+    std::string pattern = (fs::temp_directory_path() / "deformcd-plot-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) {
+      throw Error("--plot " + target.string() + ": cannot create a temporary directory in " +
+                  fs::temp_directory_path().string());
+    }
+    path = pattern;
+  }
+  ~ScratchDirectory() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+};
+
+int run_program(const fs::path& program, const fs::path& argument) {
+  std::string arg0 = program.string();
+  std::string arg1 = argument.string();
+  char* argv[] = {arg0.data(), arg1.data(), nullptr};
+  pid_t pid = 0;
+  if (posix_spawn(&pid, arg0.c_str(), nullptr, nullptr, argv, environ) != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 }  // namespace
 
-void plot_bench(const std::vector<SceneBench>& results, const fs::path& file) {
-  if (results.empty()) throw Error("nothing to plot");
-  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  const std::string stem = "." + file.filename().string() + ".tmp-" + std::to_string(getpid());
-  const fs::path data = dir / (stem + ".dat");
-  const fs::path commands = dir / (stem + ".gp");
-  const fs::path image = dir / (stem + ".png");
-  struct Cleanup {
-    std::vector<fs::path> files;
-    ~Cleanup() {
-      std::error_code ignored;
-      for (const fs::path& f : files)
-        fs::remove(f, ignored);
+std::string bench_plot_data(const std::vector<SceneBench>& results) {
+  std::ostringstream out;
+  out.precision(9);
+  const std::size_t methods = results.front().runs.size();
+  for (std::size_t g = 0; g < results.size(); ++g) {
+    for (std::size_t m = 0; m < results[g].runs.size(); ++m) {
+      const MethodRun& r = results[g].runs[m];
+      out << bar_x(g, methods, m) << ' ' << r.total_simulation_s() << ' ' << r.total_collision_s()
+          << ' ' << r.total_s() << " \"" << broadphase_name(r.method) << "\"\n";
     }
-  } cleanup{{data, commands, image}};
-  write_text(data, data_rows(results));
-  write_text(commands, script(results, data, image));
-  const std::string command = "gnuplot " + shell_quoted(commands.string()) + " 2>&1";
-  const int status = std::system(command.c_str());
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    const bool missing = WIFEXITED(status) && WEXITSTATUS(status) == 127;
-    throw Error("cannot draw " + file.string() + ": " +
-                (missing ? std::string("gnuplot is not installed (Debian: apt-get install "
-                                       "gnuplot-nox; scripts/install_deps.sh installs it)")
-                         : std::string("gnuplot failed (see its message above)")));
   }
+  return out.str();
+}
+
+std::string bench_plot_script(const std::vector<SceneBench>& results, const fs::path& data,
+                              const fs::path& image) {
+  const std::size_t methods = results.front().runs.size();
+  const double width = static_cast<double>(results.size() * (methods + 1));
+  std::ostringstream s;
+  const int pixels = std::max(640, std::min(1600, static_cast<int>(110 * width)));
+  s << "set terminal pngcairo size " << pixels << ",600 noenhanced font 'sans,12'\n"
+    << "set output " << quoted(image.string()) << "\n"
+    << "set title 'Total run time V per collision method (simulation + collision detection)'\n"
+    << "set ylabel 'V (s)'\nset yrange [0:*]\nset offsets 0, 0, graph 0.16, 0\n"
+    << "set grid ytics\nset border 3\nset tics nomirror\n"
+    << "set key outside bottom center horizontal samplen 2 width 2\n"
+    << "set style fill solid 0.9 border rgb '#333333'\nset boxwidth 0.7\n"
+    << "set xrange [-0.75:" << width - 1.25 << "]\n"
+    << "set bmargin 6\n";
+  // Each group's name under its methods' names.
+  for (std::size_t g = 0; g < results.size(); ++g) {
+    const double centre = bar_x(g, methods, 0) + 0.5 * static_cast<double>(methods - 1);
+    s << "set label " << g + 1 << " " << quoted(group_label(results[g])) << " at " << centre
+      << ", graph 0 center offset 0,-2.6 font 'sans,12:Bold'\n";
+  }
+  // The full height (simulation + collision) in red, the simulation part over it in grey, then
+  // the total and the collision time above each bar.
+  s << "plot " << quoted(data.string())
+    << " using 1:4:xtic(5) with boxes lc rgb '#c0392b' title 'collision detection', \\\n"
+    << "  '' using 1:2 with boxes lc rgb '#b3b6b7' title 'simulation', \\\n"
+    << "  '' using 1:4:(sprintf('%.3g s\\nCD %.3g s', $4, $3)) with labels center offset 0,1.6 "
+       "font 'sans,10' "
+       "notitle\n";
+  return s.str();
+}
+
+void plot_bench(const std::vector<SceneBench>& results, const fs::path& gnuplot,
+                const fs::path& file) {
+  if (results.empty()) throw Error("--plot " + file.string() + ": nothing to plot");
+  const ScratchDirectory scratch(file);
+  const fs::path data = scratch.path / "bench.dat";
+  const fs::path commands = scratch.path / "bench.gp";
+  // Next to the target, so that the rename into place is atomic.
+  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  const fs::path image =
+      dir / ("." + file.filename().string() + ".partial-" + std::to_string(getpid()) + ".png");
+  write_text(data, bench_plot_data(results), file);
+  write_text(commands, bench_plot_script(results, data, image), file);
+  const int status = run_program(gnuplot, commands);
   std::error_code ec;
+  if (status != 0) {
+    fs::remove(image, ec);
+    throw Error("--plot " + file.string() + ": gnuplot (" + gnuplot.string() + ") failed" +
+                (status > 0 ? " with exit status " + std::to_string(status) : std::string()) +
+                "; its message is above");
+  }
   fs::rename(image, file, ec);
-  if (ec) throw Error("cannot write " + file.string() + ": " + ec.message());
+  if (ec) {
+    const std::string why = ec.message();
+    fs::remove(image, ec);
+    throw Error("--plot " + file.string() + ": cannot move the chart into place: " + why);
+  }
 }
 
 }  // namespace deformcd::app

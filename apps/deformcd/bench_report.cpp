@@ -17,6 +17,26 @@ nlohmann::json per_stage(const std::array<double, 3>& values) {
   return j;
 }
 
+nlohmann::json milliseconds(const std::vector<double>& seconds) {
+  nlohmann::json j = nlohmann::json::array();
+  for (double s : seconds)
+    j.push_back(1e3 * s);
+  return j;
+}
+
+// RFC 4180: quoted when it holds a comma, a quote or a line break (a GL device string does).
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text)
+    out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::uint64_t candidates(const MethodRun& r) {
+  return std::accumulate(r.candidates.begin(), r.candidates.end(), std::uint64_t{0});
+}
+
 }  // namespace
 
 void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results) {
@@ -73,7 +93,7 @@ void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results
   }
 }
 
-std::string bench_json(const std::vector<SceneBench>& results) {
+std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord& record) {
   nlohmann::json scenes = nlohmann::json::array();
   for (const SceneBench& b : results) {
     nlohmann::json methods = nlohmann::json::object();
@@ -94,8 +114,12 @@ std::string bench_json(const std::vector<SceneBench>& results) {
                        {"collision_ms_per_frame", per_stage(t.collision_ms_per_frame)},
                        {"frames_per_stage", frames_per_stage},
                        {"pairs", r.pairs()},
-                       {"candidates", std::accumulate(r.candidates.begin(), r.candidates.end(),
-                                                      std::uint64_t{0})}};
+                       {"candidates", candidates(r)},
+                       {"per_frame",
+                        {{"simulation_ms", milliseconds(r.simulation_s)},
+                         {"collision_ms", milliseconds(r.collision_s)},
+                         {"contacts", r.contacts},
+                         {"candidates", r.candidates}}}};
       if (&r == &base) continue;
       improvements[name] = improvement(base.total_s(), r.total_s());
       speedups[name] = base.total_s() / r.total_s();
@@ -112,26 +136,35 @@ std::string bench_json(const std::vector<SceneBench>& results) {
                       {"collision_speedup", collision_speedups},
                       {"methods_agree", b.disagreements.empty()}});
   }
-  return nlohmann::json{{"scenes", scenes}}.dump(2) + "\n";
+  return nlohmann::json{{"deformcd_version", record.version},
+                        {"repeat", record.repeat},
+                        {"warmup_frames", record.warmup_frames},
+                        {"threads", record.threads},
+                        {"scenes", scenes}}
+             .dump(2) +
+         "\n";
 }
 
-std::string bench_csv(const std::vector<SceneBench>& results) {
+std::string bench_csv(const std::vector<SceneBench>& results, const BenchRecord& record) {
   std::ostringstream out;
-  out << "scene,backend,method,frames,total_s,simulation_s,collision_s,"
+  out << "scene,backend,device,method,frames,repeat,threads,total_s,simulation_s,collision_s,"
          "ms_before,ms_contact,ms_after,cd_ms_before,cd_ms_contact,cd_ms_after,pairs,"
-         "improvement\n";
+         "candidates,improvement,deformcd_version\n";
   out << std::setprecision(9);
   for (const SceneBench& b : results) {
     const MethodRun& base = b.runs.front();
     for (const MethodRun& r : b.runs) {
       const StageTimes t = stage_times(r, b.stages);
-      out << b.scene << ',' << b.backend << ',' << broadphase_name(r.method) << ',' << b.frames
-          << ',' << r.total_s() << ',' << r.total_simulation_s() << ',' << r.total_collision_s();
+      out << csv_field(b.scene) << ',' << b.backend << ',' << csv_field(b.device) << ','
+          << broadphase_name(r.method) << ',' << b.frames << ',' << record.repeat << ','
+          << record.threads << ',' << r.total_s() << ',' << r.total_simulation_s() << ','
+          << r.total_collision_s();
       for (double v : t.ms_per_frame)
         out << ',' << v;
       for (double v : t.collision_ms_per_frame)
         out << ',' << v;
-      out << ',' << r.pairs() << ',' << improvement(base.total_s(), r.total_s()) << '\n';
+      out << ',' << r.pairs() << ',' << candidates(r) << ','
+          << improvement(base.total_s(), r.total_s()) << ',' << record.version << '\n';
     }
   }
   return out.str();

@@ -19,13 +19,27 @@ namespace deformcd::app {
 /// is the baseline) and the detail per method.
 void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results);
 
-/// {"scenes":[{"scene":..,"backend":..,"device":..,"frames":..,"methods":{"brute":{"total_s":..,
-/// "simulation_s":..,"collision_s":..,"ms_per_frame":{"before":..,"contact":..,"after":..},
-/// "collision_ms_per_frame":{...},"frames_per_stage":{...},"pairs":..},...},
-/// "improvement":{"octree":..},"speedup":{"octree":..},"collision_speedup":{...}},...]}
-[[nodiscard]] std::string bench_json(const std::vector<SceneBench>& results);
+/// How the measurements were made, recorded with them.
+struct BenchRecord {
+  std::string version;    ///< deformcd's
+  int repeat = 1;         ///< runs per measurement (the median is kept)
+  int warmup_frames = 0;  ///< of the discarded run before each measurement
+  int threads = 0;        ///< CPU backend threads
+};
 
-/// One row per scene, backend and method.
-[[nodiscard]] std::string bench_csv(const std::vector<SceneBench>& results);
+/// {"deformcd_version":..,"repeat":..,"warmup_frames":..,"threads":..,
+///  "scenes":[{"scene":..,"backend":..,"device":..,"frames":..,"baseline":..,
+///  "methods":{"brute":{"total_s":..,"simulation_s":..,"collision_s":..,
+///  "ms_per_frame":{"before":..,"contact":..,"after":..},"collision_ms_per_frame":{...},
+///  "frames_per_stage":{...},"pairs":..,"candidates":..,"per_frame":{"simulation_ms":[..],
+///  "collision_ms":[..],"contacts":[..],"candidates":[..]}},...},
+///  "improvement":{"octree":..},"speedup":{"octree":..},"collision_speedup":{...},
+///  "methods_agree":..},...]}
+[[nodiscard]] std::string bench_json(const std::vector<SceneBench>& results,
+                                     const BenchRecord& record);
+
+/// A header, then one row per scene, backend and method.
+[[nodiscard]] std::string bench_csv(const std::vector<SceneBench>& results,
+                                    const BenchRecord& record);
 
 }  // namespace deformcd::app

@@ -88,19 +88,22 @@ std::vector<SceneBench> run_bench(const BenchOptions& o, const BenchProgress& pr
   long total = 0;
   std::vector<Scene> scenes;
   for (const auto& file : o.scenes) {
+    progress.status("reading " + file.string());
     scenes.push_back(read_scene(file));
     const int frames = o.frames > 0 ? o.frames : scenes.back().settings.frames;
     total += static_cast<long>(frames) * o.repeat * static_cast<long>(o.methods.size()) *
              static_cast<long>(o.backends.size());
   }
   long done = 0;
-  const auto frame_done = [&] { progress(++done, total); };
+  std::string what;
+  const auto frame_done = [&] { progress.frame(++done, total, what); };
 
   std::vector<SceneBench> results;
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     const Scene& scene = scenes[s];
     const int frames = o.frames > 0 ? o.frames : scene.settings.frames;
-    const std::vector<BodyInit> bodies = make_scene_bodies(scene, load_model_argument, frames);
+    progress.status("building the bodies of " + o.scenes[s].string());
+    const std::vector<BodyInit> bodies = make_scene_bodies(scene, load_scene_model, frames);
     const StepSettings settings = step_settings(scene.settings);
     for (BackendKind backend : o.backends) {
       SceneBench bench;
@@ -112,6 +115,8 @@ std::vector<SceneBench> run_bench(const BenchOptions& o, const BenchProgress& pr
       world_options.cpu_threads = o.cpu_threads;
       world_options.self_collision = scene.collision.self;
       for (BroadPhase method : o.methods) {
+        what = o.scenes[s].filename().string() + " " + bench.backend + " " +
+               std::string(broadphase_name(method));
         // Warm-up: shader compilation on first dispatch, caches, thread pools.
         (void)measure(
             bodies, settings, world_options, method, std::min(o.warmup_frames, frames), [] {},

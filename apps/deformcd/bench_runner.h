@@ -67,8 +67,15 @@ struct BenchOptions {
   int cpu_threads = 0;
 };
 
-/// Called after each measured frame: (frames done, frames in all runs).
-using BenchProgress = std::function<void(long done, long total)>;
+/// What run_bench reports as it goes.
+struct BenchProgress {
+  /// Before a step that takes time outside the measured frames ("reading a.json").
+  std::function<void(const std::string& text)> status = [](const std::string&) {};
+  /// After each measured frame: frames done and frames in all runs, and what is measured
+  /// ("phase1.json cpu bvh").
+  std::function<void(long done, long total, const std::string& what)> frame =
+      [](long, long, const std::string&) {};
+};
 
 /// Runs everything. Throws Error/GlError (e.g. kGl without GL 4.3, naming the scene).
 [[nodiscard]] std::vector<SceneBench> run_bench(const BenchOptions& options,

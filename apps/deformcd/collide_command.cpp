@@ -1,8 +1,6 @@
 // `deformcd collide A.off B.stl ...`: the intersecting triangle pairs of surface files in their
 // poses, through the public Detector (no simulation, no TetGen): open surfaces welcome.
 
-#include <unistd.h>
-
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
@@ -15,6 +13,7 @@
 #include "deformcd/detector.h"
 #include "deformcd/error.h"
 #include "deformcd/io.h"
+#include "output_paths.h"
 
 namespace deformcd::app {
 
@@ -28,23 +27,6 @@ struct CollideOptions {
   std::string json_out;
   int threads = 0;
 };
-
-// Before any work: the file's directory must exist and be writable.
-void check_output_file(const std::filesystem::path& file, const std::string& option) {
-  const std::filesystem::path dir =
-      file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
-  if (!std::filesystem::is_directory(dir)) {
-    throw Error(option + " " + file.string() + ": the directory " + dir.string() +
-                " does not exist");
-  }
-  if (std::filesystem::is_directory(file)) {
-    throw Error(option + " " + file.string() + ": is a directory");
-  }
-  if (::access(dir.c_str(), W_OK) != 0) {
-    throw Error(option + " " + file.string() + ": the directory " + dir.string() +
-                " is not writable");
-  }
-}
 
 // A surface file as a detector mesh, with its positions in float.
 struct LoadedSurface {
@@ -73,7 +55,7 @@ int run_collide(const CollideOptions& o) {
   const BackendKind backend = parse_backend(o.backend);
   const BroadPhase method = parse_broadphase(o.broadphase);
   if (method == BroadPhase::kNone) throw Error("collide needs a broad phase other than 'none'");
-  if (!o.json_out.empty()) check_output_file(o.json_out, "--json");
+  if (!o.json_out.empty()) check_output_file("--json", o.json_out);
 
   std::vector<LoadedSurface> surfaces;
   std::vector<CollisionMesh> meshes;

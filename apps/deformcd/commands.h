@@ -16,25 +16,24 @@ Command add_info_command(CLI::App& app);
 /// `deformcd tetra IN -o PREFIX [--quality Q] [--max-volume V] [--preserve-surface]`.
 Command add_tetra_command(CLI::App& app);
 
-/// `deformcd run SCENE [--frames N] [--backend gl|cpu|auto] [--broadphase none|brute|octree]
-/// [--contacts FILE] [--positions-out FILE]`.
+/// `deformcd run SCENE [--frames N] [--backend auto|gl|cpu] [--threads T] [--broadphase METHOD]
+/// [--contacts FILE] [--positions FILE [--every-frame]]`.
 Command add_run_command(CLI::App& app);
 
 /// `deformcd collide A.off B.stl ... [--self] [--backend gl|cpu|auto] [--broadphase METHOD]
 /// [--threads T] [--json FILE]`.
 Command add_collide_command(CLI::App& app);
 
-/// `deformcd bench SCENE... [--frames N] [--backend gl,cpu] [--methods brute,octree]
-/// [--repeat R] [--json FILE] [--csv FILE] [--plot FILE.png]`.
+/// `deformcd bench SCENE... [--frames N] [--backend gl,cpu] [--methods all|M1,M2,...]
+/// [--repeat R] [--threads T] [--json FILE] [--csv FILE] [--plot FILE.png]`.
 Command add_bench_command(CLI::App& app);
 
 #ifdef DEFORMCD_HAS_RENDER
-/// `deformcd render SCENE (--frames K1,K2,... | --every-frame) --out DIR [--size WxH]
-/// [--broadphase METHOD] [--shaded] [--backend gl] [--total-frames N] [--video FILE]`.
+/// `deformcd render SCENE (--at K1,K2,... | --every-frame | --video FILE) -o DIR [--frames N]
+/// [--size WxH] [--broadphase METHOD] [--shaded] [--backend gl]`.
 Command add_render_command(CLI::App& app);
 
-/// `deformcd view SCENE [--frames N [--screenshot FILE]] [--broadphase none|METHOD]
-/// [--total-frames N]`.
+/// `deformcd view SCENE [--frames N] [--broadphase METHOD] [--quit-after K] [--screenshot FILE]`.
 Command add_view_command(CLI::App& app);
 #endif
 

@@ -77,7 +77,8 @@ Command add_info_command(CLI::App& app) {
       "Print a model's statistics (nodes, tetrahedra, surface faces, springs, bounds), "
       "or the GPU's with --gpu");
   cmd->add_option("model", o->model,
-                  "TetGen prefix (PREFIX.node/.ele) or surface file (.off .obj .stl .ply)");
+                  "TetGen prefix (PREFIX.node/.ele) or surface file (.off .obj .stl .ply), meshed "
+                  "as a scene meshes it by default (TetGen -pq2Y)");
   cmd->add_flag("--gpu", o->gpu, "Describe the OpenGL device and its compute limits");
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->add_flag("--merge-edges", o->merge_edges,

@@ -19,7 +19,10 @@
 #include "deformcd/render/offscreen_target.h"
 #include "deformcd/render/scene_renderer.h"
 #include "deformcd/world.h"
+#include "option_values.h"
+#include "output_paths.h"
 #include "progress.h"
+#include "usage_error.h"
 #include "video_encoder.h"
 #include "view_scene.h"
 
@@ -31,14 +34,14 @@ namespace fs = std::filesystem;
 
 struct RenderOptions {
   std::string scene;
-  std::vector<int> frames;
+  std::vector<int> at;  // the frames to write
   std::string out;
   std::string size = "1280x720";
   std::optional<std::string> broadphase;
   bool shaded = false;
   bool every_frame = false;
   std::string backend = "gl";
-  std::optional<int> total_frames;
+  std::optional<int> frames;  // the run's length
   std::string video;
 };
 
@@ -54,7 +57,7 @@ ImageSize parse_size(const std::string& text) {
   if (std::sscanf(text.c_str(), "%d%c%d%c", &size.width, &x, &size.height, &extra) != 3 ||
       (x != 'x' && x != 'X') || size.width < 1 || size.height < 1 || size.width > 16384 ||
       size.height > 16384) {
-    throw Error("--size '" + text + "': expected WIDTHxHEIGHT in pixels, e.g. 1280x720");
+    throw UsageError("--size '" + text + "': expected WIDTHxHEIGHT in pixels, e.g. 1280x720");
   }
   return size;
 }
@@ -67,33 +70,15 @@ std::vector<int> chosen_frames(const RenderOptions& o, int total_frames) {
       all[static_cast<std::size_t>(f)] = f;
     return all;
   }
-  const std::set<int> unique(o.frames.begin(), o.frames.end());
+  const std::set<int> unique(o.at.begin(), o.at.end());
   for (int f : unique) {
     if (f < 0 || f > total_frames) {
-      throw Error("--frames: frame " + std::to_string(f) + " is outside the run (0 to " +
-                  std::to_string(total_frames) + "; frame 0 is the initial pose; see " +
-                  "--total-frames)");
+      throw UsageError("--at: frame " + std::to_string(f) + " is outside the run (0 to " +
+                       std::to_string(total_frames) + "; frame 0 is the initial pose; --frames " +
+                       "sets the run's length)");
     }
   }
   return {unique.begin(), unique.end()};
-}
-
-// A file in the way is reported before the (long) run; the directory is created after it.
-void check_output_directory(const fs::path& dir) {
-  std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
-    throw Error("--out " + dir.string() +
-                ": cannot create the output directory (a file of that name is in the way)");
-  }
-}
-
-void create_output_directory(const fs::path& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) {
-    throw Error("--out " + dir.string() + ": cannot create the output directory (" +
-                (ec ? ec.message() : std::string("a file of that name is in the way")) + ")");
-  }
 }
 
 std::string image_name(int frame) {
@@ -114,36 +99,30 @@ std::unique_ptr<gl::Context> headless_context() {
 
 int render(const RenderOptions& o) {
   // Everything that can be checked without the scene is checked first, so mistakes fail fast.
-  if (o.backend == "cpu") {
-    throw Error(
-        "deformcd render draws the world from its OpenGL buffers, so it runs on the GL "
-        "backend only (--backend gl); the CPU backend has no buffers to draw");
+  if (o.at.empty() && !o.every_frame && o.video.empty()) {
+    throw UsageError("say which frames to write: --at K1,K2,... or --every-frame");
   }
-  if (o.frames.empty() && !o.every_frame && o.video.empty()) {
-    throw Error("say which frames to write: --frames K1,K2,... or --every-frame");
+  if (!o.at.empty() && (o.every_frame || !o.video.empty())) {
+    throw UsageError(o.every_frame ? "--at and --every-frame exclude each other"
+                                   : "--video encodes every frame; give it without --at");
   }
-  if (!o.frames.empty() && (o.every_frame || !o.video.empty())) {
-    throw Error(o.every_frame ? "--frames and --every-frame exclude each other"
-                              : "--video encodes every frame; give it without --frames");
-  }
+  if (o.frames) check_at_least("--frames", *o.frames, 1);
   const ImageSize size = parse_size(o.size);
+  check_output_directory("--out", o.out);
   std::optional<fs::path> ffmpeg;
   if (!o.video.empty()) {
-    ffmpeg = find_on_path("ffmpeg");
-    if (!ffmpeg) {
-      throw Error("--video " + o.video +
-                  ": encoding needs ffmpeg, and there is none on PATH. Install ffmpeg, or "
-                  "write the frames with --every-frame and encode " +
-                  o.out + "/frame_%05d.png with another tool");
-    }
+    check_output_file("--video", o.video);
+    ffmpeg = require_program("--video", o.video, "ffmpeg",
+                             "install ffmpeg, or write the frames with --every-frame and encode " +
+                                 o.out + "/frame_%05d.png with another tool");
   }
   const fs::path out_dir(o.out);
-  check_output_directory(out_dir);
 
-  const ViewScene view = load_view_scene(o.scene, o.total_frames);
+  const ViewScene view = load_view_scene(o.scene, o.frames);
   const std::vector<int> frames = chosen_frames(o, view.total_frames);
   const BroadPhase broadphase = view_broadphase(o.broadphase, view.scene);
 
+  status("starting OpenGL");
   const std::unique_ptr<gl::Context> context = headless_context();
   WorldOptions options;
   options.backend = BackendKind::kGl;
@@ -161,9 +140,10 @@ int render(const RenderOptions& o) {
   render::DrawOptions draw;
   draw.mode = o.shaded ? render::RenderMode::kShaded : render::RenderMode::kWireframe;
   draw.show_collisions = broadphase != BroadPhase::kNone;
-  create_output_directory(out_dir);
+  create_output_directory("--out", o.out);
 
   Progress progress("rendering", frames.back());
+  progress.update(0);
   for (int frame : frames) {
     while (world.frame() < frame) {
       world.step();
@@ -180,7 +160,7 @@ int render(const RenderOptions& o) {
     renderer.draw(camera, size.width, size.height, draw);
     const fs::path file = out_dir / image_name(frame);
     render::write_png(file, target.read());
-    progress.done();
+    progress.clear();
     std::cout << file.string() << "  frame " << frame << "  " << contacts << " contacts"
               << std::endl;
   }
@@ -199,22 +179,28 @@ Command add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "render", "Run a scene headless on OpenGL and write PNG images of chosen frames");
   cmd->add_option("scene", o->scene, "Scene file (JSON)")->required();
-  cmd->add_option("--frames", o->frames,
+  add_frames_option(cmd, o->frames);
+  cmd->add_option("--at", o->at,
                   "Frames to write, comma-separated (0 = the initial pose), e.g. 0,100,200")
       ->delimiter(',');
-  cmd->add_option("--out", o->out, "Directory for the images (created): DIR/frame_00042.png")
+  cmd->add_flag("--every-frame", o->every_frame, "Write every frame of the run, 0..N");
+  cmd->add_option("-o,--out", o->out, "Directory for the images (created): DIR/frame_00042.png")
       ->required();
-  cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default 1280x720)");
-  cmd->add_option("--broadphase", o->broadphase,
-                  "Collision broad phase: brute, octree... (default: the scene's)")
-      ->check(CLI::IsMember(broadphase_names()));
+  cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  add_broadphase_option(cmd, o->broadphase, true);
   cmd->add_flag("--shaded", o->shaded,
                 "Lit faces instead of the paper's wireframe (colliding faces coloured alike)");
-  cmd->add_flag("--every-frame", o->every_frame, "Write every frame of the run");
-  cmd->add_option("--backend", o->backend, "gl (images are drawn from the GL buffers)")
-      ->check(CLI::IsMember({"gl", "auto", "cpu"}));
-  cmd->add_option("--total-frames", o->total_frames,
-                  "Length of the run (default: the scene's frames); paths span it");
+  cmd->add_option("--backend", o->backend,
+                  "gl, the only one: the images are drawn from the simulation's GL buffers")
+      ->check(CLI::Validator(
+          [](std::string& name) -> std::string {
+            if (name == "gl") return {};
+            return "render draws the world from its OpenGL buffers, so it runs on the GL "
+                   "backend only; the " +
+                   name + " backend has no buffers to draw";
+          },
+          "gl"))
+      ->capture_default_str();
   cmd->add_option("--video", o->video,
                   "Also encode every frame into this video (needs ffmpeg on PATH)");
   return [o]() { return render(*o); };

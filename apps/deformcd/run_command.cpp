@@ -18,7 +18,10 @@
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
 #include "model_input.h"
+#include "option_values.h"
+#include "output_paths.h"
 #include "progress.h"
+#include "usage_error.h"
 
 namespace deformcd::app {
 
@@ -29,6 +32,7 @@ struct RunOptions {
   std::optional<int> frames;
   std::string backend = "auto";
   std::string positions_out;
+  bool every_frame = false;
   std::optional<std::string> broadphase;
   std::string contacts_out;
   int threads = 0;
@@ -52,7 +56,8 @@ struct ContactTally {
   }
 };
 
-std::string positions_json(const World& world) {
+// One line: {"frame":k,"bodies":[{"name":...,"positions":[[x,y,z],...]},...]}.
+std::string positions_json_line(const World& world) {
   nlohmann::json bodies = nlohmann::json::array();
   for (std::size_t b = 0; b < world.body_count(); ++b) {
     nlohmann::json positions = nlohmann::json::array();
@@ -63,29 +68,54 @@ std::string positions_json(const World& world) {
   return nlohmann::json{{"frame", world.frame()}, {"bodies", std::move(bodies)}}.dump() + "\n";
 }
 
+// Everything about the command line that can be checked without reading the scene.
+void check_options(const RunOptions& o) {
+  if (o.frames) check_at_least("--frames", *o.frames, 1);
+  check_at_least("--threads", o.threads, 0);
+  if (o.every_frame && o.positions_out.empty()) {
+    throw UsageError("--every-frame writes the positions of every frame: give --positions FILE");
+  }
+  if (!o.contacts_out.empty() && o.broadphase == "none") {
+    throw UsageError("--contacts needs a broad phase, not 'none'");
+  }
+  if (!o.contacts_out.empty()) check_output_file("--contacts", o.contacts_out);
+  if (!o.positions_out.empty()) check_output_file("--positions", o.positions_out);
+}
+
 int run(const RunOptions& o) {
+  check_options(o);
+  status("reading " + o.scene);
   const Scene scene = read_scene(o.scene);
   const int frames = o.frames.value_or(scene.settings.frames);
-  if (frames < 1) throw Error("--frames must be at least 1");
   WorldOptions options;
   options.backend = parse_backend(o.backend);
   options.cpu_threads = o.threads;
   options.broadphase = parse_broadphase(o.broadphase.value_or(scene.collision.broadphase));
   if (!o.contacts_out.empty() && options.broadphase == BroadPhase::kNone) {
-    throw Error("--contacts needs a broad phase (brute or octree), not 'none'");
+    throw UsageError(o.scene +
+                     " sets collision.broadphase 'none': give --broadphase with "
+                     "--contacts");
   }
   options.self_collision = scene.collision.self;
-  World world(make_scene_bodies(scene, load_model_argument, frames), step_settings(scene.settings),
-              options);
+  status("building " + count_of(scene.bodies.size(), "body", "bodies"));
+  std::vector<BodyInit> bodies = make_scene_bodies(scene, load_scene_model, frames);
+  status("starting the " + o.backend + " backend");
+  World world(bodies, step_settings(scene.settings), options);
+  bodies.clear();
   if (!world.notice().empty()) std::cerr << "deformcd: " << world.notice() << '\n';
 
   // Opened before the run, so that a bad path fails at once; renamed into place at the end.
   std::optional<StreamedFileWriter> contacts_file;
   if (!o.contacts_out.empty()) contacts_file.emplace(o.contacts_out);
+  std::optional<StreamedFileWriter> positions_file;
+  if (!o.positions_out.empty()) positions_file.emplace(o.positions_out);
   const bool detecting = options.broadphase != BroadPhase::kNone;
   ContactTally tally;
   // Frame 0 is the initial pose; frame k the state after k steps.
-  const auto record_contacts = [&] {
+  const auto record_frame = [&] {
+    if (positions_file && (o.every_frame || world.frame() == frames)) {
+      positions_file->append(positions_json_line(world));
+    }
     if (!detecting) return;
     if (contacts_file) {
       const std::vector<Contact> contacts = world.contacts();
@@ -97,28 +127,29 @@ int run(const RunOptions& o) {
   };
 
   using Clock = std::chrono::steady_clock;
-  Progress progress("simulating", frames);
   if (detecting) world.detect_collisions();
-  record_contacts();
+  record_frame();
   world.finish();
   const auto start = Clock::now();
+  Progress progress("simulating", frames);
+  progress.update(0);
   for (int f = 0; f < frames; ++f) {
     world.step();
-    record_contacts();
+    record_frame();
     progress.update(f + 1);
   }
   world.finish();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   progress.done();
 
-  if (!o.positions_out.empty()) write_file_atomically(o.positions_out, positions_json(world));
+  if (positions_file) positions_file->commit();
   if (contacts_file) contacts_file->commit();
 
   std::size_t nodes = 0;
   for (std::size_t b = 0; b < world.body_count(); ++b)
     nodes += world.object(b).node_count;
-  std::cout << "scene      " << o.scene << " (" << world.body_count() << " bodies, " << nodes
-            << " nodes)\n"
+  std::cout << "scene      " << o.scene << " (" << count_of(world.body_count(), "body", "bodies")
+            << ", " << count_of(nodes, "node", "nodes") << ")\n"
             << "backend    " << world.backend_name() << " (" << world.device() << ")\n"
             << "frames     " << frames << " x " << scene.settings.substeps << " substeps, dt "
             << scene.settings.dt << " s (substep " << scene.settings.dt / scene.settings.substeps
@@ -128,14 +159,20 @@ int run(const RunOptions& o) {
             << (detecting ? " (simulation and collision detection)" : "") << '\n';
   if (detecting) {
     std::cout << "collision  " << broadphase_name(options.broadphase) << ": "
-              << tally.frames_in_contact << " frames in contact";
+              << count_of(tally.frames_in_contact, "frame", "frames") << " in contact";
     if (tally.frames_in_contact > 0) {
-      std::cout << " (" << tally.first_frame << "-" << tally.last_frame << "), " << tally.total
-                << " face pairs in all, at most " << tally.peak << " in a frame";
+      std::cout << " (" << tally.first_frame << "-" << tally.last_frame << "), "
+                << count_of(tally.total, "face pair", "face pairs") << " in all, at most "
+                << tally.peak << " in a frame";
     }
     std::cout << '\n';
   }
-  if (!o.positions_out.empty()) std::cout << "positions  " << o.positions_out << '\n';
+  if (!o.positions_out.empty()) {
+    std::cout << "positions  " << o.positions_out
+              << (o.every_frame ? " (frames 0.." + std::to_string(frames) + ")"
+                                : " (frame " + std::to_string(frames) + ")")
+              << '\n';
+  }
   if (!o.contacts_out.empty()) std::cout << "contacts   " << o.contacts_out << '\n';
   return 0;
 }
@@ -146,18 +183,19 @@ Command add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Simulate a scene headless and print a summary");
   cmd->add_option("scene", o->scene, "Scene file (JSON)")->required();
-  cmd->add_option("--frames", o->frames,
-                  "Frames to run (default: the scene's); paths span exactly this many frames");
-  cmd->add_option("--backend", o->backend, "gl, cpu, or auto (GL when available)")
-      ->check(CLI::IsMember({"auto", "gl", "cpu"}));
-  cmd->add_option("--threads", o->threads, "CPU backend threads (0: all cores)");
-  cmd->add_option(
-      "--broadphase", o->broadphase,
-      "Collision broad phase: none, brute, octree, octree-compact or bvh (default: the scene's)");
+  add_frames_option(cmd, o->frames);
+  cmd->add_option("--backend", o->backend, "auto (the library chooses GL or the CPU), gl or cpu")
+      ->check(CLI::IsMember({"auto", "gl", "cpu"}))
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "CPU backend threads (0: all cores)")
+      ->capture_default_str();
+  add_broadphase_option(cmd, o->broadphase, true);
   cmd->add_option("--contacts", o->contacts_out,
                   "Write each frame's intersecting face pairs (JSON Lines, frames 0..N)");
-  cmd->add_option("--positions-out", o->positions_out,
-                  "Write the final node positions of every body (JSON)");
+  cmd->add_option("--positions", o->positions_out,
+                  "Write the node positions of every body at the last frame (JSON)");
+  cmd->add_flag("--every-frame", o->every_frame,
+                "With --positions: every frame's positions, frames 0..N (JSON Lines)");
   return [o]() { return run(*o); };
 }
 

@@ -9,6 +9,7 @@
 #include "deformcd/body.h"
 #include "deformcd/error.h"
 #include "deformcd/io.h"
+#include "output_paths.h"
 #ifdef DEFORMCD_HAS_TETGEN
 #include "deformcd/tetrahedralize.h"
 #endif
@@ -32,7 +33,8 @@ Command add_tetra_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "tetra", "Tetrahedralize a closed surface with TetGen; writes PREFIX.node/.ele/.face");
   cmd->add_option("input", o->input, "Surface mesh (.off .obj .stl .ply)")->required();
-  cmd->add_option("-o,--output", o->output, "Output prefix")->required();
+  cmd->add_option("-o,--out", o->output, "Output prefix: writes PREFIX.node/.ele/.face")
+      ->required();
   cmd->add_option("--quality", o->quality,
                   "Radius-edge ratio bound (TetGen -q; >= 1, smaller is finer; TetGen's "
                   "default 2.0)");
@@ -42,6 +44,8 @@ Command add_tetra_command(CLI::App& app) {
                 "input order, boundary faces are the input triangles");
   return [o]() -> int {
 #ifdef DEFORMCD_HAS_TETGEN
+    for (const char* extension : {".node", ".ele", ".face"})
+      check_output_file("--out", o->output + extension);
     const SurfaceMesh surface = read_surface(o->input);
     TetrahedralizeOptions options;
     options.quality = o->quality;

@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdlib>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -18,22 +17,6 @@ extern char** environ;
 namespace deformcd::app {
 
 namespace fs = std::filesystem;
-
-std::optional<fs::path> find_on_path(std::string_view name) {
-  const char* path = std::getenv("PATH");
-  if (path == nullptr) return std::nullopt;
-  std::istringstream dirs(path);
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    if (dir.empty()) continue;  // POSIX says "the current directory"; we do not search it
-    const fs::path candidate = fs::path(dir) / name;
-    std::error_code ec;
-    if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) {
-      return candidate;
-    }
-  }
-  return std::nullopt;
-}
 
 void encode_video(const fs::path& ffmpeg, const fs::path& frames_dir, int first_frame, double fps,
                   const fs::path& video) {

@@ -2,13 +2,8 @@
 // Encoding numbered PNG frames into a video with an ffmpeg found on PATH (never bundled).
 
 #include <filesystem>
-#include <optional>
-#include <string_view>
 
 namespace deformcd::app {
-
-// The first executable file `name` in the directories of $PATH, if any.
-[[nodiscard]] std::optional<std::filesystem::path> find_on_path(std::string_view name);
 
 // Runs `ffmpeg` on DIR/frame_00000.png, frame_00001.png... (`first_frame` on, consecutive) at
 // `fps` frames per second, writing `video` atomically (a temporary next to it, renamed when

@@ -18,6 +18,10 @@
 #include "deformcd/render/offscreen_target.h"
 #include "deformcd/render/scene_renderer.h"
 #include "deformcd/world.h"
+#include "option_values.h"
+#include "output_paths.h"
+#include "progress.h"
+#include "usage_error.h"
 #include "view_scene.h"
 #include "viewer_window.h"
 
@@ -27,9 +31,9 @@ namespace {
 
 struct ViewOptions {
   std::string scene;
-  std::optional<int> frames;
+  std::optional<int> frames;  // the run's length
   std::optional<std::string> broadphase;
-  std::optional<int> total_frames;
+  std::optional<int> quit_after;
   std::string screenshot;
 };
 
@@ -37,7 +41,7 @@ struct ViewOptions {
 struct ViewerState {
   bool paused = false;
   render::RenderMode mode = render::RenderMode::kWireframe;
-  BroadPhase broadphase = BroadPhase::kOctree;
+  BroadPhase broadphase = BroadPhase::kBvh;
 };
 
 // The broad phases that detect, in their listed order (broadphase_names()), then none.
@@ -71,12 +75,15 @@ std::string window_title(const std::string& scene, const World& world, int total
 }
 
 int view(const ViewOptions& o) {
+  if (o.frames) check_at_least("--frames", *o.frames, 1);
+  if (o.quit_after) check_at_least("--quit-after", *o.quit_after, 0);
+  if (!o.screenshot.empty()) check_output_file("--screenshot", o.screenshot);
   // The window first: without a display, say so before the scene takes time to load.
   ViewerWindow window(1280, 720, "deformcd view - " + o.scene);
-  const ViewScene scene = load_view_scene(o.scene, o.total_frames);
-  if (o.frames && (*o.frames < 0 || *o.frames > scene.total_frames)) {
-    throw Error("--frames " + std::to_string(*o.frames) + ": the run has " +
-                std::to_string(scene.total_frames) + " frames (see --total-frames)");
+  const ViewScene scene = load_view_scene(o.scene, o.frames);
+  if (o.quit_after && *o.quit_after > scene.total_frames) {
+    throw UsageError("--quit-after " + std::to_string(*o.quit_after) + ": the run has " +
+                     std::to_string(scene.total_frames) + " frames (--frames sets its length)");
   }
   ViewerState state;
   state.broadphase = view_broadphase(o.broadphase, scene.scene);
@@ -89,6 +96,7 @@ int view(const ViewOptions& o) {
   options.broadphase = state.broadphase;
   options.self_collision = scene.scene.collision.self;
   options.measure_stage_times = true;
+  status("starting the GL backend");
   World world(scene.bodies, step_settings(scene.scene.settings), options);
   if (!world.notice().empty()) std::cerr << "deformcd: " << world.notice() << '\n';
   if (state.broadphase != BroadPhase::kNone) world.detect_collisions();  // the initial pose
@@ -101,6 +109,12 @@ int view(const ViewOptions& o) {
   };
   render::Camera camera = framing();
   const render::SceneRenderer renderer(world);
+  const auto draw = [&] {
+    render::DrawOptions look;
+    look.mode = state.mode;
+    look.show_collisions = state.broadphase != BroadPhase::kNone;
+    renderer.draw(camera, width, height, look);
+  };
 
   while (true) {
     const bool idle = state.paused || world.frame() >= scene.total_frames;
@@ -125,18 +139,16 @@ int view(const ViewOptions& o) {
     }
     if ((!state.paused || in.step_once) && world.frame() < scene.total_frames) world.step();
 
-    render::DrawOptions draw;
-    draw.mode = state.mode;
-    draw.show_collisions = state.broadphase != BroadPhase::kNone;
-    renderer.draw(camera, width, height, draw);
-    const bool last = o.frames && world.frame() >= *o.frames;
-    // The back buffer, before the swap leaves its contents undefined.
-    if (last && !o.screenshot.empty()) {
-      render::write_png(o.screenshot, render::read_framebuffer(width, height));
-    }
+    draw();
     window.swap_buffers();
     window.set_title(window_title(o.scene, world, scene.total_frames, state));
-    if (last) break;
+    if (o.quit_after && world.frame() >= *o.quit_after) break;
+  }
+  if (!o.screenshot.empty()) {
+    // The last frame shown, drawn again: the swap left the back buffer's contents undefined.
+    draw();
+    render::write_png(o.screenshot, render::read_framebuffer(width, height));
+    std::cout << "screenshot " << o.screenshot << '\n';
   }
   std::cout << "view: frame " << world.frame() << ", " << world.collision_counts().contacts
             << " contacts (" << broadphase_name(state.broadphase) << ")\n";
@@ -152,18 +164,12 @@ Command add_view_command(CLI::App& app) {
       "Watch a scene in a window (left drag orbit, wheel zoom, right/middle drag pan, space "
       "pause, N step, B broad phase, W wireframe/shaded, R reset camera, Esc/Q quit)");
   cmd->add_option("scene", o->scene, "Scene file (JSON)")->required();
-  cmd->add_option("--frames", o->frames, "Quit after this many frames (e.g. for tests)");
-  std::vector<std::string> methods = broadphase_names();
-  methods.push_back("none");
-  cmd->add_option("--broadphase", o->broadphase,
-                  "Collision broad phase to start with: none, brute, octree... (default: the "
-                  "scene's); B cycles through them")
-      ->check(CLI::IsMember(methods));
-  cmd->add_option("--total-frames", o->total_frames,
-                  "Length of the run (default: the scene's frames); paths span it");
+  add_frames_option(cmd, o->frames);
+  add_broadphase_option(cmd, o->broadphase, true);
+  cmd->add_option("--quit-after", o->quit_after,
+                  "Quit once this frame is shown (e.g. for scripts and tests)");
   cmd->add_option("--screenshot", o->screenshot,
-                  "With --frames: write the last frame shown as a PNG file")
-      ->needs("--frames");
+                  "Write the last frame shown, when the viewer quits, as a PNG file");
   return [o]() { return view(*o); };
 }
 

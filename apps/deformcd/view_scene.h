@@ -20,10 +20,10 @@ struct ViewScene {
   Bounds swept;  // every body over the whole run (render::swept_bounds)
 };
 
-// Reads `file` and builds its bodies for a run of `total_frames` frames (default: the scene's).
-// Throws Error when total_frames is below 1, InputError for a bad scene.
-[[nodiscard]] ViewScene load_view_scene(const std::string& file,
-                                        const std::optional<int>& total_frames);
+// Reads `file` and builds its bodies for a run of `frames` frames (--frames; default: the
+// scene's), saying so on stderr. Throws UsageError when frames is below 1, InputError for a bad
+// scene.
+[[nodiscard]] ViewScene load_view_scene(const std::string& file, const std::optional<int>& frames);
 
 // --broadphase if given, else the scene's collision.broadphase.
 [[nodiscard]] BroadPhase view_broadphase(const std::optional<std::string>& option,

@@ -16,6 +16,7 @@
 
 #include "deformcd/body.h"
 #include "deformcd/simulation_state.h"
+#include "deformcd/tetrahedralize_options.h"
 
 namespace deformcd {
 
@@ -40,14 +41,28 @@ struct FixedSpec {
   std::optional<Bounds> box;
 };
 
+/// How a scene meshes a surface model unless its body's `meshing` says otherwise: TetGen's
+/// quality bound (-q, radius-edge ratio 2.0) with the surface kept (-Y), so that the body's
+/// surface is the model's and its interior has nodes. (Plain -p puts every node on the surface:
+/// springs across the whole body, and a body that blows up at once.)
+[[nodiscard]] inline TetrahedralizeOptions default_scene_meshing() {
+  TetrahedralizeOptions options;
+  options.quality = 2.0;
+  options.preserve_surface = true;
+  return options;
+}
+
 /// One body of a scene.
 struct BodySpec {
-  std::string name;             ///< defaults to the model's file name
-  std::filesystem::path model;  ///< absolute (resolved against the scene file's folder)
-  glm::dvec3 position{0.0};     ///< translation added to the model's coordinates
-  glm::dvec3 rotation{0.0};     ///< degrees about x, then y, then z (applied before position)
-  glm::dvec3 scale{1.0};        ///< applied first; rest shape (springs) uses it
-  glm::dvec3 velocity{0.0};     ///< initial, m/s
+  std::string name;              ///< defaults to the model's file name
+  std::filesystem::path model;   ///< resolved against the scene file's folder
+  std::string model_as_written;  ///< the scene's `model` string, for messages
+  /// How `model` is tetrahedralized when it is a surface file (ignored for TetGen files).
+  TetrahedralizeOptions meshing = default_scene_meshing();
+  glm::dvec3 position{0.0};  ///< translation added to the model's coordinates
+  glm::dvec3 rotation{0.0};  ///< degrees about x, then y, then z (applied before position)
+  glm::dvec3 scale{1.0};     ///< applied first; rest shape (springs) uses it
+  glm::dvec3 velocity{0.0};  ///< initial, m/s
   /// Initial deformation released at frame 0: node offsets from the body's centroid are
   /// multiplied by this after rest lengths are measured, so the body starts squashed and wobbles.
   glm::dvec3 squash{1.0};
@@ -69,7 +84,8 @@ struct SimulationSettings {
 
 /// The `collision` section, consumed by the collision pipeline.
 struct CollisionSettings {
-  std::string broadphase = "octree";
+  /// The fastest method by default; the paper's ("octree", and its baseline "brute") by name.
+  std::string broadphase = "bvh";
   bool self = false;
 };
 
@@ -80,8 +96,12 @@ struct Scene {
   std::vector<BodySpec> bodies;
 };
 
-/// Loads a model file (TetGen prefix, or a surface when a tetrahedralizer is available).
+/// Loads a model file, e.g. read_tetgen (TetGen prefixes only).
 using ModelLoader = std::function<TetMesh(const std::filesystem::path&)>;
+/// Loads a model file, tetrahedralizing a surface file as its body's `meshing` says, e.g.
+/// load_model (tetrahedralize.h, in deformcd::tetgen): every kind of model a scene may name.
+using MeshingLoader =
+    std::function<TetMesh(const std::filesystem::path&, const TetrahedralizeOptions&)>;
 
 /// The broad-phase names a scene's `collision.broadphase` may take.
 [[nodiscard]] const std::vector<std::string>& known_broadphases();
@@ -94,7 +114,12 @@ using ModelLoader = std::function<TetMesh(const std::filesystem::path&)>;
 /// rotated and translated; masses from density (lumped) or total mass (uniform); rest lengths
 /// measured in that pose; then the squash applied about the body's centroid; fixed nodes by index
 /// and box; carry velocity = (path.to - position) / (frames x dt), so that the path spans `frames`.
-/// Throws InputError naming the scene file and the body.
+/// Each distinct (model, meshing) is loaded once. Throws InputError naming the scene file and
+/// the body.
+[[nodiscard]] std::vector<BodyInit> make_scene_bodies(const Scene& scene, const MeshingLoader& load,
+                                                      int frames);
+/// The same with a loader that takes no meshing options (e.g. read_tetgen for scenes of TetGen
+/// models).
 [[nodiscard]] std::vector<BodyInit> make_scene_bodies(const Scene& scene, const ModelLoader& load,
                                                       int frames);
 

@@ -4,23 +4,12 @@
 /// target, which is AGPL-3 like TetGen itself: the core library never depends on it.
 
 #include <filesystem>
-#include <optional>
 #include <string>
 
 #include "deformcd/mesh.h"
+#include "deformcd/tetrahedralize_options.h"
 
 namespace deformcd {
-
-/// TetGen settings. Unset options leave TetGen's behaviour alone.
-struct TetrahedralizeOptions {
-  /// Radius-edge ratio bound (TetGen -q); TetGen's default bound is 2.0, smaller is finer.
-  std::optional<double> quality;
-  /// Maximum tetrahedron volume (TetGen -a), in the mesh's units cubed.
-  std::optional<double> max_volume;
-  /// Keep the surface exactly (TetGen -Y): the input vertices are the first nodes, in input
-  /// order, and the boundary faces are exactly the input triangles.
-  bool preserve_surface = false;
-};
 
 /// Checks that `surface` bounds a solid: closed (every edge in exactly two triangles),
 /// consistently oriented, with no repeated triangle. Throws InputError naming `source` and the
@@ -36,7 +25,9 @@ void check_closed_surface(const SurfaceMesh& surface, const std::string& source)
                                      const TetrahedralizeOptions& options = {},
                                      const std::string& source = "<surface>");
 
-/// A model for a body: a TetGen prefix, or a surface file tetrahedralized with `options`.
+/// A model for a body: a TetGen prefix, or a surface file tetrahedralized with `options`. Its
+/// signature is a scene's ModelLoader's, so `make_scene_bodies(scene, load_model, frames)`
+/// meshes each surface model with its body's `meshing` (scene.h).
 [[nodiscard]] TetMesh load_model(const std::filesystem::path& path,
                                  const TetrahedralizeOptions& options = {});
 

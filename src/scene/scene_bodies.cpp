@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
@@ -91,19 +93,32 @@ BodyInit make_body(const TetMesh& model, const BodySpec& spec, const Scene& scen
 
 }  // namespace
 
-std::vector<BodyInit> make_scene_bodies(const Scene& scene, const ModelLoader& load, int frames) {
+std::vector<BodyInit> make_scene_bodies(const Scene& scene, const MeshingLoader& load, int frames) {
   if (frames < 1) throw InputError(scene.file.string(), "frames must be at least 1");
-  std::map<std::filesystem::path, TetMesh> models;  // each distinct model loaded once
+  // Each distinct model loaded once (per meshing, for surfaces).
+  using Key = std::tuple<std::filesystem::path, std::optional<double>, std::optional<double>, bool>;
+  std::map<Key, TetMesh> models;
   std::vector<BodyInit> bodies;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodySpec& spec = scene.bodies[i];
     const std::string where =
         scene.file.string() + ": body " + std::to_string(i) + " ('" + spec.name + "')";
-    auto it = models.find(spec.model);
-    if (it == models.end()) it = models.emplace(spec.model, load(spec.model)).first;
+    const Key key{spec.model, spec.meshing.quality, spec.meshing.max_volume,
+                  spec.meshing.preserve_surface};
+    auto it = models.find(key);
+    if (it == models.end()) it = models.emplace(key, load(spec.model, spec.meshing)).first;
     bodies.push_back(make_body(it->second, spec, scene, frames, where));
   }
   return bodies;
+}
+
+std::vector<BodyInit> make_scene_bodies(const Scene& scene, const ModelLoader& load, int frames) {
+  return make_scene_bodies(
+      scene,
+      MeshingLoader([&load](const std::filesystem::path& model, const TetrahedralizeOptions&) {
+        return load(model);
+      }),
+      frames);
 }
 
 StepSettings step_settings(const SimulationSettings& s) {

@@ -1,6 +1,7 @@
 // read_scene: JSON -> Scene, strictly (see json_fields.h).
 
 #include <algorithm>
+#include <limits>
 #include <fstream>
 #include <sstream>
 
@@ -8,6 +9,7 @@
 
 #include "deformcd/collision.h"
 #include "deformcd/error.h"
+#include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "json_fields.h"
 
@@ -35,6 +37,9 @@ nlohmann::json parse_file(const fs::path& file) {
     const auto colon = what.find("parse error");
     throw InputError(file.string(), line,
                      "invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number no double holds (1e400): nlohmann reports it without a position.
+    throw InputError(file.string(), std::string("invalid JSON: ") + e.what());
   }
 }
 
@@ -96,7 +101,11 @@ FixedSpec read_fixed(JsonFields f) {
     if (!nodes->is_array()) f.fail("nodes", "expected an array of node indices");
     for (const auto& n : *nodes) {
       if (!n.is_number_unsigned()) f.fail("nodes", "expected non-negative integer node indices");
-      fixed.nodes.push_back(n.get<std::uint32_t>());
+      const auto index = n.get<std::uint64_t>();
+      if (index > std::numeric_limits<std::uint32_t>::max()) {
+        f.fail("nodes", "node index " + std::to_string(index) + " is out of range");
+      }
+      fixed.nodes.push_back(static_cast<std::uint32_t>(index));
     }
   }
   if (auto box = f.object("box")) {
@@ -114,6 +123,23 @@ FixedSpec read_fixed(JsonFields f) {
   return fixed;
 }
 
+TetrahedralizeOptions read_meshing(JsonFields f) {
+  TetrahedralizeOptions m = default_scene_meshing();
+  if (f.has("quality")) {
+    m.quality = f.number("quality");
+    if (!(*m.quality >= 1.0)) {
+      f.fail("quality",
+             "must be at least 1 (a radius-edge ratio bound; TetGen's default 2.0, "
+             "smaller is finer), got " +
+                 std::to_string(*m.quality));
+    }
+  }
+  if (f.has("max_volume")) m.max_volume = positive(f, "max_volume", 0.0);
+  m.preserve_surface = f.boolean("preserve_surface").value_or(m.preserve_surface);
+  f.reject_unknown({"quality", "max_volume", "preserve_surface"});
+  return m;
+}
+
 bool model_exists(const fs::path& model) {
   if (fs::is_regular_file(model)) return true;
   fs::path node = model;
@@ -125,6 +151,7 @@ BodySpec read_body(JsonFields f, const fs::path& folder) {
   BodySpec b;
   const std::optional<std::string> model = f.string("model");
   if (!model) f.fail("model", "missing: every body needs a model (TetGen prefix or surface file)");
+  b.model_as_written = *model;
   b.model = fs::path(*model).is_absolute() ? fs::path(*model) : folder / *model;
   b.model = b.model.lexically_normal();
   if (!model_exists(b.model)) {
@@ -133,8 +160,18 @@ BodySpec read_body(JsonFields f, const fs::path& folder) {
         b.model.parent_path().filename() == "fine"
             ? "; the fine models are generated, not shipped: run scripts/make_models.sh --fine"
             : "";
-    f.fail("model",
-           "no such model: '" + b.model.string() + "' (neither a file nor a TetGen prefix)" + hint);
+    // As written in the scene: the path resolved against the working directory would be
+    // another string than the one to fix.
+    f.fail("model", "no such model: '" + *model + "' (neither a file nor a TetGen prefix " +
+                        "PREFIX.node, relative to the scene's folder)" + hint);
+  }
+  if (auto meshing = f.object("meshing")) {
+    if (!is_surface_file(b.model)) {
+      f.fail("meshing", "'" + *model +
+                            "' is a TetGen mesh: meshing options apply to surface models "
+                            "(.off .obj .stl .ply), which are tetrahedralized on loading");
+    }
+    b.meshing = read_meshing(*meshing);
   }
   b.name = f.string("name").value_or(b.model.filename().string());
   b.position = f.vec3("position").value_or(b.position);
@@ -151,8 +188,8 @@ BodySpec read_body(JsonFields f, const fs::path& folder) {
     if (!b.path_to) path->fail("to", "missing: a path needs its end position 'to'");
     path->reject_unknown({"to"});
   }
-  f.reject_unknown({"name", "model", "position", "rotation", "scale", "velocity", "squash",
-                    "material", "fixed", "path"});
+  f.reject_unknown({"name", "model", "meshing", "position", "rotation", "scale", "velocity",
+                    "squash", "material", "fixed", "path"});
   return b;
 }
 

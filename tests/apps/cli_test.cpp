@@ -1,10 +1,13 @@
 // The deformcd tool as a user runs it: exit codes, messages, and no partial output on failure.
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -26,6 +29,18 @@ class CliTest : public ::testing::Test {
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   void write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;
+  }
+  // A scene of one falling cube (TetGen files next to it).
+  std::string cube_scene() const {
+    deformcd::write_tetgen(deformcd::test::unit_cube(), path("cube"));
+    write("cube.json", R"({"settings": {"frames": 4}, "bodies": [{"model": "cube"}]})");
+    return path("cube.json");
+  }
+  static std::string lines_of(const std::string& file) {
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
   }
   deformcd::test::TempDir dir_;
 };
@@ -57,8 +72,105 @@ TEST_F(CliTest, InfoOnMalformedNodeFileNamesFileAndLine) {
 
 TEST_F(CliTest, UnknownOptionIsAUsageError) {
   const CliRun r = run_cli("info --no-such-flag");
-  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("no-such-flag"), std::string::npos) << r.output;
+}
+
+TEST_F(CliTest, AnUnknownCommandIsNamed) {
+  const CliRun r = run_cli("foo");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("unknown command 'foo' (commands: info, tetra, run, bench"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST_F(CliTest, EveryUsageErrorExitsWithStatus2AndNamesTheCommand) {
+  const std::string scene = cube_scene();
+  for (const std::string& args : std::vector<std::string>{
+           "run", "run " + scene + " --frames 0", "run " + scene + " --backend quantum",
+           "run " + scene + " --threads -1", "run " + scene + " --every-frame",
+           "bench " + scene + " --repeat 0", "bench " + scene + " --methods brute,kd",
+           "tetra x.off", "info --json --json-please"}) {
+    const CliRun r = run_cli(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    const std::string command = "deformcd " + args.substr(0, args.find(' ')) + ": error: ";
+    EXPECT_NE(r.output.find(command), std::string::npos) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("--help"), std::string::npos) << args << "\n" << r.output;
+  }
+  EXPECT_EQ(run_cli("run --help").status, 0);
+  EXPECT_EQ(run_cli("--version").status, 0);
+}
+
+TEST_F(CliTest, RunCountsItsBodiesInGoodEnglishAndSaysWhatItDoesAtOnce) {
+  const CliRun r = run_cli("run " + cube_scene() + " --backend cpu");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("(1 body, 8 nodes)"), std::string::npos) << r.output;
+  // Status lines before the work, in order.
+  const std::size_t reading = r.output.find("deformcd: reading ");
+  const std::size_t building = r.output.find("deformcd: building 1 body\n");
+  const std::size_t starting = r.output.find("deformcd: starting the cpu backend");
+  ASSERT_NE(reading, std::string::npos) << r.output;
+  EXPECT_LT(reading, building) << r.output;
+  EXPECT_LT(building, starting) << r.output;
+}
+
+TEST_F(CliTest, RunWritesThePositionsOfTheLastOrOfEveryFrame) {
+  const std::string scene = cube_scene();
+  CliRun r = run_cli("run " + scene + " --backend cpu --frames 3 --positions " + path("last.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string last = lines_of(path("last.json"));
+  EXPECT_EQ(last.rfind("{\"bodies\":[{\"name\":\"cube\",\"positions\":[[", 0), 0u) << last;
+  EXPECT_NE(last.find("\"frame\":3}\n"), std::string::npos) << last;
+  EXPECT_EQ(std::count(last.begin(), last.end(), '\n'), 1);
+
+  r = run_cli("run " + scene + " --backend cpu --frames 3 --every-frame --positions " +
+              path("all.jsonl"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::istringstream all(lines_of(path("all.jsonl")));
+  int frame = 0;
+  for (std::string line; std::getline(all, line); ++frame) {
+    EXPECT_NE(line.find("\"frame\":" + std::to_string(frame) + "}"), std::string::npos) << line;
+  }
+  EXPECT_EQ(frame, 4);  // frames 0..3
+  std::istringstream lines(lines_of(path("all.jsonl")));
+  std::string line;
+  for (int f = 0; f <= 3; ++f)
+    std::getline(lines, line);
+  EXPECT_EQ(line + "\n", last);  // the last line is the file without --every-frame
+}
+
+TEST_F(CliTest, OutputPathsAreCheckedBeforeAnyWorkAndNamedAsGiven) {
+  const std::string scene = cube_scene();
+  std::ofstream(path("a_file")) << "in the way";
+  const std::string missing = path("no_such_dir/out.json");
+  const std::string under_a_file = path("a_file/out.json");
+  for (const std::string& args :
+       std::vector<std::string>{"run " + scene + " --positions " + missing,
+                                "run " + scene + " --contacts " + under_a_file,
+                                "bench " + scene + " --backend cpu --json " + missing,
+                                "bench " + scene + " --backend cpu --csv " + under_a_file,
+                                "bench " + scene + " --backend cpu --plot " + missing,
+                                "bench " + scene + " --backend cpu --plot " + path("."),
+                                "tetra " + path("x.off") + " -o " + path("no_such_dir/x")}) {
+    const CliRun r = run_cli(args);
+    EXPECT_EQ(r.status, 1) << args << "\n" << r.output;
+    const std::string given = args.substr(args.rfind(' ') + 1);
+    EXPECT_NE(r.output.find(given), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("deformcd: reading"), std::string::npos) << args << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(path("no_such_dir")));
+}
+
+TEST_F(CliTest, APlotWithoutGnuplotFailsBeforeAnyWork) {
+  fs::create_directories(path("empty_bin"));
+  const CliRun r = run_cli("bench " + cube_scene() + " --backend cpu --plot " + path("chart.png"),
+                           "PATH=" + path("empty_bin"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("--plot " + path("chart.png") + ": needs gnuplot"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("PATH"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("deformcd: reading"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("chart.png")));
 }
 
 #ifdef DEFORMCD_HAS_TETGEN

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -111,7 +113,7 @@ TEST_F(CollisionCli, BadContactsPathFailsBeforeRunningAndLeavesNothing) {
 
 TEST_F(CollisionCli, UnknownBroadPhaseListsTheValidOnes) {
   const CliRun r = run_cli("run " + scene("phase2") + " --backend cpu --frames 3 --broadphase kd");
-  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(r.status, 2) << r.output;  // a usage error
   EXPECT_NE(
       r.output.find("unknown broad phase 'kd' (valid: none, brute, octree, octree-compact, bvh)"),
       std::string::npos)
@@ -147,11 +149,118 @@ TEST_F(CollisionCli, BenchJsonHasEveryKeyAndEqualPairCounts) {
   const double v2 = octree["total_s"].get<double>();
   EXPECT_NEAR(s.at("improvement").at("octree").get<double>(), (v1 - v2) / v2, 1e-9);
   EXPECT_EQ(lines_of(path("bench.csv")).size(), 3u);  // header + 2 methods
+
+  // How it was measured, and every frame's numbers.
+  EXPECT_EQ(j.at("deformcd_version"), DEFORMCD_VERSION);
+  EXPECT_EQ(j.at("repeat"), 1);
+  EXPECT_GE(j.at("threads").get<int>(), 1);
+  EXPECT_GE(j.at("warmup_frames").get<int>(), 0);
+  for (const nlohmann::json* m : {&brute, &octree}) {
+    const nlohmann::json& per_frame = m->at("per_frame");
+    std::uint64_t contacts = 0;
+    std::uint64_t candidates = 0;
+    for (const char* key : {"simulation_ms", "collision_ms", "contacts", "candidates"})
+      ASSERT_EQ(per_frame.at(key).size(), 12u) << key;
+    for (int f = 0; f < 12; ++f) {
+      EXPECT_GT(per_frame["simulation_ms"][f].get<double>(), 0.0);
+      contacts += per_frame["contacts"][f].get<std::uint64_t>();
+      candidates += per_frame["candidates"][f].get<std::uint64_t>();
+    }
+    EXPECT_EQ(contacts, m->at("pairs").get<std::uint64_t>());
+    EXPECT_EQ(candidates, m->at("candidates").get<std::uint64_t>());
+    EXPECT_GE(candidates, contacts);
+  }
+  const std::vector<std::string> csv = lines_of(path("bench.csv"));
+  EXPECT_EQ(csv[0],
+            "scene,backend,device,method,frames,repeat,threads,total_s,simulation_s,collision_s,"
+            "ms_before,ms_contact,ms_after,cd_ms_before,cd_ms_contact,cd_ms_after,pairs,"
+            "candidates,improvement,deformcd_version");
+  EXPECT_NE(csv[1].find(",brute,12,1,"), std::string::npos) << csv[1];
 }
 
-TEST_F(CollisionCli, BenchRejectsNoneAndAuto) {
-  EXPECT_EQ(run_cli("bench " + scene("phase2") + " --backend cpu --methods brute,none").status, 1);
-  EXPECT_EQ(run_cli("bench " + scene("phase2") + " --backend auto").status, 1);
+TEST_F(CollisionCli, BenchDrawsAChartNamingItsFile) {
+  if (deformcd::test::run_shell("command -v gnuplot").status != 0) {
+    GTEST_SKIP() << "gnuplot is not installed (scripts/install_deps.sh installs it)";
+  }
+  const CliRun r =
+      run_cli("bench " + scene("phase2") + " --backend cpu --frames 4 --methods brute,bvh --plot " +
+              path("chart.png"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("plot       " + path("chart.png")), std::string::npos) << r.output;
+  std::ifstream png(path("chart.png"), std::ios::binary);
+  std::array<char, 8> signature{};
+  png.read(signature.data(), signature.size());
+  EXPECT_EQ(std::string(signature.data() + 1, 3), "PNG");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_.path()), fs::directory_iterator()), 1)
+      << "temporary files left behind";
+}
+
+TEST_F(CollisionCli, ASceneOfTheShippedSurfacesRunsThroughContact) {
+  // Phase 2 with the bunny and the dragon as surface files: meshed with quality and the surface
+  // kept, it runs through the contact (plain TetGen -p blew up at frame 1).
+  std::ifstream in(scene("phase2"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string json = text.str();
+  const std::string models = std::string(DEFORMCD_SOURCE_DIR) + "/assets/models/";
+  for (const char* name : {"bunny", "dragon"}) {
+    const std::string from = "\"../assets/models/" + std::string(name) + "\"";
+    const std::size_t at = json.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    json.replace(at, from.size(), "\"" + models + "surfaces/" + name + ".off\"");
+  }
+  std::ofstream(path("phase2_surfaces.json")) << json;
+  const CliRun r = run_cli("run " + path("phase2_surfaces.json") + " --backend cpu --frames 90");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("tetrahedralizing " + models + "surfaces/bunny.off (TetGen -pq2Y)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("collision  bvh: "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(" 0 frames in contact"), std::string::npos) << r.output;
+}
+
+TEST_F(CollisionCli, BenchRejectsNoneAndAuto) {  // usage errors
+  EXPECT_EQ(run_cli("bench " + scene("phase2") + " --backend cpu --methods brute,none").status, 2);
+  EXPECT_EQ(run_cli("bench " + scene("phase2") + " --backend auto").status, 2);
 }
 
 }  // namespace
+
+// `deformcd collide`: surface files through the public Detector, no simulation, no TetGen.
+TEST_F(CollisionCli, CollideWritesTheContactsOfSurfaceFilesInTheirNumbering) {
+  const std::string data = std::string(DEFORMCD_SOURCE_DIR) + "/tests/data/io/";
+  std::optional<std::string> reference;
+  for (const char* method : {"brute", "octree", "octree-compact", "bvh"}) {
+    const std::string out = path(std::string(method) + ".json");
+    const CliRun r =
+        run_cli("collide " + data + "cube.off " + data + "octahedron.stl --backend cpu" +
+                " --broadphase " + method + " --json " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("intersecting triangle pairs"), std::string::npos) << r.output;
+    const std::vector<std::string> lines = lines_of(out);
+    ASSERT_EQ(lines.size(), 1u);
+    const nlohmann::json j = nlohmann::json::parse(lines[0]);
+    ASSERT_GT(j.at("contacts").size(), 10u);
+    for (const nlohmann::json& c : j.at("contacts")) {
+      EXPECT_EQ(c.at("a").at("body"), 0);
+      EXPECT_EQ(c.at("b").at("body"), 1);
+      EXPECT_LT(c.at("a").at("face").get<int>(), 12);  // the cube.off's 12 triangles
+      EXPECT_LT(c.at("b").at("face").get<int>(), 8);   // the octahedron's 8
+      EXPECT_TRUE(c.contains("segment"));
+    }
+    if (!reference) reference = lines[0];
+    EXPECT_EQ(lines[0], *reference) << method;
+  }
+}
+
+TEST_F(CollisionCli, CollideChecksItsOutputFirstAndNamesBadFiles) {
+  const std::string data = std::string(DEFORMCD_SOURCE_DIR) + "/tests/data/io/";
+  CliRun r = run_cli("collide " + data + "cube.off " + data + "cube.off --json " +
+                     path("missing/dir/out.json"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("--json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("missing/dir/out.json"), std::string::npos) << r.output;
+  r = run_cli("collide " + data + "cube.off " + data + "cube.node");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("cube.node: not a surface file"), std::string::npos) << r.output;
+}

@@ -69,7 +69,7 @@ def test_every_frame_equals_deformcd_run(stepped, cli, tmp_path):
     contacts_file, positions_file = tmp_path / "contacts.jsonl", tmp_path / "positions.json"
     subprocess.run([cli, "run", str(PHASE2), "--backend", "cpu", "--broadphase", "bvh",
                     "--frames", str(FRAMES), "--contacts", str(contacts_file),
-                    "--positions-out", str(positions_file)], check=True, capture_output=True)
+                    "--positions", str(positions_file)], check=True, capture_output=True)
     lines = [json.loads(line) for line in contacts_file.read_text().splitlines()]
     assert [line["frame"] for line in lines] == list(range(FRAMES + 1))
     for line, c in zip(lines, per_frame):

@@ -39,7 +39,7 @@ class RenderCli : public ::testing::Test {
 // Phase 2 (bunny and dragon), the smaller scene: the renderer itself is checked on phase 1 in
 // scene_renderer_test.cpp. With 24 frames the bodies overlap the most at frame 12.
 TEST_F(RenderCli, WritesTheChosenFramesWithCollisionColoursOnlyInContact) {
-  const CliRun r = run_cli("render scenes/phase2.json --total-frames 24 --frames 12,0 --out " +
+  const CliRun r = run_cli("render scenes/phase2.json --frames 24 --at 12,0 --out " +
                            path("images") + " --size 320x240 --broadphase brute");
   if (gl_unavailable(r)) DEFORMCD_GL_UNAVAILABLE(r.output);
   ASSERT_EQ(r.status, 0) << r.output;
@@ -67,7 +67,7 @@ TEST_F(RenderCli, WritesTheChosenFramesWithCollisionColoursOnlyInContact) {
 
 TEST_F(RenderCli, AFileInTheWayOfOutIsAClearErrorAndNothingIsWritten) {
   std::ofstream(path("taken")) << "keep me";
-  const CliRun r = run_cli("render scenes/phase2.json --frames 0 --out " + path("taken"));
+  const CliRun r = run_cli("render scenes/phase2.json --at 0 --out " + path("taken"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find(path("taken")), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("in the way"), std::string::npos) << r.output;
@@ -101,7 +101,7 @@ TEST_F(RenderCli, VideoEncodesEveryFrameWithTheFfmpegOnPath) {
                                            "echo video > \"$last\"\n";
   fs::permissions(path("bin/ffmpeg"), fs::perms::owner_all);
   const CliRun r = run_cli(
-      "render scenes/phase2.json --total-frames 2 --size 64x48 "
+      "render scenes/phase2.json --frames 2 --size 64x48 "
       "--broadphase brute --video " +
           path("run.mp4") + " --out " + path("frames"),
       "PATH=" + path("bin") + ":$PATH");
@@ -119,23 +119,22 @@ TEST_F(RenderCli, VideoEncodesEveryFrameWithTheFfmpegOnPath) {
 
 TEST_F(RenderCli, TheCpuBackendIsRejectedWithTheReason) {
   const CliRun r =
-      run_cli("render scenes/phase2.json --frames 0 --backend cpu --out " + path("images"));
-  EXPECT_EQ(r.status, 1) << r.output;
+      run_cli("render scenes/phase2.json --at 0 --backend cpu --out " + path("images"));
+  EXPECT_EQ(r.status, 2) << r.output;  // a usage error
   EXPECT_NE(r.output.find("GL backend"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("images")));
 }
 
 TEST_F(RenderCli, FramesOutsideTheRunAreNamed) {
-  const CliRun r =
-      run_cli("render scenes/phase2.json --total-frames 5 --frames 2,9 --out " + path("images"));
-  EXPECT_EQ(r.status, 1) << r.output;
+  const CliRun r = run_cli("render scenes/phase2.json --frames 5 --at 2,9 --out " + path("images"));
+  EXPECT_EQ(r.status, 2) << r.output;  // a usage error
   EXPECT_NE(r.output.find("frame 9 is outside the run (0 to 5"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("images")));
 }
 
 TEST_F(RenderCli, NoFramesChosenIsAnError) {
   const CliRun r = run_cli("render scenes/phase2.json --out " + path("images"));
-  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(r.status, 2) << r.output;  // a usage error
   EXPECT_NE(r.output.find("--every-frame"), std::string::npos) << r.output;
 }
 

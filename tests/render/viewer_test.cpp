@@ -27,7 +27,7 @@ TEST(Viewer, RunsUnderXvfbAndDrawsTheScene) {
   const CliRun r =
       test::run_shell("cd " + std::string(DEFORMCD_SOURCE_DIR) + " && " +
                       test::kDrawingEnvironment + " " + xvfb_run + " -a " + DEFORMCD_CLI +
-                      " view scenes/phase2.json --frames 5 --broadphase brute "
+                      " view scenes/phase2.json --quit-after 5 --broadphase brute "
                       "--screenshot " +
                       shot.string());
   if (r.status != 0 && r.output.find("OpenGL 4.3") != std::string::npos) {
@@ -47,7 +47,7 @@ TEST(Viewer, RunsUnderXvfbAndDrawsTheScene) {
 
 TEST(Viewer, WithoutADisplayItSaysSoAndPointsToRender) {
   const CliRun r =
-      run_cli("view scenes/phase2.json --frames 5", "env -u DISPLAY -u WAYLAND_DISPLAY");
+      run_cli("view scenes/phase2.json --quit-after 5", "env -u DISPLAY -u WAYLAND_DISPLAY");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("needs a display"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("deformcd render"), std::string::npos) << r.output;

@@ -76,5 +76,28 @@ TEST(SceneBodies, MassAndFixedBox) {
   EXPECT_THROW((void)make_scene_bodies(one_cube(spec), load_cube, 10), InputError);
 }
 
+TEST(SceneBodies, AMeshingLoaderGetsEachBodysMeshingAndLoadsEachDistinctOneOnce) {
+  BodySpec coarse;
+  coarse.model = "cube.off";
+  BodySpec fine = coarse;
+  fine.meshing.max_volume = 0.1;
+  Scene scene = one_cube(coarse);
+  scene.bodies = {coarse, fine, coarse};
+  std::vector<TetrahedralizeOptions> seen;
+  const auto bodies = make_scene_bodies(
+      scene,
+      [&seen](const std::filesystem::path&, const TetrahedralizeOptions& meshing) {
+        seen.push_back(meshing);
+        return test::unit_cube();
+      },
+      10);
+  EXPECT_EQ(bodies.size(), 3u);
+  ASSERT_EQ(seen.size(), 2u);  // the third body shares the first one's mesh
+  EXPECT_EQ(seen[0].quality, 2.0);
+  EXPECT_TRUE(seen[0].preserve_surface);
+  EXPECT_FALSE(seen[0].max_volume.has_value());
+  EXPECT_EQ(seen[1].max_volume, 0.1);
+}
+
 }  // namespace
 }  // namespace deformcd

@@ -89,6 +89,19 @@ TEST_F(SceneReaderTest, WrongTypesAreNamed) {
   EXPECT_NE(msg.find("/settings/substeps: expected an integer"), std::string::npos) << msg;
 }
 
+TEST_F(SceneReaderTest, NumbersNoDoubleHoldsAndHugeNodeIndicesAreNamed) {
+  // Found by fuzz_scene: nlohmann::json throws out_of_range for 1e400, which escaped read_scene.
+  std::string msg = error_of(R"({"settings": {"gravity": [0, -1e400, 0]},
+      "bodies": [{"model": "models/cube"}]})");
+  EXPECT_NE(msg.find("invalid JSON"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("scene.json"), std::string::npos) << msg;
+  // A fixed node index past 32 bits was silently wrapped.
+  msg = error_of(R"({"bodies": [{"model": "models/cube", "fixed": {"nodes": [4294967296]}}]})");
+  EXPECT_NE(msg.find("/bodies/0/fixed/nodes: node index 4294967296 is out of range"),
+            std::string::npos)
+      << msg;
+}
+
 TEST_F(SceneReaderTest, UnknownBroadPhaseListsTheValidOnes) {
   const std::string msg = error_of(R"({"collision": {"broadphase": "kdtree"},
       "bodies": [{"model": "models/cube"}]})");
@@ -110,6 +123,54 @@ TEST_F(SceneReaderTest, MissingModelFileIsNamed) {
   const std::string msg = error_of(R"({"bodies": [{"model": "models/sphere"}]})");
   EXPECT_NE(msg.find("/bodies/0/model: no such model"), std::string::npos) << msg;
   EXPECT_NE(msg.find("sphere"), std::string::npos) << msg;
+}
+
+TEST_F(SceneReaderTest, MissingModelIsNamedAsWrittenInTheScene) {
+  // Resolved against the scene's folder, the path would read as neither what the scene says
+  // nor a path from the working directory.
+  const std::string msg = error_of(R"({"bodies": [{"model": "../elsewhere/bunny"}]})");
+  EXPECT_NE(msg.find((dir_ / "scene.json").string()), std::string::npos) << msg;
+  EXPECT_NE(msg.find("/bodies/0/model: no such model: '../elsewhere/bunny'"), std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("relative to the scene's folder"), std::string::npos) << msg;
+}
+
+TEST_F(SceneReaderTest, BroadPhaseDefaultsToBvh) {
+  const Scene s = read_scene(write(R"({"bodies": [{"model": "models/cube"}]})"));
+  EXPECT_EQ(s.collision.broadphase, "bvh");
+}
+
+TEST_F(SceneReaderTest, SurfaceModelsAreMeshedWithQualityAndTheSurfaceKeptUnlessTheSceneSays) {
+  write_off(test::octahedron(), dir_ / "models" / "octahedron.off");
+  Scene s = read_scene(write(R"({"bodies": [{"model": "models/octahedron.off"}]})"));
+  EXPECT_EQ(s.bodies[0].meshing.quality, 2.0);
+  EXPECT_FALSE(s.bodies[0].meshing.max_volume.has_value());
+  EXPECT_TRUE(s.bodies[0].meshing.preserve_surface);
+  EXPECT_EQ(s.bodies[0].model_as_written, "models/octahedron.off");
+
+  s = read_scene(write(R"({"bodies": [{"model": "models/octahedron.off",
+      "meshing": {"quality": 1.4, "max_volume": 0.01, "preserve_surface": false}}]})"));
+  EXPECT_EQ(s.bodies[0].meshing.quality, 1.4);
+  EXPECT_EQ(s.bodies[0].meshing.max_volume, 0.01);
+  EXPECT_FALSE(s.bodies[0].meshing.preserve_surface);
+}
+
+TEST_F(SceneReaderTest, BadMeshingIsNamed) {
+  write_off(test::octahedron(), dir_ / "models" / "octahedron.off");
+  std::string msg = error_of(R"({"bodies": [{"model": "models/octahedron.off",
+      "meshing": {"quality": 0.5}}]})");
+  EXPECT_NE(msg.find("/bodies/0/meshing/quality: must be at least 1"), std::string::npos) << msg;
+  msg = error_of(R"({"bodies": [{"model": "models/octahedron.off",
+      "meshing": {"max_volume": 0}}]})");
+  EXPECT_NE(msg.find("/bodies/0/meshing/max_volume: must be positive"), std::string::npos) << msg;
+  msg = error_of(R"({"bodies": [{"model": "models/octahedron.off",
+      "meshing": {"quallity": 2}}]})");
+  EXPECT_NE(msg.find("valid keys here: quality, max_volume, preserve_surface"), std::string::npos)
+      << msg;
+  // A TetGen mesh is already meshed.
+  msg = error_of(R"({"bodies": [{"model": "models/cube", "meshing": {"quality": 2}}]})");
+  EXPECT_NE(msg.find("/bodies/0/meshing: 'models/cube' is a TetGen mesh"), std::string::npos)
+      << msg;
 }
 
 TEST_F(SceneReaderTest, InvalidValuesAreRejected) {

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 // README example begins
-#include <deformcd/io.h>
 #include <deformcd/scene.h>
+#include <deformcd/tetrahedralize.h>
 #include <deformcd/world.h>
 
 #include <cstdio>
@@ -13,7 +13,7 @@ int readme_example(const char* scene_file) {
   deformcd::Scene scene = deformcd::read_scene(scene_file);
   deformcd::WorldOptions options;
   options.backend = deformcd::BackendKind::kCpu;  // or kGl, or kAuto (GL when available)
-  deformcd::World world(deformcd::make_scene_bodies(scene, deformcd::read_tetgen, 60),
+  deformcd::World world(deformcd::make_scene_bodies(scene, deformcd::load_model, 60),
                         deformcd::step_settings(scene.settings), options);
   for (int frame = 0; frame < 60; ++frame)
     world.step();

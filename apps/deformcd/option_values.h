@@ -1,0 +1,28 @@
+#pragma once
+// Options that mean the same in every command, registered in one place so that their names,
+// help and checks agree: --frames (the run's length) and --broadphase. And small helpers for
+// checking option values and wording counts.
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace deformcd::app {
+
+/// `--frames N`: the run's length (default: the scene's settings.frames); the bodies' paths span
+/// exactly this many frames.
+void add_frames_option(CLI::App* command, std::optional<int>& frames);
+
+/// `--broadphase METHOD` (default: the scene's collision.broadphase); `none` only when
+/// `none_ok`. An unknown name is a usage error listing the valid ones.
+void add_broadphase_option(CLI::App* command, std::optional<std::string>& broadphase, bool none_ok);
+
+/// Throws UsageError "`option` must be at least `minimum`, got `value`".
+void check_at_least(const char* option, long value, long minimum);
+
+/// "1 body", "2 bodies".
+[[nodiscard]] std::string count_of(std::uint64_t n, const char* one, const char* many);
+
+}  // namespace deformcd::app
