@@ -19,8 +19,7 @@ struct Detector::Impl {
   /// finite (a World checks its own state instead).
   static std::unique_ptr<Impl> create(std::vector<CollisionMesh> meshes,
                                       const DetectorOptions& options, BackendKind kind,
-                                      gl::Context* context,
-                                      std::shared_ptr<cpu::Executor> executor,
+                                      gl::Context* context, std::shared_ptr<cpu::Executor> executor,
                                       bool check_positions);
 
   std::vector<CollisionMesh> meshes;

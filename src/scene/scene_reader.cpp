@@ -1,8 +1,8 @@
 // read_scene: JSON -> Scene, strictly (see json_fields.h).
 
 #include <algorithm>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
