@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the readers' fuzz targets (preset fuzz: clang, libFuzzer, ASan + UBSan, no GL) and runs
 # each for SECONDS (default 60), DEFORMCD_FUZZ_JOBS targets at a time (default 2), at nice 10.
-# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (targets: off obj stl ply tetgen scene)
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (targets: off obj stl ply tetgen scene detector)
 # New inputs go to build/fuzz/corpus/TARGET (the committed seeds in fuzz/corpus/TARGET are only
 # read); a finding (crash, sanitizer report, leak, hang over 10 s, a single allocation over
 # 64 MB) stops that target, is saved as build/fuzz/artifacts/TARGET-*, and fails the script.
@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 shift || true
 targets=("$@")
-if ((${#targets[@]} == 0)); then targets=(off obj stl ply tetgen scene); fi
+if ((${#targets[@]} == 0)); then targets=(off obj stl ply tetgen scene detector); fi
 jobs="${DEFORMCD_FUZZ_JOBS:-2}"
 
 nice -n 10 scripts/build.sh fuzz
