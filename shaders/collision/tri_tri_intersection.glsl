@@ -233,6 +233,116 @@ bool tri_tri_coplanar_overlap(vec3 a[3], vec3 b[3], vec3 n, float size) {
          tri_tri_point_in_triangle_2d(b2[0], a2, area_tol);
 }
 
+// slab_part_meets_triangle: whether a point of s within tol of t's plane (normal n, unit u)
+// lies, projected where n is largest, on t within the 2D tolerances (see the C++ for the why).
+bool tri_tri_slab_part_meets_triangle(vec3 s[3], vec3 t[3], vec3 n, vec3 u, float tol, float size,
+                                      out vec3 contact) {
+  contact = vec3(0.0);
+  vec3 poly[5];
+  float dist[5];
+  int count = 3;
+  for (int i = 0; i < 3; ++i) {
+    poly[i] = s[i];
+    dist[i] = tri_tri_dot(u, s[i] - t[0]);
+  }
+  for (int side = 0; side < 2; ++side) {  // clip by dist <= tol, then by -dist <= tol
+    const float side_sign = side == 0 ? 1.0 : -1.0;
+    vec3 out_poly[5];
+    float out_dist[5];
+    int out_count = 0;
+    for (int i = 0; i < count; ++i) {
+      const int j = (i + 1) % count;
+      precise float fi = side_sign * dist[i] - tol;
+      precise float fj = side_sign * dist[j] - tol;
+      if (fi <= 0.0) {
+        out_poly[out_count] = poly[i];
+        out_dist[out_count] = dist[i];
+        ++out_count;
+      }
+      if (tri_tri_opposite_signs(fi, fj)) {  // fi != fj: no division by zero
+        precise float f = fi / (fi - fj);
+        precise vec3 x = poly[i] + (poly[j] - poly[i]) * f;
+        precise float d = dist[i] + (dist[j] - dist[i]) * f;
+        out_poly[out_count] = x;
+        out_dist[out_count] = d;
+        ++out_count;
+      }
+    }
+    for (int i = 0; i < out_count; ++i) {
+      poly[i] = out_poly[i];
+      dist[i] = out_dist[i];
+    }
+    count = out_count;
+  }
+  if (count == 0) return false;
+  int pu = 0;
+  int pv = 0;
+  tri_tri_projection_axes(n, pu, pv);
+  vec2 t2[3] = vec2[3](tri_tri_project(t[0], t[0], pu, pv), tri_tri_project(t[1], t[0], pu, pv),
+                       tri_tri_project(t[2], t[0], pu, pv));
+  vec2 p2[5];
+  for (int i = 0; i < count; ++i) {
+    p2[i] = tri_tri_project(poly[i], t[0], pu, pv);
+  }
+  precise float area_tol = kTriTriTolerance * size * size;
+  precise float length_tol = kTriTriTolerance * size;
+  // The first witness found is the contact.
+  bool meet = false;
+  for (int i = 0; i < count; ++i) {
+    if (!meet && tri_tri_point_in_triangle_2d(p2[i], t2, area_tol)) {
+      meet = true;
+      contact = poly[i];
+    }
+    // A proper crossing of the polygon's edge i and an edge of t, by the signs.
+    const int j = (i + 1) % count;
+    for (int k = 0; k < 3; ++k) {
+      const vec2 a = t2[k];
+      const vec2 b = t2[(k + 1) % 3];
+      const float r1 = tri_tri_orient2d(a, b, p2[i]);
+      const float r2 = tri_tri_orient2d(a, b, p2[j]);
+      if (!meet && tri_tri_opposite_signs(r1, r2) &&
+          tri_tri_opposite_signs(tri_tri_orient2d(p2[i], p2[j], a), tri_tri_orient2d(p2[i], p2[j], b))) {
+        meet = true;
+        precise float f = r1 / (r1 - r2);  // r1 != r2
+        precise vec3 x = poly[i] + (poly[j] - poly[i]) * f;
+        contact = x;
+      }
+    }
+  }
+  // t's vertex within length_tol of the inner side of every edge's line.
+  // And within the polygon's bounding box (grown by length_tol).
+  precise float area2 = 0.0;
+  for (int i = 1; i + 1 < count; ++i) {
+    area2 += tri_tri_orient2d(p2[0], p2[i], p2[i + 1]);
+  }
+  vec2 lo = p2[0];
+  vec2 hi = p2[0];
+  for (int i = 1; i < count; ++i) {
+    lo = min(lo, p2[i]);
+    hi = max(hi, p2[i]);
+  }
+  precise float lo_x = lo.x - length_tol;
+  precise float hi_x = hi.x + length_tol;
+  precise float lo_y = lo.y - length_tol;
+  precise float hi_y = hi.y + length_tol;
+  bool inside = lo_x <= t2[0].x && t2[0].x <= hi_x && lo_y <= t2[0].y && t2[0].y <= hi_y;
+  for (int i = 0; i < count; ++i) {
+    const int j = (i + 1) % count;
+    precise vec2 e = p2[j] - p2[i];
+    const float r = tri_tri_orient2d(p2[i], p2[j], t2[0]);
+    precise float o = area2 > 0.0 ? r : -r;
+    precise float e2 = e.x * e.x + e.y * e.y;
+    precise float bound = length_tol * length_tol * e2;
+    precise float o2 = o * o;
+    inside = inside && !(o < 0.0 && o2 > bound);
+  }
+  if (!meet && inside) {
+    meet = true;
+    contact = t[0];
+  }
+  return meet;
+}
+
 // tri_tri_intersect: intersection of triangles p and q, symmetric in p and q.
 // Whether the closed bounding boxes of p and q share a point (exact: min/max do not round).
 bool tri_tri_boxes_touch(vec3 p[3], vec3 q[3]) {
@@ -310,13 +420,14 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
   const vec3 x_hi = hi_from_a ? ia.x_max : ib.x_max;
   precise float gap_tol = kTriTriTolerance * size * tri_tri_length(dir);
   precise float t_hi_closed = t_hi + gap_tol;
-  if (t_lo > t_hi_closed) return result;
+  const bool gap = t_lo > t_hi_closed;
   // A vertex snapped onto the other plane may lie up to tolerance / sin(angle) from the planes'
   // line: each triangle's part on the other's plane must meet the other triangle there, in 2D.
   const bool snapped = da[0] == 0.0 || da[1] == 0.0 || da[2] == 0.0 || db[0] == 0.0 ||
                        db[1] == 0.0 || db[2] == 0.0;
   // b's part against a, then a's against b (one call site: llvmpipe compiles each call in full).
-  for (int k = 0; snapped && k < 2; ++k) {
+  bool missed_in_plane = false;
+  for (int k = 0; !gap && snapped && !missed_in_plane && k < 2; ++k) {
     vec3 t[3];
     if (k == 0) {
       t = a;
@@ -325,12 +436,41 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
     }
     const vec3 s0 = k == 0 ? ib.x_min : ia.x_min;
     const vec3 s1 = k == 0 ? ib.x_max : ia.x_max;
-    if (!tri_tri_segment_in_plane_meets_triangle(s0, s1, t, k == 0 ? na : nb, size)) return result;
+    missed_in_plane = !tri_tri_segment_in_plane_meets_triangle(s0, s1, t, k == 0 ? na : nb, size);
+  }
+  if (!gap && !missed_in_plane) {
+    result.intersect = true;
+    const bool touching = t_lo > t_hi;  // a gap inside the tolerance: one contact point
+    precise vec3 mid = 0.5 * (x_lo + x_hi);
+    result.segment0 = touching ? mid : x_lo;
+    result.segment1 = touching ? mid : x_hi;
+    return result;
+  }
+
+  // "Apart" not proven yet (see the C++): apart only when, for one of the two triangles, no
+  // point of the other within the plane tolerance of its plane lies over it.
+  vec3 contact = vec3(0.0);
+  for (int k = 0; k < 2; ++k) {
+    vec3 t[3];
+    vec3 s[3];
+    if (k == 0) {
+      t = a;
+      s = b;
+    } else {
+      t = b;
+      s = a;
+    }
+    const float l2 = k == 0 ? la2 : lb2;
+    const float n_len = k == 0 ? na_len : nb_len;
+    precise float tol = (0.5 * kTriTriTolerance + kTriTriRoundoff * l2 / n_len) * size;
+    vec3 x = vec3(0.0);
+    if (!tri_tri_slab_part_meets_triangle(s, t, k == 0 ? na : nb, k == 0 ? ua : ub, tol, size, x)) {
+      return result;
+    }
+    if (k == 0) contact = x;
   }
   result.intersect = true;
-  const bool touching = t_lo > t_hi;  // a gap inside the tolerance: one contact point
-  precise vec3 mid = 0.5 * (x_lo + x_hi);
-  result.segment0 = touching ? mid : x_lo;
-  result.segment1 = touching ? mid : x_hi;
+  result.segment0 = contact;
+  result.segment1 = contact;
   return result;
 }

@@ -14,7 +14,10 @@ namespace deformcd::collision {
 /// is below (kTriTriTolerance + kTriTriRoundoff x L^2 / |n|) x S, S the pair's longest edge, is
 /// taken to lie on that plane: |dot(n, x - a0)| <= kTriTriTolerance |n| S + kTriTriRoundoff L^2 S.
 /// The same kTriTriTolerance x S^2 snaps 2D orientations in the coplanar case, and x S closes
-/// gaps between the two intervals on the planes' line. Touching counts as intersecting.
+/// gaps between the two intervals on the planes' line. Touching counts as intersecting, and
+/// "apart" is answered only beyond the tolerance: a pair of proper triangles that meets exactly
+/// on the float coordinates is never reported apart (a gap found on the planes' line is
+/// confirmed by a test that constructs no crossing of the planes, see the .cpp).
 inline constexpr float kTriTriTolerance = 1e-5f;
 
 /// Rounding term of the plane tolerance, about 8 float ulps of L^2 S: the error of the float
