@@ -146,7 +146,15 @@ Detector::Detector(std::vector<CollisionMesh> meshes, const DetectorOptions& opt
 
 Detector::Detector(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Detector::~Detector() {
-  if (impl_) impl_->make_current();  // GL objects are deleted in their context
+  if (!impl_) return;
+  try {
+    impl_->make_current();  // GL objects are deleted in their context
+  } catch (const GlError&) {
+    // A destructor must not throw. Deleting the GL objects in whatever context is current
+    // could delete another context's objects of the same names: leave them to their context
+    // (they go with it when the detector owns it), at the cost of the backend's host memory.
+    (void)impl_->backend.release();
+  }
 }
 Detector::Detector(Detector&&) noexcept = default;
 Detector& Detector::operator=(Detector&&) noexcept = default;

@@ -3,8 +3,10 @@
 #include <string>
 #include <utility>
 
+#include "buffer_from.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/ssbo.h"
+#include "fault_injection.h"
 #include "gl_check.h"
 
 namespace deformcd::gl {
@@ -29,11 +31,17 @@ BufferObject::BufferObject(std::size_t bytes) : bytes_(bytes) {
   }
   // DYNAMIC_COPY: written by shaders, occasionally read back. Checked in release builds too,
   // because running out of GPU memory is a boundary condition, not a bug.
-  glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_COPY);
-  if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
+  GLenum error = GL_OUT_OF_MEMORY;
+  const bool injected = fault::should_fail(fault::Kind::kBufferAllocation);
+  if (!injected) {
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr,
+                 GL_DYNAMIC_COPY);
+    error = glGetError();
+  }
+  if (error != GL_NO_ERROR) {
     glDeleteBuffers(1, &name_);
-    throw GlError("BufferObject: allocating " + std::to_string(bytes) +
-                  " bytes failed: " + detail::gl_error_name(error));
+    throw GlError("glBufferData of " + std::to_string(bytes) + " bytes failed: " +
+                  detail::gl_error_name(error) + (injected ? " (injected by gl::fault)" : ""));
   }
 }
 
@@ -75,6 +83,16 @@ void BufferObject::download(void* out, std::size_t bytes, std::size_t offset) co
 
 void BufferObject::bind_storage(std::uint32_t index) const {
   DEFORMCD_GL_CHECK(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, index, name_));
+}
+
+GlError allocation_error(const BufferLabel& label, std::uint64_t count, std::uint64_t element_bytes,
+                         const GlError& cause) {
+  std::string size = std::to_string(count * element_bytes) + " bytes";
+  if (element_bytes > 1) {
+    size += " (" + std::to_string(count) + " x " + std::to_string(element_bytes) + ")";
+  }
+  return GlError(std::string(label.owner) + ": allocating " + std::string(label.name) + " (SSBO " +
+                 std::to_string(label.binding) + "), " + size + ", failed: " + cause.what());
 }
 
 }  // namespace deformcd::gl

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "deformcd/error.h"
+#include "fault_injection.h"
 
 namespace deformcd::gl::detail {
 
@@ -126,8 +127,14 @@ void EglHeadlessContext::destroy() noexcept {
 }
 
 void EglHeadlessContext::make_current() {
+  // On failure EGL leaves the calling thread's current context as it was.
+  if (fault::should_fail(fault::Kind::kMakeCurrent)) {
+    throw GlError("making the " + platform_name_ + " context current failed (" + details_ +
+                  "): eglMakeCurrent: EGL_BAD_ACCESS (injected by gl::fault)");
+  }
   if (eglMakeCurrent(display_.get(), EGL_NO_SURFACE, EGL_NO_SURFACE, context_) != EGL_TRUE) {
-    throw GlError(details_ + ": eglMakeCurrent failed: " + egl_error_name(eglGetError()));
+    throw GlError("making the " + platform_name_ + " context current failed (" + details_ +
+                  "): eglMakeCurrent: " + egl_error_name(eglGetError()));
   }
 }
 

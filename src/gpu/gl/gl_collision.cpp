@@ -95,8 +95,8 @@ void GlCollision::upload(const collision::CollisionData& data) {
   // Everything is checked before the first allocation, so a failed upload keeps the old state.
   check_collision_data(data);
   const CollisionCapacities capacities = initial_capacities(data);
-  check_buffer_sizes(collision_buffer_sizes(data, capacities), max_buffer_bytes_, limit_name(),
-                     "GL collision");
+  const std::vector<BufferSize> sizes = collision_buffer_sizes(data, capacities);
+  check_buffer_sizes(sizes, max_buffer_bytes_, limit_name(), "GL collision");
   const auto box_count = static_cast<std::uint32_t>(gpu::kLeafBoxesPerBody * data.mesh_count());
   // The trees' reference quality on the positions they were built on: the current ones, if
   // every mesh has some yet (a read-back of GL sources, before anything changes).
@@ -107,30 +107,40 @@ void GlCollision::upload(const collision::CollisionData& data) {
       plan_bvh_work_order(data.bvh_nodes, data.mesh_bvhs, data.meshes, data.faces.size());
 
   // The new buffers are all allocated before the old ones are released: if GL runs out of
-  // memory (GlError from BufferObject), the previous state stays intact.
+  // memory, the GlError names the buffer and the previous state stays intact.
+  const auto label = [&sizes](std::uint32_t binding) {
+    return label_of(sizes, binding, "GL collision");
+  };
+  const auto copy = [&label](const auto& array, std::uint32_t binding) {
+    return make_buffer(array, label(binding));
+  };
   const std::vector<gpu::Box> empty_boxes(box_count, collision::empty_box());
   CollisionBuffers b{
-      .boxes = make_buffer(empty_boxes),
-      .face_flags = Ssbo<std::uint32_t>(std::max<std::size_t>(data.faces.size(), 1)),
-      .faces = make_buffer(data.faces),
-      .meshes = make_buffer(data.meshes),
-      .box_faces = make_buffer(data.box_faces),
-      .face_pairs = Ssbo<gpu::FacePair>(capacities.face_pairs),
-      .box_mask = Ssbo<std::int32_t>(capacities.mask_slots * gpu::kLeafBoxesPerBody *
-                                     gpu::kLeafBoxesPerBody),
-      .face_boxes = make_buffer(data.face_boxes),
-      .mesh_pairs = make_buffer(data.mesh_pairs),
-      .counters = Ssbo<gpu::CollisionCounters>(1),
-      .box_rows = make_buffer(data.box_rows),
-      .bvh_nodes = make_buffer(data.bvh_nodes),
-      .bvh_boxes = Ssbo<gpu::Box>(std::max<std::size_t>(data.bvh_nodes.size(), 1)),
-      .mesh_bvhs = make_buffer(data.mesh_bvhs),
-      .candidates = Ssbo<glm::uvec2>(capacities.candidates),
-      .dispatch_args = Ssbo<std::uint32_t>(kDispatchArgsWords),
-      .box_pair_list = Ssbo<glm::uvec2>(capacities.box_pairs),
-      .bvh_levels = make_buffer(order.refit_order),
-      .touching_pairs = Ssbo<gpu::BodyPair>(std::max<std::size_t>(data.mesh_pairs.size(), 1)),
-      .bvh_leaves = make_buffer(order.leaves),
+      .boxes = copy(empty_boxes, gpu::kBoxInfo),
+      .face_flags = allocate<std::uint32_t>(std::max<std::size_t>(data.faces.size(), 1),
+                                            label(gpu::kCollisionResult)),
+      .faces = copy(data.faces, gpu::kFaceInfo),
+      .meshes = copy(data.meshes, gpu::kMeshInfo),
+      .box_faces = copy(data.box_faces, gpu::kBoxFaceList),
+      .face_pairs = allocate<gpu::FacePair>(capacities.face_pairs, label(gpu::kFacePair)),
+      .box_mask = allocate<std::int32_t>(
+          capacities.mask_slots * gpu::kLeafBoxesPerBody * gpu::kLeafBoxesPerBody,
+          label(gpu::kBoxMask)),
+      .face_boxes = copy(data.face_boxes, gpu::kFaceBoxes),
+      .mesh_pairs = copy(data.mesh_pairs, gpu::kBodyPair),
+      .counters = allocate<gpu::CollisionCounters>(1, label(gpu::kCollisionCounters)),
+      .box_rows = copy(data.box_rows, gpu::kBoxRows),
+      .bvh_nodes = copy(data.bvh_nodes, gpu::kBvhNode),
+      .bvh_boxes =
+          allocate<gpu::Box>(std::max<std::size_t>(data.bvh_nodes.size(), 1), label(gpu::kBvhBox)),
+      .mesh_bvhs = copy(data.mesh_bvhs, gpu::kBodyBvh),
+      .candidates = allocate<glm::uvec2>(capacities.candidates, label(gpu::kCandidatePair)),
+      .dispatch_args = allocate<std::uint32_t>(kDispatchArgsWords, label(kDispatchArgsBinding)),
+      .box_pair_list = allocate<glm::uvec2>(capacities.box_pairs, label(kBoxPairListBinding)),
+      .bvh_levels = copy(order.refit_order, kBvhLevelsBinding),
+      .touching_pairs = allocate<gpu::BodyPair>(std::max<std::size_t>(data.mesh_pairs.size(), 1),
+                                                label(kTouchingPairsBinding)),
+      .bvh_leaves = copy(order.leaves, kBvhLeavesBinding),
       .face_count = static_cast<std::uint32_t>(data.faces.size()),
       .box_count = box_count,
       .pair_capacity = static_cast<std::uint32_t>(capacities.face_pairs),
@@ -159,6 +169,7 @@ void GlCollision::upload(const collision::CollisionData& data) {
   clear_to_zero(buffers_->counters);
   last_method_ = BroadPhase::kNone;
   pass_pending_ = false;
+  lost_pass_.reset();
   bvh_passes_ = 0;
   upkeep_ = std::move(upkeep);
   upkeep_pending_.reset();
@@ -188,6 +199,7 @@ void GlCollision::detect(BroadPhase method) {
   }
   last_method_ = method;
   pass_pending_ = true;
+  lost_pass_.reset();
   run_pass(method, b);
 }
 
@@ -241,29 +253,34 @@ collision::BvhUpkeep GlCollision::measured_bvh_upkeep(const collision::Collision
 
 gpu::CollisionCounters GlCollision::counters() {
   complete_pass();
+  require_results("counters");
   return buffers("counters").counters.download(0, 1).front();
 }
 
 void GlCollision::download_face_pairs(std::vector<gpu::FacePair>& out) {
   complete_pass();
+  require_results("download_face_pairs");
   const CollisionBuffers& b = buffers("download_face_pairs");
   out = b.face_pairs.download(0, b.counters.download(0, 1).front().face_pairs);
 }
 
 void GlCollision::download_face_flags(std::vector<std::uint32_t>& out) {
   complete_pass();
+  require_results("download_face_flags");
   const CollisionBuffers& b = buffers("download_face_flags");
   out = b.face_flags.download(0, b.face_count);
 }
 
 void GlCollision::download_boxes(std::vector<gpu::Box>& out) {
   complete_pass();
+  require_results("download_boxes");
   const CollisionBuffers& b = buffers("download_boxes");
   out = b.boxes.download(0, b.box_count);
 }
 
 void GlCollision::download_bvh_boxes(std::vector<gpu::Box>& out) {
   complete_pass();
+  require_results("download_bvh_boxes");
   const CollisionBuffers& b = buffers("download_bvh_boxes");
   out = b.bvh_boxes.download(0, b.bvh_node_count);
 }

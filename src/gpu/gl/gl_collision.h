@@ -121,7 +121,10 @@ class GlCollision final : public collision::CollisionBackend {
   // positions (at most 3 times: a pass is deterministic in what it counts); after a bvh pass,
   // maybe rebuilds trees. Does nothing when the last pass is already complete. Throws Error when
   // reruns do not settle (a caller's buffer read in place changed), GlError when a list cannot
-  // grow within the buffer limit.
+  // grow within the buffer limit or the driver refuses the memory (naming the list and its
+  // size). Then the pass is lost: it overwrote the previous results and its own lists are
+  // partial. The buffers stay as they were and the next detect() runs normally; until then
+  // the reads below throw the same kind of error, saying why.
   void complete_pass() override;
   // The reads complete the pass first.
   [[nodiscard]] gpu::CollisionCounters counters() override;
@@ -177,10 +180,13 @@ class GlCollision final : public collision::CollisionBackend {
   // Writes the indirect arguments covering min(count, capacity) entries of `list` with work
   // groups of `local_size` along its axis, at uint `word` of the dispatch-args buffer.
   void write_dispatch_args(const IndirectList& list, std::uint32_t local_size, std::uint32_t word);
+  // Throws when the last pass was lost (complete_pass).
+  void require_results(const char* operation) const;
   // Whether the last pass's counts `found` exceed a list's capacity (gl_collision_completion.cpp).
   [[nodiscard]] bool overflowed(const CollisionBuffers& b,
                                 const gpu::CollisionCounters& found) const;
-  // Replaces each list that `found` overflowed by one 1.5 x the count (GlError past the limit).
+  // Replaces each list that `found` overflowed by one 1.5 x the count (GlError past the limit
+  // or when the driver refuses one; then no list is replaced).
   void grow_overflowed(CollisionBuffers& b, const gpu::CollisionCounters& found);
   // Whether every mesh of `meshes` has positions of its vertex count.
   [[nodiscard]] bool positions_cover(const std::vector<gpu::MeshInfo>& meshes) const;
@@ -223,6 +229,11 @@ class GlCollision final : public collision::CollisionBackend {
   std::uint32_t bvh_passes_ = 0;                // completed bvh passes since the last check
   BroadPhase last_method_ = BroadPhase::kNone;  // what complete_pass reruns
   bool pass_pending_ = false;                   // detect() ran, complete_pass() did not since
+  struct LostPass {
+    std::string why;  // the error complete_pass threw
+    bool gl = false;  // whether it was a GlError
+  };
+  std::optional<LostPass> lost_pass_;  // the last pass could not complete; reset by detect()
 };
 
 }  // namespace deformcd::gl

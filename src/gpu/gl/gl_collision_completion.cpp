@@ -6,9 +6,11 @@
 
 #include <epoxy/gl.h>
 
+#include <optional>
 #include <span>
 #include <string>
 
+#include "buffer_from.h"
 #include "deformcd/error.h"
 #include "gl_check.h"
 #include "gl_collision.h"
@@ -33,23 +35,41 @@ bool lists_candidates(BroadPhase method) {
 void GlCollision::complete_pass() {
   if (!pass_pending_) return;
   CollisionBuffers& b = buffers("complete_pass");
-  for (int rerun = 0;; ++rerun) {
-    const gpu::CollisionCounters found = b.counters.download(0, 1).front();
-    if (!overflowed(b, found)) break;
-    if (rerun == kMaxReruns) {
-      throw Error("GlCollision::complete_pass: the pass still overflowed after " +
-                  std::to_string(kMaxReruns) + " reruns (" + std::to_string(found.box_pairs) +
-                  " box pairs, " + std::to_string(found.candidates) + " candidates, " +
-                  std::to_string(found.face_pairs) +
-                  " face pairs; did the positions in a GL buffer read in place change?)");
+  try {
+    for (int rerun = 0;; ++rerun) {
+      const gpu::CollisionCounters found = b.counters.download(0, 1).front();
+      if (!overflowed(b, found)) break;
+      if (rerun == kMaxReruns) {
+        throw Error("GlCollision::complete_pass: the pass still overflowed after " +
+                    std::to_string(kMaxReruns) + " reruns (" + std::to_string(found.box_pairs) +
+                    " box pairs, " + std::to_string(found.candidates) + " candidates, " +
+                    std::to_string(found.face_pairs) +
+                    " face pairs; did the positions in a GL buffer read in place change?)");
+      }
+      grow_overflowed(b, found);
+      // A pass is deterministic in what it counts (only the slots' order varies): on the same
+      // (staged) positions, the grown lists hold what overflowed.
+      run_pass(last_method_, b);
     }
-    grow_overflowed(b, found);
-    // A pass is deterministic in what it counts (only the slots' order varies): on the same
-    // (staged) positions, the grown lists hold what overflowed.
-    run_pass(last_method_, b);
+  } catch (const Error& e) {
+    // The pass overwrote the previous results and its own lists are partial: nothing whole is
+    // left to read until the next pass. The buffers stay as they are (grow_overflowed replaces
+    // none when it fails), so the next detect() runs as if this pass had not been.
+    pass_pending_ = false;
+    lost_pass_ = LostPass{e.what(), dynamic_cast<const GlError*>(&e) != nullptr};
+    throw;
   }
   pass_pending_ = false;
   if (last_method_ == BroadPhase::kBvh) maintain_bvhs(b);
+}
+
+void GlCollision::require_results(const char* operation) const {
+  if (!lost_pass_) return;
+  const std::string message = std::string("GlCollision::") + operation +
+                              ": the last pass's results are lost (" + lost_pass_->why +
+                              "); the next detect() runs a new pass";
+  if (lost_pass_->gl) throw GlError(message);
+  throw Error(message);
 }
 
 bool GlCollision::overflowed(const CollisionBuffers& b, const gpu::CollisionCounters& found) const {
@@ -72,18 +92,48 @@ void GlCollision::grow_overflowed(CollisionBuffers& b, const gpu::CollisionCount
     }
     return static_cast<std::uint32_t>(std::min<std::uint64_t>(most, count + count / 2));
   };
+  // Every grown list is allocated before any is replaced: when the driver refuses one, the
+  // lists and their capacities (the shaders' uniforms) stay as they were, consistent.
+  const auto allocate_grown = [](std::uint32_t capacity, std::uint32_t slots, std::uint32_t count,
+                                 const BufferLabel& label, auto element) {
+    try {
+      return allocate<decltype(element)>(slots, label);
+    } catch (const GlError& e) {
+      throw GlError(std::string(e.what()) + "; growing it from " + std::to_string(capacity) +
+                    " entries after a pass found " + std::to_string(count) +
+                    ": the lists keep their size");
+    }
+  };
+  std::optional<Ssbo<glm::uvec2>> box_pairs;
+  std::optional<Ssbo<glm::uvec2>> candidates;
+  std::optional<Ssbo<gpu::FacePair>> face_pairs;
+  std::uint32_t box_pair_capacity = b.box_pair_capacity;
+  std::uint32_t candidate_capacity = b.candidate_capacity;
+  std::uint32_t pair_capacity = b.pair_capacity;
   if (lists_box_pairs(last_method_) && found.box_pairs > b.box_pair_capacity) {
-    b.box_pair_capacity = grown(found.box_pairs, sizeof(glm::uvec2), "Box Pair List", "SSBO 30");
-    b.box_pair_list = Ssbo<glm::uvec2>(b.box_pair_capacity);
+    box_pair_capacity = grown(found.box_pairs, sizeof(glm::uvec2), "Box Pair List", "SSBO 30");
+    box_pairs.emplace(allocate_grown(b.box_pair_capacity, box_pair_capacity, found.box_pairs,
+                                     {"GL collision", "Box Pair List", kBoxPairListBinding},
+                                     glm::uvec2{}));
   }
   if (lists_candidates(last_method_) && found.candidates > b.candidate_capacity) {
-    b.candidate_capacity = grown(found.candidates, sizeof(glm::uvec2), "Candidate Pair", "SSBO 28");
-    b.candidates = Ssbo<glm::uvec2>(b.candidate_capacity);
+    candidate_capacity = grown(found.candidates, sizeof(glm::uvec2), "Candidate Pair", "SSBO 28");
+    candidates.emplace(allocate_grown(b.candidate_capacity, candidate_capacity, found.candidates,
+                                      {"GL collision", "Candidate Pair", gpu::kCandidatePair},
+                                      glm::uvec2{}));
   }
   if (found.face_pairs > b.pair_capacity) {
-    b.pair_capacity = grown(found.face_pairs, sizeof(gpu::FacePair), "Face Pair", "SSBO 10");
-    b.face_pairs = Ssbo<gpu::FacePair>(b.pair_capacity);
+    pair_capacity = grown(found.face_pairs, sizeof(gpu::FacePair), "Face Pair", "SSBO 10");
+    face_pairs.emplace(allocate_grown(b.pair_capacity, pair_capacity, found.face_pairs,
+                                      {"GL collision", "Face Pair", gpu::kFacePair},
+                                      gpu::FacePair{}));
   }
+  if (box_pairs) b.box_pair_list = std::move(*box_pairs);
+  if (candidates) b.candidates = std::move(*candidates);
+  if (face_pairs) b.face_pairs = std::move(*face_pairs);
+  b.box_pair_capacity = box_pair_capacity;
+  b.candidate_capacity = candidate_capacity;
+  b.pair_capacity = pair_capacity;
   set_capacity_uniforms(b);
 }
 

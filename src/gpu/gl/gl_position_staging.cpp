@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "buffer_from.h"
 #include "deformcd/error.h"
 #include "gl_check.h"
 
@@ -114,7 +115,15 @@ void PositionStaging::gather(const PositionLayout& layout) {
   }
   // Kept from pass to pass; a binding of zero bytes is an error on some drivers.
   const std::uint64_t bytes = std::max<std::uint64_t>(layout.gathered_bytes, sizeof(float));
-  if (!gathered_ || gathered_->size_bytes() < bytes) gathered_.emplace(bytes);
+  if (!gathered_ || gathered_->size_bytes() < bytes) {
+    // The old buffer goes only once the new one is had.
+    try {
+      gathered_ = BufferObject(bytes);
+    } catch (const GlError& e) {
+      throw allocation_error({"GL collision", "Gathered Positions", gpu::kNodePosition}, bytes, 1,
+                             e);
+    }
+  }
   // Shader writes to the callers' buffers land before the copies read them.
   DEFORMCD_GL_CHECK(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT));
   for (std::size_t m = 0; m < sources_.size(); ++m) {

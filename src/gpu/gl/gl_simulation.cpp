@@ -49,7 +49,8 @@ GlSimulation::GlSimulation(const DeviceInfo& device, const GlSimulationOptions& 
 void GlSimulation::upload(const SimulationState& state) {
   // Everything is checked before the first allocation, so a failed upload keeps the old state.
   check_world_consistency(state);
-  check_buffer_sizes(simulation_buffer_sizes(state), max_buffer_bytes_,
+  const std::vector<BufferSize> sizes = simulation_buffer_sizes(state);
+  check_buffer_sizes(sizes, max_buffer_bytes_,
                      limit_is_device_ ? "the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE"
                                       : "GlSimulationOptions::max_buffer_bytes");
   check_fits_one_dispatch(spring_update_, state.springs.size(), max_work_groups_x_);
@@ -58,14 +59,19 @@ void GlSimulation::upload(const SimulationState& state) {
   check_fits_one_dispatch(node_update_, state.node_count(), max_work_groups_x_);
 
   // The new buffers are all allocated before the old ones are released: if GL runs out of
-  // memory (GlError from BufferObject), the previous state stays intact.
+  // memory, the GlError names the buffer and the previous state stays intact.
+  const auto copy = [&sizes](const auto& data, gpu::Binding binding) {
+    return make_buffer(data, label_of(sizes, binding, "GL simulation"));
+  };
   buffers_.emplace(SimulationBuffers{
-      make_buffer(state.positions), make_buffer(state.velocities), make_buffer(state.springs),
-      make_buffer(state.forces), make_buffer(state.body_params), make_buffer(state.node_body),
-      make_buffer(state.spring_forces), make_buffer(state.node_spring_offset),
-      make_buffer(state.node_spring_list), make_buffer(state.tets), make_buffer(state.tet_forces),
-      make_buffer(state.node_tet_offset), make_buffer(state.node_tet_list),
-      static_cast<std::uint32_t>(state.node_count()),
+      copy(state.positions, gpu::kNodePosition), copy(state.velocities, gpu::kNodeVelocity),
+      copy(state.springs, gpu::kSpringInfo), copy(state.forces, gpu::kNodeForce),
+      copy(state.body_params, gpu::kBodyParams), copy(state.node_body, gpu::kNodeBody),
+      copy(state.spring_forces, gpu::kSpringForce),
+      copy(state.node_spring_offset, gpu::kNodeSpringOffset),
+      copy(state.node_spring_list, gpu::kNodeSpringList), copy(state.tets, gpu::kTetInfo),
+      copy(state.tet_forces, gpu::kTetForce), copy(state.node_tet_offset, gpu::kNodeTetOffset),
+      copy(state.node_tet_list, gpu::kNodeTetList), static_cast<std::uint32_t>(state.node_count()),
       static_cast<std::uint32_t>(state.springs.size()),
       static_cast<std::uint32_t>(state.tets.size())});
   tet_update_.set_uniform("u_tet_count", buffers_->tet_count);

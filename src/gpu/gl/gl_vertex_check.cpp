@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "buffer_from.h"
 #include "collision_dispatch_plan.h"
 #include "collision_work_buffers.h"
 #include "deformcd/gpu_layout.h"
@@ -30,7 +31,10 @@ bool VertexCheck::find(const PositionStaging& staging, std::uint32_t& mesh, std:
     if (sources[m].kind == Kind::kGl && sources[m].vertex_count > 0) checked.push_back(m);
   }
   if (checked.empty()) return false;
-  if (!first_bad_ || first_bad_->size() < meshes) first_bad_.emplace(meshes);
+  if (!first_bad_ || first_bad_->size() < meshes) {
+    first_bad_ =
+        allocate<std::uint32_t>(meshes, {"GL collision", "Non-Finite Vertex", kNonFiniteBinding});
+  }
   DEFORMCD_GL_CHECK(glBindBuffer(GL_SHADER_STORAGE_BUFFER, first_bad_->name()));
   DEFORMCD_GL_CHECK(glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER,
                                       GL_UNSIGNED_INT, &kNoVertex));

@@ -2,9 +2,13 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
+#include <optional>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include "deformcd/error.h"
+#include "fault_injection.h"
 #include "gl_check.h"
 #include "shader_log.h"
 
@@ -25,10 +29,29 @@ std::string info_log(GLuint object, GetParameter get_parameter, GetLog get_log) 
   return log;
 }
 
+// `source` with a line appended that uses an undeclared name, mapped to the line after the
+// shader's own last: the driver then fails the compile with its own log
+// (gl::fault::Kind::kShaderCompile). Not an #error: Mesa 22.3's shader cache gave the source
+// with it the key of the source without it, skipped the compile and reported success.
+PreprocessedShader with_injected_error(const PreprocessedShader& source) {
+  PreprocessedShader failing = source;
+  std::uint32_t last_line = 0;
+  for (const SourceLine& origin : source.origins) {
+    if (origin.file == 0) last_line = std::max(last_line, origin.line);
+  }
+  if (!failing.text.empty() && failing.text.back() != '\n') failing.text += '\n';
+  failing.text += "uint injected = compile_failure_injected_by_gl_fault;\n";
+  failing.origins.push_back({0, last_line + 1});
+  return failing;
+}
+
 }  // namespace
 
 std::uint32_t compile_shader_stage(std::uint32_t stage, std::string_view stage_name,
-                                   std::string_view name, const PreprocessedShader& source) {
+                                   std::string_view name, const PreprocessedShader& shader_source) {
+  std::optional<PreprocessedShader> failing;
+  if (fault::should_fail(fault::Kind::kShaderCompile)) failing = with_injected_error(shader_source);
+  const PreprocessedShader& source = failing ? *failing : shader_source;
   const GLuint shader = DEFORMCD_GL_CHECK(glCreateShader(stage));
   const char* text = source.text.c_str();
   DEFORMCD_GL_CHECK(glShaderSource(shader, 1, &text, nullptr));
