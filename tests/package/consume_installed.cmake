@@ -1,6 +1,6 @@
 # CTest script: installs the build tree into a fresh prefix, checks that no exported target names
 # a path of this machine's libraries, then builds and runs a consumer project against it.
-# -D BUILD_DIR=... -D SOURCE_DIR=... -D WORK_DIR=...
+# -D BUILD_DIR=... -D SOURCE_DIR=... -D WORK_DIR=... [-D CXX_FLAGS=... -D LINKER_FLAGS=...]
 file(REMOVE_RECURSE "${WORK_DIR}")
 execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/prefix"
                 RESULT_VARIABLE rc OUTPUT_QUIET)
@@ -27,6 +27,7 @@ foreach(scene phase1.json fold.json)
 endforeach()
 execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/package/consumer"
                         -B "${WORK_DIR}/build" -G Ninja "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix"
+                        "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${LINKER_FLAGS}"
                 RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "configuring the consumer against the installed package failed")
