@@ -14,6 +14,7 @@
 #include "collision_test_worlds.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/ssbo.h"
+#include "expect_gl_error.h"
 #include "gl_test_context.h"
 #include "gpu/gl/fault_injection.h"
 #include "gpu/gl/gl_collision.h"
@@ -24,20 +25,8 @@ namespace {
 using fault::Kind;
 using fault::ScopedFault;
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-template <class F>
-std::string gl_error_of(F&& f) {
-  try {
-    f();
-  } catch (const GlError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected a GlError";
-  return {};
-}
+using test::contains;
+using test::gl_error_of;
 
 // The counters need no GL: they only count and say when to fail.
 TEST(FaultInjection, ArmedOperationsFailOnlyInTheirWindow) {

@@ -16,6 +16,7 @@
 #include "deformcd/detector.h"
 #include "deformcd/error.h"
 #include "deformcd/world.h"
+#include "expect_gl_error.h"
 #include "gl_test_context.h"
 #include "gpu/gl/fault_injection.h"
 #include "support/contact_compare.h"
@@ -27,20 +28,8 @@ namespace {
 using gl::fault::Kind;
 using gl::fault::ScopedFault;
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-template <class F>
-std::string gl_error_of(F&& f) {
-  try {
-    f();
-  } catch (const GlError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected a GlError";
-  return {};
-}
+using test::contains;
+using test::gl_error_of;
 
 // Two stacks of k large triangles: mesh 0's in the planes z = z_i, mesh 1's in the planes
 // y = y_j (both spread over [-1, 1]). Each triangle covers the square [-1, 1]^2 of its plane, so
