@@ -428,3 +428,34 @@ def test_help_documents_every_call():
                 assert (member.__doc__ or "").strip(), f"{cls.__name__}.{name} has no docstring"
     assert "set_positions" in deformcd.Detector.__doc__
     assert "in place" in deformcd.Detector.set_positions.__doc__
+
+
+def test_no_reference_or_memory_leak_over_a_thousand_calls(spheres):
+    import gc
+    import tracemalloc
+    V0, F0, rest1, F1 = spheres
+    d = deformcd.Detector([(V0, F0), (pose(rest1, 12), F1)], backend="cpu")
+    frames = [pose(rest1, 12), pose(rest1, 12).astype(np.float64)]
+    refs = [sys.getrefcount(f) for f in frames]
+
+    def calls(n):
+        for i in range(n):
+            d.set_positions(1, frames[i % 2])
+            d.detect()
+            c = d.contacts()
+            assert len(c["face_a"]) > 0
+            d.counts()
+            d.face_flags()
+
+    calls(50)  # warm-up: pools, lists that keep their capacity
+    gc.collect()
+    tracemalloc.start()
+    before = tracemalloc.take_snapshot()
+    calls(1000)
+    gc.collect()
+    after = tracemalloc.take_snapshot()
+    tracemalloc.stop()
+    grown = sum(s.size_diff for s in after.compare_to(before, "filename"))
+    assert grown < 64 * 1024, f"Python-side memory grew by {grown} bytes over 1,000 calls"
+    d.set_positions(1, pose(rest1, 0))  # releases the last array it held
+    assert [sys.getrefcount(f) for f in frames] == refs
