@@ -21,7 +21,7 @@ packages=(
   # tests, benchmarks, exact oracle, CGAL's data set for the models
   libgtest-dev libgmock-dev libbenchmark-dev libcgal-dev libcgal-demo libeigen3-dev
   # peers of the comparison benchmark (bench_peers)
-  libfcl-dev
+  libfcl-dev libbullet-dev
   # the Python module (pybind11, for Debian's /usr/bin/python3), its tests and example
   python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
 )
