@@ -1,5 +1,7 @@
 #include "bench_plot.h"
 
+#include "deformcd/io.h"
+
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -132,26 +134,19 @@ void plot_bench(const std::vector<SceneBench>& results, const fs::path& gnuplot,
   const ScratchDirectory scratch(file);
   const fs::path data = scratch.path / "bench.dat";
   const fs::path commands = scratch.path / "bench.gp";
-  // Next to the target, so that the rename into place is atomic.
-  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  const fs::path image =
-      dir / ("." + file.filename().string() + ".partial-" + std::to_string(getpid()) + ".png");
+  // gnuplot writes the chart into an unnamed temporary next to the target, named only once
+  // gnuplot succeeded: a failure, or a kill of either process, leaves no partial chart.
+  StreamedFileWriter out(file);
+  const fs::path image = out.path_for_child_process();
   write_text(data, bench_plot_data(results), file);
   write_text(commands, bench_plot_script(results, data, image), file);
   const int status = run_program(gnuplot, commands);
-  std::error_code ec;
   if (status != 0) {
-    fs::remove(image, ec);
     throw Error("--plot " + file.string() + ": gnuplot (" + gnuplot.string() + ") failed" +
                 (status > 0 ? " with exit status " + std::to_string(status) : std::string()) +
                 "; its message is above");
   }
-  fs::rename(image, file, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    fs::remove(image, ec);
-    throw Error("--plot " + file.string() + ": cannot move the chart into place: " + why);
-  }
+  out.commit();
 }
 
 }  // namespace deformcd::app
