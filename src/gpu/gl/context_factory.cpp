@@ -13,9 +13,10 @@
 #include "deformcd/gl/context.h"
 #include "egl_platforms.h"
 
-// LeakSanitizer's entry points, present only in sanitizer builds (weak: null otherwise).
-extern "C" void __lsan_disable() __attribute__((weak));
-extern "C" void __lsan_enable() __attribute__((weak));
+// LeakSanitizer's entry points, present only in sanitizer builds (weak: null otherwise). Their
+// names are the sanitizer runtime's, hence reserved identifiers.
+extern "C" void __lsan_disable() __attribute__((weak));  // NOLINT(bugprone-reserved-identifier)
+extern "C" void __lsan_enable() __attribute__((weak));   // NOLINT(bugprone-reserved-identifier)
 
 namespace deformcd::gl {
 
