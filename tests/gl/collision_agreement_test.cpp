@@ -85,16 +85,8 @@ struct SceneReplay {
     cpu_sim.upload(state);
     cpu_collision.set_positions(fixture.host_sources());
     cpu_collision.upload(fixture.data);
-    std::vector<collision::PositionSource> sources;
-    for (const gpu::ObjectInfo& o : state.objects) {
-      collision::PositionSource s;
-      s.kind = collision::PositionSource::Kind::kGl;
-      s.gl_buffer = gl_positions.name();
-      s.offset_bytes = std::uint64_t{o.node_offset} * sizeof(glm::vec4);
-      s.stride_bytes = sizeof(glm::vec4);
-      s.vertex_count = o.node_count;
-      sources.push_back(s);
-    }
+    const std::vector<collision::PositionSource> sources =
+        test::simulation_sources(gl_positions.name(), state.objects);
     share_positions();
     gl_collision.set_positions(sources);
     gl_collision.upload(fixture.data);

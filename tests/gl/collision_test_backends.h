@@ -51,6 +51,23 @@ inline std::vector<std::uint32_t> flags_of(const std::vector<gpu::FacePair>& pai
   return flags;
 }
 
+/// Every body's positions in a simulation's GL position buffer (vec4 per node, body b's from its
+/// node_offset), as a World hands them to its detector.
+inline std::vector<collision::PositionSource> simulation_sources(
+    std::uint32_t buffer, const std::vector<gpu::ObjectInfo>& objects) {
+  std::vector<collision::PositionSource> sources;
+  for (const gpu::ObjectInfo& o : objects) {
+    collision::PositionSource s;
+    s.kind = collision::PositionSource::Kind::kGl;
+    s.gl_buffer = buffer;
+    s.offset_bytes = std::uint64_t{o.node_offset} * sizeof(glm::vec4);
+    s.stride_bytes = sizeof(glm::vec4);
+    s.vertex_count = o.node_count;
+    sources.push_back(s);
+  }
+  return sources;
+}
+
 inline std::uint32_t count_set(const std::vector<std::uint32_t>& flags) {
   std::uint32_t n = 0;
   for (std::uint32_t f : flags)

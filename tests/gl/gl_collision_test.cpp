@@ -95,16 +95,8 @@ TEST_F(GlCollisionTest, LeafBoxesFollowASimulationsBufferReadInPlace) {
   GlSimulation simulation(context());
   simulation.upload(world);
   test::GlBackend gl(context(), bodies);
-  std::vector<collision::PositionSource> sources;
-  for (const gpu::ObjectInfo& o : world.objects) {
-    collision::PositionSource s;
-    s.kind = collision::PositionSource::Kind::kGl;
-    s.gl_buffer = simulation.gl_position_buffer();
-    s.offset_bytes = std::uint64_t{o.node_offset} * sizeof(glm::vec4);
-    s.stride_bytes = sizeof(glm::vec4);
-    s.vertex_count = o.node_count;
-    sources.push_back(s);
-  }
+  const std::vector<collision::PositionSource> sources =
+      test::simulation_sources(simulation.gl_position_buffer(), world.objects);
   gl.collision.set_positions(sources);
   test::run_substeps(simulation, test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}), 5);
   std::vector<glm::vec4> positions;
