@@ -24,6 +24,7 @@ class CpuSimulation final : public sim::SimulationBackend {
   void download_positions(std::vector<glm::vec4>& out) override { out = state_.positions; }
   void download_velocities(std::vector<glm::vec4>& out) override { out = state_.velocities; }
   [[nodiscard]] const glm::vec4* host_positions() const override { return state_.positions.data(); }
+  [[nodiscard]] SimulationState* host_state() override { return &state_; }
 
   /// The state being stepped (for tests; a World's detector reads its positions in place).
   [[nodiscard]] const SimulationState& state() const { return state_; }

@@ -42,6 +42,12 @@ class SimulationBackend {
   /// The node positions in host memory (vec4 per node), where a CPU backend steps them in
   /// place (they do not move after upload), or null when the backend is not the CPU.
   [[nodiscard]] virtual const glm::vec4* host_positions() const { return nullptr; }
+  /// GL buffer name of the node velocities (SSBO 1), or 0 when the backend is not GL.
+  [[nodiscard]] virtual std::uint32_t gl_velocity_buffer() const { return 0; }
+  /// The state a CPU backend steps, whose positions and velocities (vec4 per node, in node
+  /// order) stay valid between substeps, so that a contact response can correct them in
+  /// place; null when the backend is not the CPU.
+  [[nodiscard]] virtual SimulationState* host_state() { return nullptr; }
 
  protected:
   SimulationBackend() = default;

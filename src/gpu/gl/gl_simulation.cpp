@@ -132,6 +132,10 @@ std::uint32_t GlSimulation::gl_position_buffer() const {
   return buffers_ ? buffers_->positions.name() : 0;
 }
 
+std::uint32_t GlSimulation::gl_velocity_buffer() const {
+  return buffers_ ? buffers_->velocities.name() : 0;
+}
+
 const SimulationBuffers& GlSimulation::buffers(const char* operation) const {
   if (!buffers_) throw Error(std::string("GlSimulation::") + operation + " before upload()");
   return *buffers_;

@@ -82,6 +82,7 @@ class GlSimulation final : public sim::SimulationBackend {
 
   // SSBO 0's buffer name (0 before upload()).
   [[nodiscard]] std::uint32_t gl_position_buffer() const override;
+  [[nodiscard]] std::uint32_t gl_velocity_buffer() const override;
 
  private:
   GlSimulation(const DeviceInfo& device, const GlSimulationOptions& options);
