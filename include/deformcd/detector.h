@@ -23,6 +23,7 @@
 /// refitted every detect() and rebuilt when deformation has loosened them: never the caller's
 /// business.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -100,6 +101,20 @@ struct GlPositions {
   std::size_t stride_bytes = 4 * sizeof(float);
 };
 
+/// A vertex near a triangle, or an edge near an edge (see Detector::find_proximity).
+struct ProximityPair {
+  enum class Kind : std::uint8_t { kVertexTriangle, kEdgeEdge };
+  Kind kind = Kind::kVertexTriangle;
+  std::uint32_t mesh_a = 0;
+  std::uint32_t mesh_b = 0;
+  /// kVertexTriangle: the vertex of mesh_a, then the three vertices of mesh_b's triangle
+  /// `triangle`; kEdgeEdge: an edge of mesh_a (two vertices), then an edge of mesh_b.
+  std::array<std::uint32_t, 4> vertices = {};
+  std::uint32_t triangle = 0;  ///< kVertexTriangle: the triangle's index in mesh_b; else 0
+
+  friend bool operator==(const ProximityPair&, const ProximityPair&) = default;
+};
+
 class Detector {
  public:
   /// Checks the meshes (every index below vertex_count; at least one triangle each), the mesh
@@ -149,6 +164,15 @@ class Detector {
   /// b.face), a.body <= b.body (body = mesh index, face = triangle index in the caller's
   /// order, nodes = its vertex indices); the same on every backend and broad phase.
   [[nodiscard]] std::vector<Contact> contacts() const;
+  /// The vertex-triangle and edge-edge pairs whose bounding boxes come within
+  /// reach[mesh_a] + reach[mesh_b] of each other on the current positions (one reach per mesh,
+  /// >= 0): every pair closer than that, and some farther. Over the mesh pairs detect() tests;
+  /// within one mesh, primitives of triangles sharing a vertex are neighbours and left out.
+  /// Each pair once, sorted by (mesh_a, mesh_b, kind, vertices). For a contact response that
+  /// keeps bodies `thickness` apart while they move at most `motion` each: reach = thickness / 2
+  /// + motion. Runs on the CPU on every backend (GL positions are read back). Throws InputError
+  /// for a reach list of the wrong length or a negative or non-finite reach.
+  [[nodiscard]] std::vector<ProximityPair> find_proximity(std::span<const float> reach);
   /// Counts of the last pass (all 0 before the first).
   [[nodiscard]] CollisionCounts counts() const;
   /// One flag per triangle of every mesh (mesh m's from face_offset(m)): 1 when the triangle is

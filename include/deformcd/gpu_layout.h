@@ -47,6 +47,13 @@ enum Binding : std::uint32_t {
   kBvhBox = 26,             ///< Box per BVH node, refitted every frame
   kBodyBvh = 27,            ///< BodyBvh per body
   kCandidatePair = 28,      ///< glm::uvec2 per candidate face pair (global face indices)
+  // Contact response (beyond the paper).
+  kContactPair = 29,        ///< ContactPair per contact constraint of the frame
+  kContactCorrection = 30,  ///< glm::vec4 per constraint corner (4 p + k): xyz, w = counts
+  kNodeContactOffset = 31,  ///< uint per node + 1: CSR offsets into kNodeContactList
+  kNodeContactList = 32,    ///< uint per (node, constraint corner): the slot 4 p + k, sorted
+  kNodeContactCount = 33,   ///< uint per node: its active constraints this substep
+  kFrameStart = 34,         ///< glm::vec4 per node: position at the frame's start, w = reach
 };
 
 /// BvhNode::face of an internal node.
@@ -196,6 +203,26 @@ struct Tetra {
 };
 static_assert(sizeof(Tetra) == 32);
 static_assert(offsetof(Tetra, rest_volume) == 16);
+
+/// ContactPair::kind: a vertex against a face, one-sided along the face's outward normal.
+inline constexpr std::uint32_t kContactVertexFace = 0;
+/// ContactPair::kind: two edges, pushed apart along the line between their closest points.
+inline constexpr std::uint32_t kContactEdgeEdge = 1;
+/// ContactPair::kind: a vertex of a face that intersects another body's face, pushed out
+/// through that face's plane (untangling from the exact intersection list).
+inline constexpr std::uint32_t kContactUntangle = 2;
+
+/// 32 bytes. One contact constraint (global node indices): kContactVertexFace and
+/// kContactUntangle: vertex, face a, b, c; kContactEdgeEdge: edge (a0, a1), edge (b0, b1).
+struct ContactPair {
+  std::uint32_t nodes[4];
+  std::uint32_t kind;
+  float thickness;  ///< m: the distance the constraint keeps
+  float pad0;
+  float pad1;
+};
+static_assert(sizeof(ContactPair) == 32);
+static_assert(offsetof(ContactPair, kind) == 16);
 
 /// 32 bytes. Per-body parameters of the mass-spring step.
 struct BodyParams {

@@ -37,6 +37,12 @@
 #define BINDING_BVH_BOX 26             // Box per BVH node, refitted every frame
 #define BINDING_BODY_BVH 27            // BodyBvh per body
 #define BINDING_CANDIDATE_PAIR 28      // uvec2 per candidate face pair (global face indices)
+#define BINDING_CONTACT_PAIR 29        // ContactPair per contact constraint of the frame
+#define BINDING_CONTACT_CORRECTION 30  // vec4 per constraint corner (4 p + k): xyz, w = counts
+#define BINDING_NODE_CONTACT_OFFSET 31  // uint per node + 1: CSR offsets
+#define BINDING_NODE_CONTACT_LIST 32    // uint per (node, constraint corner): slot 4 p + k
+#define BINDING_NODE_CONTACT_COUNT 33   // uint per node: active constraints this substep
+#define BINDING_FRAME_START 34          // vec4 per node: frame-start position, w = reach
 
 // Leaf boxes per body: a 3-level octree, 4 x 4 x 4 leaves (gpu::kLeafBoxesPerBody).
 #define LEAF_BOXES_PER_BODY 64u
@@ -106,6 +112,21 @@ struct ObjectInfo {
   uint box_count;
   uint box_face_offset;
   uint box_face_count;
+};
+
+// ContactPair.kind (gpu::kContact*).
+#define CONTACT_VERTEX_FACE 0u  // vertex against a face, one-sided along its outward normal
+#define CONTACT_EDGE_EDGE 1u    // two edges, apart along the line of their closest points
+#define CONTACT_UNTANGLE 2u     // vertex of an intersecting face, out through the other's plane
+
+// 32 bytes. One contact constraint (global node indices): vertex, face a, b, c (vertex-face,
+// untangle) or edge (a0, a1), edge (b0, b1) (edge-edge).
+struct ContactPair {
+  uvec4 nodes;
+  uint kind;
+  float thickness;  // m: the distance the constraint keeps
+  float pad0;
+  float pad1;
 };
 
 // 32 bytes. Per-body parameters of the mass-spring step.

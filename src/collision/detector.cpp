@@ -55,8 +55,9 @@ std::unique_ptr<Detector::Impl> Detector::Impl::create(std::vector<CollisionMesh
     throw GlError("this deformcd was built without the OpenGL backend (DEFORMCD_WITH_GL=OFF)");
 #endif
   } else {
-    impl->backend = std::make_unique<cpu::CpuCollision>(std::move(executor));
+    impl->backend = std::make_unique<cpu::CpuCollision>(executor);
   }
+  impl->executor = std::move(executor);
   return impl;
 }
 
@@ -103,21 +104,29 @@ void Detector::Impl::check_finite() {
   }
 }
 
-// The hierarchies are built on the positions now: host arrays in place, GL buffers read back.
-void Detector::Impl::prepare() {
-  require_positions();
-  check_finite();
-  std::vector<std::vector<glm::vec3>> read_back(sources.size());
+std::vector<collision::MeshVertices> Detector::Impl::host_vertices(
+    std::vector<std::vector<glm::vec3>>& read_back) {
+  read_back.assign(sources.size(), {});
   std::vector<collision::MeshVertices> pose(sources.size());
   for (std::size_t m = 0; m < sources.size(); ++m) {
     const PositionSource& s = sources[m];
     if (s.kind == PositionSource::Kind::kHost) {
       pose[m] = {s.host, static_cast<std::uint32_t>(s.stride_bytes / sizeof(float))};
     } else {
+      make_current();
       read_back[m] = backend->read_positions(static_cast<std::uint32_t>(m));
       pose[m] = {&read_back[m][0].x, 3u};
     }
   }
+  return pose;
+}
+
+// The hierarchies are built on the positions now: host arrays in place, GL buffers read back.
+void Detector::Impl::prepare() {
+  require_positions();
+  check_finite();
+  std::vector<std::vector<glm::vec3>> read_back;
+  const std::vector<collision::MeshVertices> pose = host_vertices(read_back);
   collision::CollisionData next = data;
   collision::build_hierarchies(next, pose.data());
   make_current();
@@ -275,6 +284,42 @@ std::vector<Contact> Detector::contacts() const {
   std::vector<gpu::FacePair> pairs;
   impl_->backend->download_face_pairs(pairs);
   return collision::make_contacts(pairs, impl_->data.faces, impl_->data.meshes);
+}
+
+std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach) {
+  Impl& d = *impl_;
+  if (reach.size() != d.meshes.size()) {
+    throw InputError("find_proximity",
+                     "takes one reach per mesh: " + std::to_string(d.meshes.size()) +
+                         " expected, " + std::to_string(reach.size()) + " given");
+  }
+  for (std::size_t m = 0; m < reach.size(); ++m) {
+    if (!(reach[m] >= 0.0f) || !std::isfinite(reach[m])) {
+      throw InputError(label_of(d.data, m), "has a reach of " + std::to_string(reach[m]) +
+                                                " (find_proximity wants a finite value >= 0)");
+    }
+  }
+  d.require_positions();
+  d.complete();  // a GL pass may still read the buffers the read-back below copies
+  if (d.check_positions) d.check_finite();
+  std::vector<std::vector<glm::vec3>> read_back;
+  const std::vector<collision::MeshVertices> pose = d.host_vertices(read_back);
+  if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
+  const std::vector<collision::ProximityCandidate> found = d.proximity->find(pose.data(), reach);
+  std::vector<ProximityPair> out;
+  out.reserve(found.size());
+  for (const collision::ProximityCandidate& c : found) {
+    ProximityPair p;
+    p.kind = c.kind == gpu::kContactEdgeEdge ? ProximityPair::Kind::kEdgeEdge
+                                             : ProximityPair::Kind::kVertexTriangle;
+    p.mesh_a = c.mesh_a;
+    p.mesh_b = c.mesh_b;
+    p.vertices = c.vertices;
+    p.triangle =
+        c.kind == gpu::kContactEdgeEdge ? 0u : c.face_b - d.data.meshes[c.mesh_b].face_offset;
+    out.push_back(p);
+  }
+  return out;
 }
 
 CollisionCounts Detector::counts() const {

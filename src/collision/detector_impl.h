@@ -8,6 +8,7 @@
 
 #include "core/collision/collision_backend.h"
 #include "core/collision/collision_data.h"
+#include "cpu/cpu_proximity.h"
 #include "cpu/executor.h"
 #include "deformcd/detector.h"
 
@@ -27,6 +28,8 @@ struct Detector::Impl {
   std::unique_ptr<gl::Context> owned_context;  // before the backend: destroyed after it
   gl::Context* context = nullptr;
   std::unique_ptr<collision::CollisionBackend> backend;
+  std::shared_ptr<cpu::Executor> executor;       // the CPU threads (proximity on any backend)
+  std::unique_ptr<cpu::CpuProximity> proximity;  // made by the first find_proximity()
   std::vector<collision::PositionSource> sources;
   BroadPhase broadphase = BroadPhase::kBvh;
   std::string notice;
@@ -41,6 +44,10 @@ struct Detector::Impl {
   void check_finite();
   void prepare();
   void complete();
+  /// Where each mesh's positions are on the host now: the caller's arrays, or (GL buffers)
+  /// copies read back into `read_back`.
+  std::vector<collision::MeshVertices> host_vertices(
+      std::vector<std::vector<glm::vec3>>& read_back);
 };
 
 }  // namespace deformcd

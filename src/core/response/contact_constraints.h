@@ -1,0 +1,204 @@
+#pragma once
+// Contact response as pure per-element functions (issue 12): one contact constraint's
+// corrections (the pair pass), one node's count of active constraints and one node's Jacobi
+// update (the node passes). The CPU backend calls these; shaders/response/*.glsl mirror them
+// line for line, so both backends compute the same floating-point operations in the same order.
+//
+// A constraint couples four nodes with weights b (the gradient of its distance along its normal
+// n is b_k n for node k) that sum to zero, so every correction w_k b_k lambda n, with w_k the
+// inverse mass, conserves momentum. Constraints are solved in parallel (Jacobi) and a node
+// touched by several sums their corrections; to stay stable without breaking that
+// conservation, each constraint is scaled as a whole by 1 / the largest active-constraint count
+// of its nodes (rather than each node averaging its own, which would not conserve momentum).
+
+#include <cmath>
+#include <cstdint>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "deformcd/gpu_layout.h"
+
+namespace deformcd::response {
+
+/// Per-substep constants of the response.
+struct ContactConstants {
+  float h;                  ///< substep length, s
+  float friction_static;    ///< Coulomb static coefficient (>= 0)
+  float friction_dynamic;   ///< Coulomb dynamic coefficient (>= 0, <= friction_static)
+  float restitution;        ///< 0: the approach speed is absorbed, 1: given back along n
+  float max_untangle_step;  ///< m: most an untangling constraint moves its nodes per substep
+};
+
+/// Closest point of the plane projection of p on triangle (a, b, c) as barycentric weights
+/// (u, v, w), u + v + w = 1, clamped into the triangle; false for a degenerate triangle.
+inline bool plane_barycentric(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b,
+                              const glm::vec3& c, glm::vec3& uvw) {
+  const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
+  const float d00 = glm::dot(ab, ab), d01 = glm::dot(ab, ac), d11 = glm::dot(ac, ac);
+  const float d20 = glm::dot(ap, ab), d21 = glm::dot(ap, ac);
+  const float denominator = d00 * d11 - d01 * d01;
+  if (!(denominator > 1e-12f * d00 * d11)) return false;
+  const float v = (d11 * d20 - d01 * d21) / denominator;
+  const float w = (d00 * d21 - d01 * d20) / denominator;
+  uvw = glm::vec3(1.0f - v - w, v, w);
+  return true;
+}
+
+/// Parameters (s, t) of the closest points a0 + s (a1 - a0) and b0 + t (b1 - b0) of two
+/// segments, each in [0, 1]; false when either segment is degenerate.
+inline bool segment_closest_parameters(const glm::vec3& a0, const glm::vec3& a1,
+                                       const glm::vec3& b0, const glm::vec3& b1, float& s,
+                                       float& t) {
+  const glm::vec3 da = a1 - a0, db = b1 - b0, r = a0 - b0;
+  const float aa = glm::dot(da, da), bb = glm::dot(db, db), ab = glm::dot(da, db);
+  const float ar = glm::dot(da, r), br = glm::dot(db, r);
+  if (!(aa > 0.0f) || !(bb > 0.0f)) return false;
+  const float denominator = aa * bb - ab * ab;
+  // Parallel segments: any s works; take the one of a0 and let t and then s clamp.
+  s = denominator > 1e-12f * aa * bb ? glm::clamp((ab * br - bb * ar) / denominator, 0.0f, 1.0f)
+                                     : 0.0f;
+  t = (ab * s + br) / bb;
+  if (t < 0.0f) {
+    t = 0.0f;
+    s = glm::clamp(-ar / aa, 0.0f, 1.0f);
+  } else if (t > 1.0f) {
+    t = 1.0f;
+    s = glm::clamp((ab - ar) / aa, 0.0f, 1.0f);
+  }
+  return true;
+}
+
+/// The geometry of one constraint on the current positions: normal n, weights b (sum 0), and
+/// C, the distance along n minus the thickness (the constraint wants C >= 0). False when the
+/// constraint does not apply now (vertex beside the face, beyond its band, degenerate).
+inline bool contact_geometry(const gpu::ContactPair& pair, const glm::vec3 x[4], glm::vec3& n,
+                             float b[4], float& c) {
+  if (pair.kind == gpu::kContactEdgeEdge) {
+    float s = 0.0f, t = 0.0f;
+    if (!segment_closest_parameters(x[0], x[1], x[2], x[3], s, t)) return false;
+    const glm::vec3 d = (x[0] + s * (x[1] - x[0])) - (x[2] + t * (x[3] - x[2]));
+    const float distance = std::sqrt(glm::dot(d, d));
+    if (!(distance > 1e-7f * pair.thickness)) return false;  // crossing: no direction
+    n = d / distance;
+    b[0] = 1.0f - s;
+    b[1] = s;
+    b[2] = -(1.0f - t);
+    b[3] = -t;
+    c = distance - pair.thickness;
+    return true;
+  }
+  // Vertex x[0] against face (x[1], x[2], x[3]), along the face's outward normal.
+  const glm::vec3 normal = glm::cross(x[2] - x[1], x[3] - x[1]);
+  const float area2 = std::sqrt(glm::dot(normal, normal));
+  glm::vec3 uvw;
+  if (!(area2 > 0.0f) || !plane_barycentric(x[0], x[1], x[2], x[3], uvw)) return false;
+  n = normal / area2;
+  const float height = glm::dot(x[0] - x[1], n);
+  if (pair.kind == gpu::kContactVertexFace) {
+    // Only where the vertex lies over the face, and not deeper behind it than the thickness:
+    // deeper is the far side of a thin part, or a tunnel the untangling constraints resolve.
+    if (uvw.x < 0.0f || uvw.y < 0.0f || uvw.z < 0.0f) return false;
+    if (height < -pair.thickness) return false;
+  } else {
+    // Untangling (kContactUntangle): the vertex of an intersecting face, pushed out of the
+    // other body through this face's plane; weights clamped into the face.
+    uvw = glm::clamp(uvw, 0.0f, 1.0f);
+    uvw /= uvw.x + uvw.y + uvw.z;
+  }
+  b[0] = 1.0f;
+  b[1] = -uvw.x;
+  b[2] = -uvw.y;
+  b[3] = -uvw.z;
+  c = height - pair.thickness;
+  return true;
+}
+
+/// The pair pass: one constraint's position corrections of its four nodes (xyz) and whether
+/// each counts in its node's active count (w = 1: active and movable), from the current
+/// positions (w = inverse mass) and velocities. Normal: the projection of C to 0 (plus the
+/// restitution of the approach speed); tangential: Coulomb friction on the relative velocity,
+/// static while it is within friction_static x the normal velocity change, else reduced by
+/// friction_dynamic x it. All along the same weights, so momentum is conserved.
+inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position[4],
+                          const glm::vec4 velocity[4], const ContactConstants& k,
+                          glm::vec4 correction[4]) {
+  for (int i = 0; i < 4; ++i)
+    correction[i] = glm::vec4(0.0f);
+  const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
+                          glm::vec3(position[3])};
+  glm::vec3 n(0.0f);
+  float b[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  float c = 0.0f;
+  if (!contact_geometry(pair, x, n, b, c) || !(c < 0.0f)) return;
+  float weight = 0.0f;
+  glm::vec3 relative_velocity(0.0f);
+  for (int i = 0; i < 4; ++i) {
+    weight += position[i].w * b[i] * b[i];
+    relative_velocity += b[i] * glm::vec3(velocity[i]);
+  }
+  if (!(weight > 0.0f)) return;  // every node fixed
+  if (pair.kind == gpu::kContactUntangle) c = glm::max(c, -k.max_untangle_step);
+  const float approach = glm::max(-glm::dot(relative_velocity, n), 0.0f);
+  const float normal_step = -c + k.restitution * approach * k.h;  // >= 0, along n
+  const glm::vec3 tangential = relative_velocity - glm::dot(relative_velocity, n) * n;
+  const float slip = std::sqrt(glm::dot(tangential, tangential));
+  const float normal_speed = normal_step / k.h;
+  float keep = 0.0f;  // the share of the tangential velocity friction leaves
+  if (slip > k.friction_static * normal_speed) {
+    keep = 1.0f - k.friction_dynamic * normal_speed / slip;
+    keep = glm::max(keep, 0.0f);
+  }
+  const glm::vec3 step = (normal_step * n - (1.0f - keep) * k.h * tangential) / weight;
+  for (int i = 0; i < 4; ++i) {
+    const float movable = position[i].w > 0.0f ? 1.0f : 0.0f;
+    correction[i] = glm::vec4(position[i].w * b[i] * step, movable);
+  }
+}
+
+/// The count pass for one node: its active constraints, over its CSR list of constraint
+/// corners (slot 4 p + k), in list order.
+inline std::uint32_t count_active(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
+                                  const glm::vec4* corrections) {
+  std::uint32_t count = 0;
+  for (std::uint32_t e = begin; e < end; ++e)
+    count += corrections[list[e]].w > 0.0f ? 1u : 0u;
+  return count;
+}
+
+/// The node pass: one node's summed correction, each constraint scaled by 1 / the largest
+/// active count among its four nodes (see the file comment), in list order.
+inline glm::vec3 gather_correction(const std::uint32_t* list, std::uint32_t begin,
+                                   std::uint32_t end, const glm::vec4* corrections,
+                                   const gpu::ContactPair* pairs, const std::uint32_t* counts) {
+  glm::vec3 sum(0.0f);
+  for (std::uint32_t e = begin; e < end; ++e) {
+    const std::uint32_t slot = list[e];
+    if (!(corrections[slot].w > 0.0f)) continue;
+    const gpu::ContactPair& pair = pairs[slot / 4u];
+    std::uint32_t most = 1u;
+    for (int k = 0; k < 4; ++k)
+      most = glm::max(most, counts[pair.nodes[k]]);
+    sum += glm::vec3(corrections[slot]) / static_cast<float>(most);
+  }
+  return sum;
+}
+
+/// Applies a node's correction: the position moves by it and the velocity by it over h (so the
+/// correction is a velocity change, as in position-based dynamics); then a free node is kept
+/// within `reach` of where it started the frame (the motion bound the frame's proximity search
+/// assumed; see ResponseSettings). Fixed nodes (inverse mass 0) get no correction.
+inline void apply_correction(glm::vec4& position, glm::vec4& velocity, const glm::vec3& correction,
+                             const glm::vec4& frame_start, float h) {
+  if (!(position.w > 0.0f)) return;
+  glm::vec3 p = glm::vec3(position) + correction;
+  velocity = glm::vec4(glm::vec3(velocity) + correction / h, 0.0f);
+  const glm::vec3 moved = p - glm::vec3(frame_start);
+  const float reach = frame_start.w;
+  const float distance = std::sqrt(glm::dot(moved, moved));
+  if (distance > reach) p = glm::vec3(frame_start) + moved * (reach / distance);
+  position = glm::vec4(p, position.w);
+}
+
+}  // namespace deformcd::response

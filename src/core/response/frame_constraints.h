@@ -1,0 +1,29 @@
+#pragma once
+// The contact constraints of one frame (issue 12), as both response backends take them: the
+// constraints, and per node the CSR list of its constraint corners, so that each node gathers
+// its corrections in a fixed order (GL 4.3 has no float atomics, and the sum must not depend on
+// the schedule).
+
+#include <cstdint>
+#include <vector>
+
+#include "deformcd/gpu_layout.h"
+
+namespace deformcd::response {
+
+struct FrameConstraints {
+  std::vector<gpu::ContactPair> pairs;  ///< SSBO 29, sorted
+  /// SSBO 31: node n's corners are node_list[node_offset[n] .. node_offset[n + 1]).
+  std::vector<std::uint32_t> node_offset;
+  /// SSBO 32: slots 4 p + k (pair p's node k), ascending within each node.
+  std::vector<std::uint32_t> node_list;
+  /// Per body: how far (m) a free node may move from its frame-start position in this frame;
+  /// the proximity search assumed no more.
+  std::vector<float> body_motion;
+};
+
+/// Fills node_offset and node_list for `node_count` nodes from `pairs` (count, scan, emit in
+/// slot order, so each node's list is ascending).
+void index_constraints_by_node(std::uint32_t node_count, FrameConstraints& constraints);
+
+}  // namespace deformcd::response

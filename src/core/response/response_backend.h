@@ -1,0 +1,29 @@
+#pragma once
+// The contact response's line to a backend (issue 12): the world hands it each frame's
+// constraints, then asks for one projection after every substep. The CPU backend
+// (src/cpu/cpu_contact_response.h) and the GL backend implement it over the simulation's own
+// positions and velocities, in place.
+
+#include "contact_constraints.h"
+#include "frame_constraints.h"
+
+namespace deformcd::response {
+
+class ResponseBackend {
+ public:
+  virtual ~ResponseBackend() = default;
+  ResponseBackend(const ResponseBackend&) = delete;
+  ResponseBackend& operator=(const ResponseBackend&) = delete;
+
+  /// Takes the frame's constraints and records the current positions as the frame's start
+  /// (w = the node's body's motion bound).
+  virtual void begin_frame(const FrameConstraints& constraints) = 0;
+  /// One Jacobi projection of every constraint on the current positions and velocities:
+  /// the pair pass, the count pass, the node pass (see contact_constraints.h).
+  virtual void project(const ContactConstants& constants) = 0;
+
+ protected:
+  ResponseBackend() = default;
+};
+
+}  // namespace deformcd::response

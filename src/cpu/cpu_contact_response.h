@@ -1,0 +1,32 @@
+#pragma once
+// The contact response on the CPU, in parallel with oneTBB: the same three passes as the GL
+// backend's shaders (pair, count, node), over the simulation state's positions and velocities
+// in place.
+
+#include <memory>
+#include <vector>
+
+#include "core/response/response_backend.h"
+#include "deformcd/simulation_state.h"
+#include "executor.h"
+
+namespace deformcd::cpu {
+
+class CpuContactResponse final : public response::ResponseBackend {
+ public:
+  /// Corrects `state` (a CPU simulation's, which must outlive this) on `executor`'s threads.
+  CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor);
+
+  void begin_frame(const response::FrameConstraints& constraints) override;
+  void project(const response::ContactConstants& constants) override;
+
+ private:
+  SimulationState& state_;
+  std::shared_ptr<Executor> executor_;
+  response::FrameConstraints constraints_;
+  std::vector<glm::vec4> frame_start_;  // SSBO 34
+  std::vector<glm::vec4> corrections_;  // SSBO 30
+  std::vector<std::uint32_t> counts_;   // SSBO 33
+};
+
+}  // namespace deformcd::cpu
