@@ -55,6 +55,7 @@ class PyWorld {
     options.broadphase = parse_broadphase(broadphase);
     options.cpu_threads = threads;
     options.self_collision = scene.collision.self;
+    options.response = scene.response;
     auto world = std::make_unique<World>(make_scene_bodies(scene, load_tetgen_model, run_frames),
                                          step_settings(scene.settings), options);
     return std::unique_ptr<PyWorld>(new PyWorld(std::move(world), run_frames));

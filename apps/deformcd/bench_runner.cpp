@@ -114,6 +114,7 @@ std::vector<SceneBench> run_bench(const BenchOptions& o, const BenchProgress& pr
       world_options.backend = backend;
       world_options.cpu_threads = o.cpu_threads;
       world_options.self_collision = scene.collision.self;
+      world_options.response = scene.response;
       for (BroadPhase method : o.methods) {
         what = o.scenes[s].filename().string() + " " + bench.backend + " " +
                std::string(broadphase_name(method));

@@ -130,6 +130,7 @@ int render(const RenderOptions& o) {
   // Collision detection runs only on the frames drawn (the simulation does not depend on it).
   options.broadphase = BroadPhase::kNone;
   options.self_collision = view.scene.collision.self;
+  options.response = view.scene.response;
   World world(view.bodies, step_settings(view.scene.settings), options);
   if (!world.notice().empty()) std::cerr << "deformcd: " << world.notice() << '\n';
 

@@ -97,6 +97,7 @@ int run(const RunOptions& o) {
                      "--contacts");
   }
   options.self_collision = scene.collision.self;
+  options.response = scene.response;
   status("building " + count_of(scene.bodies.size(), "body", "bodies"));
   std::vector<BodyInit> bodies = make_scene_bodies(scene, load_scene_model, frames);
   status("starting the " + o.backend + " backend");

@@ -95,6 +95,7 @@ int view(const ViewOptions& o) {
   options.gl_context = context.get();
   options.broadphase = state.broadphase;
   options.self_collision = scene.scene.collision.self;
+  options.response = scene.scene.response;
   options.measure_stage_times = true;
   status("starting the GL backend");
   World world(scene.bodies, step_settings(scene.scene.settings), options);

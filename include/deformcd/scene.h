@@ -14,6 +14,7 @@
 
 #include <functional>
 
+#include "deformcd/response.h"
 #include "deformcd/body.h"
 #include "deformcd/simulation_state.h"
 #include "deformcd/tetrahedralize_options.h"
@@ -93,6 +94,8 @@ struct Scene {
   std::filesystem::path file;  ///< where it was read from (empty for scenes built in code)
   SimulationSettings settings;
   CollisionSettings collision;
+  /// The `response` object: contact response on (`{}` = every default), else unset.
+  std::optional<ResponseSettings> response;
   std::vector<BodySpec> bodies;
 };
 

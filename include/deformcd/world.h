@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "deformcd/detector.h"
 #include "deformcd/error.h"
 #include "deformcd/gpu_layout.h"
+#include "deformcd/response.h"
 #include "deformcd/simulation_state.h"
 
 namespace deformcd {
@@ -56,12 +58,25 @@ struct WorldOptions {
   /// (glFinish on GL) after the simulation and after the collision pass, before reading the
   /// clock. Off by default, since waiting keeps the CPU from queueing the next frame's work.
   bool measure_stage_times = false;
+  /// Contact response: bodies that touch push each other apart (and, with self_collision, a
+  /// body its own folds). Unset: bodies pass through each other, as in the paper. Its
+  /// untangling of intersecting surfaces needs a broad phase other than kNone.
+  std::optional<ResponseSettings> response = std::nullopt;
 };
 
 /// Wall time of the stages of one step(), in seconds (0 when not measured).
 struct FrameTimes {
   double simulation_s = 0.0;  ///< substeps (forces, integration), and the stability check
   double collision_s = 0.0;   ///< bounds, broad phase, narrow phase
+  double proximity_s = 0.0;   ///< the contact response's pair search (once a frame)
+  double response_s = 0.0;    ///< the contact response's projections (after every substep)
+};
+
+/// The contact constraints of the last frame (all 0 without response).
+struct ResponseCounts {
+  std::uint64_t vertex_face = 0;  ///< vertex-triangle proximity pairs
+  std::uint64_t edge_edge = 0;    ///< edge-edge proximity pairs
+  std::uint64_t untangle = 0;     ///< vertices of intersecting faces pushed out
 };
 
 /// The simulation blew up: a state became NaN/Inf or a node moved implausibly far in a step.
@@ -69,6 +84,8 @@ class SimulationError : public Error {
  public:
   using Error::Error;
 };
+
+class ContactResponse;
 
 class World {
  public:
@@ -134,6 +151,12 @@ class World {
   [[nodiscard]] std::uint32_t gl_face_flag_buffer() const;
   /// The 64 leaf boxes per body as the last octree pass computed them (body i's at 64 i).
   [[nodiscard]] std::vector<gpu::Box> leaf_boxes() const;
+  /// Whether contact response is on (WorldOptions::response).
+  [[nodiscard]] bool responds() const { return response_ != nullptr; }
+  /// m: body `body`'s contact thickness (0 without response).
+  [[nodiscard]] float contact_thickness(std::size_t body) const;
+  /// The contact constraints of the last step (all 0 without response).
+  [[nodiscard]] ResponseCounts response_counts() const;
   /// Surface faces of all bodies (global node indices), as in the GL face buffer.
   [[nodiscard]] const std::vector<gpu::Face>& faces() const { return faces_; }
 
@@ -150,6 +173,7 @@ class World {
   std::shared_ptr<cpu::Executor> executor_;
   std::unique_ptr<sim::SimulationBackend> backend_;
   std::unique_ptr<Detector> detector_;
+  std::unique_ptr<ContactResponse> response_;
   StepSettings settings_;
   int check_interval_;
   int frame_ = 0;

@@ -12,7 +12,7 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   const std::size_t nodes = state_.positions.size();
   frame_start_.resize(nodes);
   counts_.assign(nodes, 0u);
-  corrections_.assign(4u * constraints_.pairs.size(), glm::vec4(0.0f));
+  corrections_.assign(8u * constraints_.pairs.size(), glm::vec4(0.0f));
   executor_->run([&] {
     parallel_for(nodes, [&](std::size_t i) {
       frame_start_[i] =
@@ -34,7 +34,7 @@ void CpuContactResponse::project(const response::ContactConstants& k) {
             x[i] = state_.positions[pair.nodes[i]];
             v[i] = state_.velocities[pair.nodes[i]];
           }
-          response::solve_contact(pair, x, v, k, &corrections_[4u * p]);
+          response::solve_contact(pair, x, v, k, &corrections_[8u * p]);
         },
         256);
     const std::uint32_t* offset = constraints_.node_offset.data();
@@ -44,10 +44,11 @@ void CpuContactResponse::project(const response::ContactConstants& k) {
       counts_[i] = response::count_active(list, offset[i], offset[i + 1], corrections_.data());
     });
     parallel_for(state_.positions.size(), [&](std::size_t i) {
-      const glm::vec3 d = response::gather_correction(
-          list, offset[i], offset[i + 1], corrections_.data(), pairs.data(), counts_.data());
-      response::apply_correction(state_.positions[i], state_.velocities[i], d, frame_start_[i],
-                                 k.h);
+      glm::vec3 dx, dv;
+      response::gather_correction(list, offset[i], offset[i + 1], corrections_.data(),
+                                  pairs.data(), counts_.data(), dx, dv);
+      response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv,
+                                 frame_start_[i]);
     });
   });
 }

@@ -1,6 +1,7 @@
 // read_scene: JSON -> Scene, strictly (see json_fields.h).
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -45,13 +46,17 @@ nlohmann::json parse_file(const fs::path& file) {
 
 double positive(JsonFields& f, const std::string& key, double fallback) {
   const double v = f.number(key).value_or(fallback);
-  if (!(v > 0.0)) f.fail(key, "must be positive, got " + std::to_string(v));
+  if (!(v > 0.0) || !std::isfinite(v)) {
+    f.fail(key, "must be positive and finite, got " + std::to_string(v));
+  }
   return v;
 }
 
 double non_negative(JsonFields& f, const std::string& key, double fallback) {
   const double v = f.number(key).value_or(fallback);
-  if (v < 0.0) f.fail(key, "must not be negative, got " + std::to_string(v));
+  if (!(v >= 0.0) || !std::isfinite(v)) {
+    f.fail(key, "must be finite and not negative, got " + std::to_string(v));
+  }
   return v;
 }
 
@@ -81,6 +86,27 @@ CollisionSettings read_collision(JsonFields f) {
   c.self = f.boolean("self").value_or(c.self);
   f.reject_unknown({"broadphase", "self"});
   return c;
+}
+
+// Each key as ResponseSettings names it; check_response_settings's rules, reported at the key.
+ResponseSettings read_response(JsonFields f) {
+  ResponseSettings r;
+  if (f.has("thickness")) r.thickness = static_cast<float>(positive(f, "thickness", 0.0));
+  r.relative_thickness =
+      static_cast<float>(positive(f, "relative_thickness", r.relative_thickness));
+  r.friction_static = static_cast<float>(non_negative(f, "friction_static", r.friction_static));
+  r.friction_dynamic =
+      static_cast<float>(non_negative(f, "friction_dynamic", r.friction_dynamic));
+  if (r.friction_dynamic > r.friction_static) {
+    f.fail("friction_dynamic", "must not exceed friction_static (" +
+                                   std::to_string(r.friction_static) + ")");
+  }
+  r.restitution = static_cast<float>(non_negative(f, "restitution", r.restitution));
+  if (r.restitution > 1.0f) f.fail("restitution", "must be between 0 and 1");
+  r.untangle_step = static_cast<float>(positive(f, "untangle_step", r.untangle_step));
+  f.reject_unknown({"thickness", "relative_thickness", "friction_static", "friction_dynamic",
+                    "restitution", "untangle_step"});
+  return r;
 }
 
 MaterialSpec read_material(JsonFields f) {
@@ -212,6 +238,7 @@ Scene read_scene(const fs::path& file) {
   scene.file = file;
   if (auto s = f.object("settings")) scene.settings = read_settings(*s);
   if (auto c = f.object("collision")) scene.collision = read_collision(*c);
+  if (auto r = f.object("response")) scene.response = read_response(*r);
   const nlohmann::json* bodies = f.raw("bodies");
   if (!bodies || !bodies->is_array() || bodies->empty()) {
     f.fail("bodies", "expected a non-empty array of bodies");
@@ -221,7 +248,7 @@ Scene read_scene(const fs::path& file) {
     scene.bodies.push_back(
         read_body(JsonFields((*bodies)[i], file.string(), "/bodies/" + std::to_string(i)), folder));
   }
-  f.reject_unknown({"settings", "collision", "bodies"});
+  f.reject_unknown({"settings", "collision", "response", "bodies"});
   return scene;
 }
 

@@ -1,5 +1,6 @@
 #include "simulation_factory.h"
 
+#include "cpu/cpu_contact_response.h"
 #include "cpu/cpu_simulation.h"
 #include "deformcd/error.h"
 #ifdef DEFORMCD_HAS_GL
@@ -19,6 +20,16 @@ std::unique_ptr<sim::SimulationBackend> create_simulation(BackendKind kind, gl::
 #endif
   }
   return std::make_unique<cpu::CpuSimulation>(std::move(executor));
+}
+
+std::unique_ptr<response::ResponseBackend> create_response(BackendKind kind, gl::Context* context,
+                                                           sim::SimulationBackend& simulation,
+                                                           std::shared_ptr<cpu::Executor> executor) {
+  (void)context;
+  if (kind == BackendKind::kGl) {
+    throw Error("contact response runs on the CPU backend only so far (use --backend cpu)");
+  }
+  return std::make_unique<cpu::CpuContactResponse>(*simulation.host_state(), std::move(executor));
 }
 
 }  // namespace deformcd

@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "core/response/response_backend.h"
 #include "core/sim/simulation_backend.h"
 #include "cpu/executor.h"
 #include "deformcd/backend.h"
@@ -17,5 +18,11 @@ class Context;
 /// The GL simulation in `context` (kGl) or the CPU one on `executor` (kCpu).
 [[nodiscard]] std::unique_ptr<sim::SimulationBackend> create_simulation(
     BackendKind kind, gl::Context* context, std::shared_ptr<cpu::Executor> executor);
+
+/// The contact response that corrects `simulation` (made by create_simulation with the same
+/// kind and context, after its upload) in place.
+[[nodiscard]] std::unique_ptr<response::ResponseBackend> create_response(
+    BackendKind kind, gl::Context* context, sim::SimulationBackend& simulation,
+    std::shared_ptr<cpu::Executor> executor);
 
 }  // namespace deformcd

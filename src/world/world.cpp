@@ -6,6 +6,7 @@
 
 #include "collision/backend_choice.h"
 #include "collision/detector_impl.h"
+#include "contact_response.h"
 #include "core/sim/stability_estimate.h"
 #include "cpu/executor.h"
 #include "deformcd/gl/context.h"
@@ -92,19 +93,43 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   }
   // The paper's octree cuts the start pose: build the hierarchies on it.
   detector_->prepare();
+  if (options.response.has_value()) {
+    response_ = std::make_unique<ContactResponse>(
+        *options.response, bodies, state, settings, *backend_,
+        create_response(choice.kind, choice.context, *backend_, executor_));
+  }
 }
 
 World::~World() = default;
 
 void World::step() {
-  detector_->complete();  // before the positions move (a GL pass may rerun on them)
   using Clock = std::chrono::steady_clock;
+  using Seconds = std::chrono::duration<double>;
+  double proximity_s = 0.0;
+  double response_s = 0.0;
+  if (response_) {
+    // Untangling starts from the exact intersections of the pose the frame starts from.
+    if (!detected_ && broadphase_ != BroadPhase::kNone) detect_collisions();
+    const auto begin = Clock::now();
+    response_->begin_frame(*detector_, detected_ ? detector_->contacts() : std::vector<Contact>{});
+    proximity_s = Seconds(Clock::now() - begin).count();
+  }
+  detector_->complete();  // before the positions move (a GL pass may rerun on them)
   const auto start = Clock::now();
   const float h = settings_.dt / static_cast<float>(settings_.substeps);
   const sim::SubstepConstants constants{h, settings_.gravity,
                                         std::exp(-settings_.velocity_damping * h)};
-  for (int s = 0; s < settings_.substeps; ++s)
+  for (int s = 0; s < settings_.substeps; ++s) {
     backend_->substep(constants);
+    if (!response_) continue;
+    if (measure_stage_times_) backend_->finish();
+    const auto begin = Clock::now();
+    response_->project(h);
+    if (measure_stage_times_) {
+      backend_->finish();
+      response_s += Seconds(Clock::now() - begin).count();
+    }
+  }
   ++frame_;
   if (frame_ % check_interval_ == 0 || frame_ == 1) check_stability();
   if (measure_stage_times_) backend_->finish();
@@ -116,9 +141,19 @@ void World::step() {
   }
   if (measure_stage_times_) {
     backend_->finish();
-    last_times_.simulation_s = std::chrono::duration<double>(simulated - start).count();
-    last_times_.collision_s = std::chrono::duration<double>(Clock::now() - simulated).count();
+    last_times_.simulation_s = Seconds(simulated - start).count() - response_s;
+    last_times_.collision_s = Seconds(Clock::now() - simulated).count();
+    last_times_.proximity_s = proximity_s;
+    last_times_.response_s = response_s;
   }
+}
+
+float World::contact_thickness(std::size_t body) const {
+  return response_ ? response_->thickness(body) : 0.0f;
+}
+
+ResponseCounts World::response_counts() const {
+  return response_ ? response_->counts() : ResponseCounts{};
 }
 
 void World::detect_collisions() {

@@ -115,16 +115,20 @@ inline bool contact_geometry(const gpu::ContactPair& pair, const glm::vec3 x[4],
   return true;
 }
 
-/// The pair pass: one constraint's position corrections of its four nodes (xyz) and whether
-/// each counts in its node's active count (w = 1: active and movable), from the current
-/// positions (w = inverse mass) and velocities. Normal: the projection of C to 0 (plus the
-/// restitution of the approach speed); tangential: Coulomb friction on the relative velocity,
-/// static while it is within friction_static x the normal velocity change, else reduced by
-/// friction_dynamic x it. All along the same weights, so momentum is conserved.
+/// The pair pass: one constraint's corrections of its four nodes, from the current positions
+/// (w = inverse mass) and velocities, into correction[2 k] (position change, w = 1 when it
+/// counts in node k's active count: active and movable) and correction[2 k + 1] (velocity
+/// change). Along the normal, the approach velocity is cancelled (and restitution x it given
+/// back), which also moves the nodes by that velocity change x h; depth left after that is
+/// removed by position alone, without adding velocity (so a deep start or a tunnel does not
+/// turn into a launch), an untangling constraint by at most max_untangle_step per substep.
+/// Tangentially, Coulomb friction on the relative velocity: static while it is within
+/// friction_static x the normal velocity change, else reduced by friction_dynamic x it. All
+/// along the constraint's weights, so momentum is conserved.
 inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position[4],
                           const glm::vec4 velocity[4], const ContactConstants& k,
-                          glm::vec4 correction[4]) {
-  for (int i = 0; i < 4; ++i)
+                          glm::vec4 correction[8]) {
+  for (int i = 0; i < 8; ++i)
     correction[i] = glm::vec4(0.0f);
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
                           glm::vec3(position[3])};
@@ -139,61 +143,64 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
     relative_velocity += b[i] * glm::vec3(velocity[i]);
   }
   if (!(weight > 0.0f)) return;  // every node fixed
-  if (pair.kind == gpu::kContactUntangle) c = glm::max(c, -k.max_untangle_step);
   const float approach = glm::max(-glm::dot(relative_velocity, n), 0.0f);
-  const float normal_step = -c + k.restitution * approach * k.h;  // >= 0, along n
+  const float normal_speed = (1.0f + k.restitution) * approach;
+  float push = glm::max(-c - approach * k.h, 0.0f);
+  if (pair.kind == gpu::kContactUntangle) push = glm::min(push, k.max_untangle_step);
   const glm::vec3 tangential = relative_velocity - glm::dot(relative_velocity, n) * n;
   const float slip = std::sqrt(glm::dot(tangential, tangential));
-  const float normal_speed = normal_step / k.h;
   float keep = 0.0f;  // the share of the tangential velocity friction leaves
   if (slip > k.friction_static * normal_speed) {
-    keep = 1.0f - k.friction_dynamic * normal_speed / slip;
-    keep = glm::max(keep, 0.0f);
+    keep = glm::max(1.0f - k.friction_dynamic * normal_speed / slip, 0.0f);
   }
-  const glm::vec3 step = (normal_step * n - (1.0f - keep) * k.h * tangential) / weight;
+  const glm::vec3 dv = (normal_speed * n - (1.0f - keep) * tangential) / weight;
+  const glm::vec3 dx = dv * k.h + (push / weight) * n;
   for (int i = 0; i < 4; ++i) {
     const float movable = position[i].w > 0.0f ? 1.0f : 0.0f;
-    correction[i] = glm::vec4(position[i].w * b[i] * step, movable);
+    const float scale = position[i].w * b[i];
+    correction[2 * i] = glm::vec4(scale * dx, movable);
+    correction[2 * i + 1] = glm::vec4(scale * dv, 0.0f);
   }
 }
 
 /// The count pass for one node: its active constraints, over its CSR list of constraint
-/// corners (slot 4 p + k), in list order.
-inline std::uint32_t count_active(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
-                                  const glm::vec4* corrections) {
+/// corners (slot 4 p + k, whose corrections are at 2 slot and 2 slot + 1), in list order.
+inline std::uint32_t count_active(const std::uint32_t* list, std::uint32_t begin,
+                                  std::uint32_t end, const glm::vec4* corrections) {
   std::uint32_t count = 0;
   for (std::uint32_t e = begin; e < end; ++e)
-    count += corrections[list[e]].w > 0.0f ? 1u : 0u;
+    count += corrections[2u * list[e]].w > 0.0f ? 1u : 0u;
   return count;
 }
 
-/// The node pass: one node's summed correction, each constraint scaled by 1 / the largest
-/// active count among its four nodes (see the file comment), in list order.
-inline glm::vec3 gather_correction(const std::uint32_t* list, std::uint32_t begin,
-                                   std::uint32_t end, const glm::vec4* corrections,
-                                   const gpu::ContactPair* pairs, const std::uint32_t* counts) {
-  glm::vec3 sum(0.0f);
+/// The node pass: one node's summed position and velocity corrections, each constraint scaled
+/// by 1 / the largest active count among its four nodes (see the file comment), in list order.
+inline void gather_correction(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
+                              const glm::vec4* corrections, const gpu::ContactPair* pairs,
+                              const std::uint32_t* counts, glm::vec3& dx, glm::vec3& dv) {
+  dx = glm::vec3(0.0f);
+  dv = glm::vec3(0.0f);
   for (std::uint32_t e = begin; e < end; ++e) {
     const std::uint32_t slot = list[e];
-    if (!(corrections[slot].w > 0.0f)) continue;
+    if (!(corrections[2u * slot].w > 0.0f)) continue;
     const gpu::ContactPair& pair = pairs[slot / 4u];
     std::uint32_t most = 1u;
     for (int k = 0; k < 4; ++k)
       most = glm::max(most, counts[pair.nodes[k]]);
-    sum += glm::vec3(corrections[slot]) / static_cast<float>(most);
+    const float share = 1.0f / static_cast<float>(most);
+    dx += glm::vec3(corrections[2u * slot]) * share;
+    dv += glm::vec3(corrections[2u * slot + 1u]) * share;
   }
-  return sum;
 }
 
-/// Applies a node's correction: the position moves by it and the velocity by it over h (so the
-/// correction is a velocity change, as in position-based dynamics); then a free node is kept
-/// within `reach` of where it started the frame (the motion bound the frame's proximity search
-/// assumed; see ResponseSettings). Fixed nodes (inverse mass 0) get no correction.
-inline void apply_correction(glm::vec4& position, glm::vec4& velocity, const glm::vec3& correction,
-                             const glm::vec4& frame_start, float h) {
+/// Applies a node's corrections to its position and velocity; then a free node is kept within
+/// `reach` (frame_start.w) of where it started the frame (frame_start.xyz): the motion bound
+/// the frame's proximity search assumed. Fixed nodes (inverse mass 0) are left alone.
+inline void apply_correction(glm::vec4& position, glm::vec4& velocity, const glm::vec3& dx,
+                             const glm::vec3& dv, const glm::vec4& frame_start) {
   if (!(position.w > 0.0f)) return;
-  glm::vec3 p = glm::vec3(position) + correction;
-  velocity = glm::vec4(glm::vec3(velocity) + correction / h, 0.0f);
+  glm::vec3 p = glm::vec3(position) + dx;
+  velocity = glm::vec4(glm::vec3(velocity) + dv, 0.0f);
   const glm::vec3 moved = p - glm::vec3(frame_start);
   const float reach = frame_start.w;
   const float distance = std::sqrt(glm::dot(moved, moved));

@@ -1,0 +1,60 @@
+#pragma once
+// The world's contact response stage (issue 12): once a frame it gathers the constraints
+// (proximity pairs from the detector, untangling pairs from the last exact intersections) and
+// hands them to a response backend; after every substep it has the backend project them.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/response/response_backend.h"
+#include "core/sim/simulation_backend.h"
+#include "deformcd/collision.h"
+#include "deformcd/detector.h"
+#include "deformcd/response.h"
+#include "deformcd/simulation_state.h"
+#include "deformcd/world.h"
+
+namespace deformcd {
+
+class ContactResponse {
+ public:
+  /// `bodies` as the world got them, `state` as assembled from them (node offsets, node
+  /// bodies); `simulation` is read for velocities; `backend` corrects its state.
+  ContactResponse(const ResponseSettings& settings, const std::vector<BodyInit>& bodies,
+                  const SimulationState& state, const StepSettings& step,
+                  sim::SimulationBackend& simulation,
+                  std::unique_ptr<response::ResponseBackend> backend);
+
+  /// The frame's constraints on the current positions: every proximity pair `detector` finds
+  /// within each body's thickness and motion bound, and for each intersecting face pair of
+  /// `intersections` (the last exact pass) its vertices against the other face.
+  void begin_frame(Detector& detector, const std::vector<Contact>& intersections);
+  /// One projection after a substep of length h.
+  void project(float h);
+
+  /// m: body b's contact thickness.
+  [[nodiscard]] float thickness(std::size_t body) const { return thickness_[body]; }
+  [[nodiscard]] const ResponseCounts& counts() const { return counts_; }
+
+ private:
+  [[nodiscard]] std::vector<float> body_motion();
+
+  ResponseSettings settings_;
+  StepSettings step_;
+  sim::SimulationBackend& simulation_;
+  std::unique_ptr<response::ResponseBackend> backend_;
+  std::vector<gpu::ObjectInfo> objects_;
+  std::vector<std::uint32_t> node_body_;
+  std::vector<glm::vec3> carry_;
+  std::vector<float> thickness_;    // per body
+  std::vector<float> mean_edge_;    // per body, surface
+  std::vector<glm::vec4> velocities_;
+  float max_untangle_step_ = 0.0f;
+  ResponseCounts counts_;
+};
+
+/// Mean length of a body's surface edges (each edge once).
+[[nodiscard]] float mean_surface_edge(const Body& body);
+
+}  // namespace deformcd
