@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "buffer_from.h"
 #include "deformcd/error.h"
 #include "gl_check.h"
 
@@ -36,16 +37,12 @@ void bind_name(std::uint32_t binding, std::uint32_t buffer) {
 
 }  // namespace
 
-GlProximity::Current GlProximity::make_current(Context& context) {
-  context.make_current();
-  return {};
-}
-
 GlProximity::GlProximity(Context& context, const collision::CollisionData& data)
-    : GlProximity(make_current(context), data) {}
+    : GlProximity(query_device_info(context), data) {}
 
-GlProximity::GlProximity(Current /*made_current*/, const collision::CollisionData& data)
-    : mesh_count_(static_cast<std::uint32_t>(data.mesh_count())),
+GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionData& data)
+    : max_buffer_bytes_(device.max_ssbo_block_bytes),
+      mesh_count_(static_cast<std::uint32_t>(data.mesh_count())),
       pair_count_(static_cast<std::uint32_t>(data.mesh_pairs.size())),
       item_count_(pair_first_items(data).back()),
       count_("proximity/proximity_count.comp"),
@@ -62,6 +59,13 @@ GlProximity::GlProximity(Current /*made_current*/, const collision::CollisionDat
     p->set_uniform("u_item_count", item_count_);
   }
   scan_.set_uniform("u_item_count", item_count_);
+  const std::uint64_t most =
+      std::uint64_t{device.max_work_group_count[0]} * count_.work_group_size()[0];
+  if (item_count_ > most) {
+    throw GlError("GL proximity: " + std::to_string(item_count_) +
+                  " work items (faces of the mesh pairs' first meshes) exceed one dispatch (" +
+                  std::to_string(most) + ")");
+  }
 }
 
 std::vector<collision::ProximityCandidate> GlProximity::find(const ProximitySources& sources,
@@ -101,7 +105,17 @@ std::vector<collision::ProximityCandidate> GlProximity::find_bound(std::span<con
   const std::uint32_t total = offsets_.download(item_count_, 1)[0];
   if (total == 0) return {};
   if (!candidates_ || candidates_->size() < total) {
-    candidates_.emplace(std::size_t{total} + total / 2u);  // 1.5 x: rarely regrown
+    // 1.5 x the need, within the limit: a list growing over frames is rarely reallocated.
+    const std::uint64_t most = max_buffer_bytes_ / sizeof(collision::ProximityCandidate);
+    if (total > most) {
+      throw GlError("GL proximity: " + std::to_string(total) + " candidates (" +
+                    std::to_string(std::uint64_t{total} * sizeof(collision::ProximityCandidate)) +
+                    " bytes) exceed the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
+                    std::to_string(max_buffer_bytes_) + " bytes); use smaller reaches");
+    }
+    candidates_ = allocate<collision::ProximityCandidate>(
+        std::min<std::uint64_t>(std::uint64_t{total} + total / 2u, most),
+        {"GL proximity", "Proximity Candidates", kProximityCandidatesBinding});
   }
   candidates_->bind(kProximityCandidatesBinding);
   storage_barrier();  // the emit pass reads the offsets

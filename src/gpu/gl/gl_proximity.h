@@ -21,6 +21,7 @@
 #include "core/collision/collision_data.h"
 #include "core/collision/proximity.h"
 #include "deformcd/gl/context.h"
+#include "deformcd/gl/device_info.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
 
@@ -48,13 +49,16 @@ struct ProximitySources {
 class GlProximity {
  public:
   // For `data`'s faces and mesh pairs (their owner bits and work items are uploaded now).
-  // Makes `context` current and compiles the three shaders (GlError if that fails); the context
-  // must outlive this object and be current for every call.
+  // Makes `context` current and compiles the three shaders (GlError if that fails, or when the
+  // work items exceed one dispatch); the context must outlive this object and be current for
+  // every call.
   GlProximity(Context& context, const collision::CollisionData& data);
 
   // The candidates on the positions `sources` hold, whose boxes come within
   // reach[mesh_a] + reach[mesh_b] (one reach per mesh), sorted: CpuProximity::find's list.
-  // Waits for the GPU (two read-backs). Throws Error for a reach list of the wrong length.
+  // Waits for the GPU (two read-backs). Throws Error for a reach list of the wrong length,
+  // GlError naming the candidate buffer when it would exceed the device's buffer limit or the
+  // driver refuses the memory.
   [[nodiscard]] std::vector<collision::ProximityCandidate> find(const ProximitySources& sources,
                                                                 std::span<const float> reach);
   // The same over the buffers bound now at SSBOs 0, 7, 8, 25, 26 and 27, as
@@ -62,11 +66,10 @@ class GlProximity {
   [[nodiscard]] std::vector<collision::ProximityCandidate> find_bound(std::span<const float> reach);
 
  private:
-  struct Current {};  // the context was made current
-  static Current make_current(Context& context);
-  GlProximity(Current, const collision::CollisionData& data);
+  GlProximity(const DeviceInfo& device, const collision::CollisionData& data);
   void check_reach(std::span<const float> reach) const;
 
+  std::uint64_t max_buffer_bytes_ = 0;  // the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE
   std::uint32_t mesh_count_ = 0;
   std::uint32_t pair_count_ = 0;
   std::uint32_t item_count_ = 0;
