@@ -22,6 +22,7 @@ layout(std430, binding = 10) buffer Counters { CollisionCounters counters[]; };
 layout(std430, binding = 11) buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, binding = 12) buffer BodyBvhs { BodyBvh body_bvhs[]; };
 layout(std430, binding = 13) buffer MeshInfos { MeshInfo meshes[]; };
+layout(std430, binding = 14) buffer ContactPairs { ContactPair contact_pairs[]; };
 
 uniform uint u_count;
 
@@ -113,6 +114,12 @@ void main() {
   meshes[i].position_stride = probe(i, 6u);
   meshes[i].pad = probe(i, 7u);
 
+  contact_pairs[i].nodes = uvec4(probe(i, 0u), probe(i, 1u), probe(i, 2u), probe(i, 3u));
+  contact_pairs[i].kind = probe(i, 4u);
+  contact_pairs[i].thickness = probef(i, 5u);
+  contact_pairs[i].pad0 = probef(i, 6u);
+  contact_pairs[i].pad1 = probef(i, 7u);
+
   if (i == 0u) {
     bindings[0] = BINDING_NODE_POSITION;
     bindings[1] = BINDING_NODE_VELOCITY;
@@ -143,20 +150,30 @@ void main() {
     bindings[26] = BINDING_BVH_BOX;
     bindings[27] = BINDING_BODY_BVH;
     bindings[28] = BINDING_CANDIDATE_PAIR;
+    bindings[29] = BINDING_CONTACT_PAIR;
+    bindings[30] = BINDING_CONTACT_CORRECTION;
+    bindings[31] = BINDING_NODE_CONTACT_OFFSET;
+    bindings[32] = BINDING_NODE_CONTACT_LIST;
+    bindings[33] = BINDING_NODE_CONTACT_COUNT;
+    bindings[34] = BINDING_FRAME_START;
+    bindings[35] = BINDING_BODY_MOTION;
     // Not gpu::Binding: the shared constants, then the GL backend's private work buffers.
-    bindings[29] = LEAF_BOXES_PER_BODY;
-    bindings[30] = BVH_INTERNAL;
-    bindings[31] = BVH_MAX_DEPTH;
-    bindings[32] = BINDING_DISPATCH_ARGS;
-    bindings[33] = BINDING_BOX_PAIR_LIST;
-    bindings[34] = BINDING_BVH_LEVELS;
-    bindings[35] = BINDING_TOUCHING_PAIRS;
-    bindings[36] = DISPATCH_ARGS_EXPAND;
-    bindings[37] = DISPATCH_ARGS_TOUCHING;
-    bindings[38] = DISPATCH_ARGS_NARROW;
-    bindings[39] = DISPATCH_ARGS_TRAVERSE;
-    bindings[40] = BINDING_BVH_LEAVES;
-    bindings[41] = BINDING_MESH_INFO;
-    bindings[42] = BINDING_NON_FINITE;
+    bindings[36] = LEAF_BOXES_PER_BODY;
+    bindings[37] = BVH_INTERNAL;
+    bindings[38] = BVH_MAX_DEPTH;
+    bindings[39] = BINDING_DISPATCH_ARGS;
+    bindings[40] = BINDING_BOX_PAIR_LIST;
+    bindings[41] = BINDING_BVH_LEVELS;
+    bindings[42] = BINDING_TOUCHING_PAIRS;
+    bindings[43] = DISPATCH_ARGS_EXPAND;
+    bindings[44] = DISPATCH_ARGS_TOUCHING;
+    bindings[45] = DISPATCH_ARGS_NARROW;
+    bindings[46] = DISPATCH_ARGS_TRAVERSE;
+    bindings[47] = BINDING_BVH_LEAVES;
+    bindings[48] = BINDING_MESH_INFO;
+    bindings[49] = BINDING_NON_FINITE;
+    bindings[50] = CONTACT_VERTEX_FACE;
+    bindings[51] = CONTACT_EDGE_EDGE;
+    bindings[52] = CONTACT_UNTANGLE;
   }
 }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <memory>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -14,12 +15,14 @@
 #include "collision_test_backends.h"
 #include "core/collision/collision_backend.h"
 #include "cpu/cpu_collision.h"
+#include "cpu/cpu_proximity.h"
 #include "cpu/cpu_simulation.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "gl_test_context.h"
 #include "gpu/gl/gl_collision.h"
+#include "gpu/gl/gl_proximity.h"
 #include "support/collision_fixtures.h"
 
 namespace fs = std::filesystem;
@@ -208,6 +211,35 @@ TEST_F(CollisionBackendSelf, GlEqualsCpuOnTheFoldingPlate) {
     EXPECT_EQ(cpu_brute.counters.candidates, replay.all_face_pairs()) << frame;
   }
   EXPECT_GE(frames_in_contact, 3);
+}
+
+class ProximityAgreement : public test_support::GlTest {};
+
+// The GL proximity search (gpu/gl/gl_proximity.h) over the GL collision's BVHs, refitted by
+// prepare_proximity on the simulation's positions read in place, gives CpuProximity::find's
+// list exactly on phase 1's models (thousands of faces) before, in and after contact, for a
+// contact response's reaches (a few mm) and a longer one.
+TEST_F(ProximityAgreement, GlEqualsCpuThroughPhase1) {
+  constexpr int kFrames = 12;
+  SceneReplay replay(context(), "phase1", kFrames);
+  GlProximity gl(context(), replay.fixture.data);
+  cpu::CpuProximity cpu(replay.fixture.data, std::make_shared<cpu::Executor>(2));
+  std::size_t longest = 0;
+  for (int f = 0; f <= kFrames; ++f) {
+    if (f > 0) replay.step();
+    if (f % 3 != 0) continue;
+    replay.gl_collision.prepare_proximity();
+    for (const std::vector<float>& reach :
+         {std::vector<float>{0.002f, 0.003f}, std::vector<float>{0.02f, 0.01f}}) {
+      const std::vector<collision::ProximityCandidate> expected =
+          cpu.find(replay.fixture.vertices(), reach);
+      const std::vector<collision::ProximityCandidate> found = gl.find_bound(reach);
+      EXPECT_EQ(found.size(), expected.size()) << "frame " << f << ", reach " << reach[0];
+      EXPECT_TRUE(found == expected) << "frame " << f << ", reach " << reach[0];
+      longest = std::max(longest, expected.size());
+    }
+  }
+  EXPECT_GT(longest, 100u) << "the models should come within reach";
 }
 
 class CollisionBackendManyBodies : public test_support::GlTest {};

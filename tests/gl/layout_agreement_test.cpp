@@ -32,13 +32,14 @@ struct ProbeOutput {
   std::vector<gpu::BvhNode> bvh_nodes;
   std::vector<gpu::BodyBvh> body_bvhs;
   std::vector<gpu::MeshInfo> meshes;
+  std::vector<gpu::ContactPair> contact_pairs;
   // The BINDING_* macros in gpu::Binding order (kBindingCount of them), then the constants
   // (kConstantCount).
   std::vector<std::uint32_t> bindings;
 };
 
-constexpr std::uint32_t kBindingCount = gpu::kCandidatePair + 1;
-constexpr std::uint32_t kConstantCount = 14;
+constexpr std::uint32_t kBindingCount = gpu::kBodyMotion + 1;
+constexpr std::uint32_t kConstantCount = 17;
 
 // Runs shaders/test/layout_probe.comp over `count` elements of each struct.
 ProbeOutput run_layout_probe(std::uint32_t count) {
@@ -57,6 +58,7 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   const Ssbo<gpu::BvhNode> bvh_nodes(count);
   const Ssbo<gpu::BodyBvh> body_bvhs(count);
   const Ssbo<gpu::MeshInfo> meshes(count);
+  const Ssbo<gpu::ContactPair> contact_pairs(count);
   springs.bind(0);
   faces.bind(1);
   boxes.bind(2);
@@ -71,13 +73,14 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   bvh_nodes.bind(11);
   body_bvhs.bind(12);
   meshes.bind(13);
+  contact_pairs.bind(14);
   program.set_uniform("u_count", count);
   program.dispatch_covering(count);
-  return {springs.download(),   faces.download(),      boxes.download(),
-          box_faces.download(), objects.download(),    body_params.download(),
-          tets.download(),      body_pairs.download(), face_pairs.download(),
-          counters.download(),  bvh_nodes.download(),  body_bvhs.download(),
-          meshes.download(),    bindings.download()};
+  return {springs.download(),   faces.download(),         boxes.download(),
+          box_faces.download(), objects.download(),       body_params.download(),
+          tets.download(),      body_pairs.download(),    face_pairs.download(),
+          counters.download(),  bvh_nodes.download(),     body_bvhs.download(),
+          meshes.download(),    contact_pairs.download(), bindings.download()};
 }
 
 std::uint32_t probe(std::uint32_t i, std::uint32_t k) {
@@ -175,19 +178,31 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
         m.box_face_count, m.position_offset, m.position_stride, m.pad};
     for (std::uint32_t k = 0; k < 8; ++k)
       EXPECT_EQ(mesh_fields[k], probe(i, k)) << "MeshInfo field " << k;
+
+    const gpu::ContactPair& cp = out.contact_pairs[i];
+    for (std::uint32_t k = 0; k < 4; ++k)
+      EXPECT_EQ(cp.nodes[k], probe(i, k)) << "ContactPair node " << k;
+    EXPECT_EQ(cp.kind, probe(i, 4));
+    EXPECT_EQ(cp.thickness, probef(i, 5));
+    EXPECT_EQ(cp.pad0, probef(i, 6));
+    EXPECT_EQ(cp.pad1, probef(i, 7));
   }
 }
 
 TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
   const std::vector<std::uint32_t> expected = {
-      gpu::kNodePosition,   gpu::kNodeVelocity,    gpu::kSpringInfo,  gpu::kNodeForce,
-      gpu::kBoxInfo,        gpu::kCollisionResult, gpu::kFaceNormal,  gpu::kFaceInfo,
-      gpu::kObjectInfo,     gpu::kBoxFaceList,     gpu::kFacePair,    gpu::kBoxMask,
-      gpu::kBodyParams,     gpu::kNodeBody,        gpu::kSpringForce, gpu::kNodeSpringOffset,
-      gpu::kNodeSpringList, gpu::kTetInfo,         gpu::kTetForce,    gpu::kNodeTetOffset,
-      gpu::kNodeTetList,    gpu::kFaceBoxes,       gpu::kBodyPair,    gpu::kCollisionCounters,
-      gpu::kBoxRows,        gpu::kBvhNode,         gpu::kBvhBox,      gpu::kBodyBvh,
-      gpu::kCandidatePair};
+      gpu::kNodePosition,      gpu::kNodeVelocity,      gpu::kSpringInfo,
+      gpu::kNodeForce,         gpu::kBoxInfo,           gpu::kCollisionResult,
+      gpu::kFaceNormal,        gpu::kFaceInfo,          gpu::kObjectInfo,
+      gpu::kBoxFaceList,       gpu::kFacePair,          gpu::kBoxMask,
+      gpu::kBodyParams,        gpu::kNodeBody,          gpu::kSpringForce,
+      gpu::kNodeSpringOffset,  gpu::kNodeSpringList,    gpu::kTetInfo,
+      gpu::kTetForce,          gpu::kNodeTetOffset,     gpu::kNodeTetList,
+      gpu::kFaceBoxes,         gpu::kBodyPair,          gpu::kCollisionCounters,
+      gpu::kBoxRows,           gpu::kBvhNode,           gpu::kBvhBox,
+      gpu::kBodyBvh,           gpu::kCandidatePair,     gpu::kContactPair,
+      gpu::kContactCorrection, gpu::kNodeContactOffset, gpu::kNodeContactList,
+      gpu::kNodeContactCount,  gpu::kFrameStart,        gpu::kBodyMotion};
   ASSERT_EQ(expected.size(), kBindingCount);
   std::vector<std::uint32_t> bindings = run_layout_probe(1).bindings;
   ASSERT_EQ(bindings.size(), kBindingCount + kConstantCount);
@@ -208,6 +223,9 @@ TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
   EXPECT_EQ(constants[11], kBvhLeavesBinding) << "BINDING_BVH_LEAVES";
   EXPECT_EQ(constants[12], gpu::kMeshInfo) << "BINDING_MESH_INFO";
   EXPECT_EQ(constants[13], kNonFiniteBinding) << "BINDING_NON_FINITE";
+  EXPECT_EQ(constants[14], gpu::kContactVertexFace) << "CONTACT_VERTEX_FACE";
+  EXPECT_EQ(constants[15], gpu::kContactEdgeEdge) << "CONTACT_EDGE_EDGE";
+  EXPECT_EQ(constants[16], gpu::kContactUntangle) << "CONTACT_UNTANGLE";
 }
 
 }  // namespace

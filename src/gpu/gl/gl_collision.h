@@ -149,6 +149,12 @@ class GlCollision final : public collision::CollisionBackend {
   [[nodiscard]] std::uint64_t bvh_rebuilds() const { return upkeep_.rebuilds(); }
   // Whether the last detect() read the caller's buffer in place (no gathering copy).
   [[nodiscard]] bool positions_in_place() const;
+  // For a proximity search (gl_proximity.h) on the current positions: completes the last pass,
+  // stages the positions, refits every BVH on them (a bvh pass's refit, without its traversal
+  // and narrow phase: the last pass's results stay) and leaves bound what GlProximity::
+  // find_bound reads (SSBOs 0, 7, 8, 25, 26, 27). Throws as detect() does
+  // (gl_collision_proximity.cpp).
+  void prepare_proximity();
 
  private:
   GlCollision(const DeviceInfo& device, const GlCollisionOptions& options);
@@ -168,6 +174,8 @@ class GlCollision final : public collision::CollisionBackend {
   void run_brute(const CollisionBuffers& b);
   void run_octree_compact(const CollisionBuffers& b);
   void run_bvh(const CollisionBuffers& b);
+  // bvh_refit.comp and bvh_refit_level.comp, deepest level first (no barrier after the last).
+  void refit_bvhs(const CollisionBuffers& b);
   // dispatch_args.comp, then tri_tri_candidates.comp over the candidates, indirectly.
   void run_candidate_narrow_phase(const CollisionBuffers& b);
   // A list an indirect dispatch covers (dispatch_args.comp's uniforms).

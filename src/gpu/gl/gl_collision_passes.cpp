@@ -99,7 +99,7 @@ void GlCollision::run_octree_compact(const CollisionBuffers& b) {
   run_candidate_narrow_phase(b);
 }
 
-void GlCollision::run_bvh(const CollisionBuffers& b) {
+void GlCollision::refit_bvhs(const CollisionBuffers& b) {
   bvh_refit_.dispatch_covering(b.bvh_node_count);
   for (const glm::uvec2& level : b.bvh_levels_ranges) {
     storage_barrier();  // the level reads its children's boxes
@@ -107,6 +107,10 @@ void GlCollision::run_bvh(const CollisionBuffers& b) {
     bvh_refit_level_.set_uniform("u_count", level.y);
     bvh_refit_level_.dispatch_covering(level.y);
   }
+}
+
+void GlCollision::run_bvh(const CollisionBuffers& b) {
+  refit_bvhs(b);
   storage_barrier();  // the culling and the traversal read the boxes
   bvh_mesh_pairs_.dispatch_covering(b.mesh_pair_count);
   storage_barrier();  // dispatch_args reads the touching pairs' count

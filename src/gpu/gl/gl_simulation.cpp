@@ -73,7 +73,8 @@ void GlSimulation::upload(const SimulationState& state) {
       copy(state.tet_forces, gpu::kTetForce), copy(state.node_tet_offset, gpu::kNodeTetOffset),
       copy(state.node_tet_list, gpu::kNodeTetList), static_cast<std::uint32_t>(state.node_count()),
       static_cast<std::uint32_t>(state.springs.size()),
-      static_cast<std::uint32_t>(state.tets.size())});
+      static_cast<std::uint32_t>(state.tets.size()),
+      static_cast<std::uint32_t>(state.body_params.size())});
   tet_update_.set_uniform("u_tet_count", buffers_->tet_count);
   spring_update_.set_uniform("u_spring_count", buffers_->spring_count);
   node_force_.set_uniform("u_node_count", buffers_->node_count);

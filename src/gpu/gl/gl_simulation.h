@@ -50,6 +50,7 @@ struct SimulationBuffers {
   std::uint32_t node_count = 0;
   std::uint32_t spring_count = 0;
   std::uint32_t tet_count = 0;
+  std::uint32_t body_count = 0;  // body_params' length: node_body's values are below it
 };
 
 class GlSimulation final : public sim::SimulationBackend {
@@ -79,6 +80,11 @@ class GlSimulation final : public sim::SimulationBackend {
   void download_velocities(std::vector<glm::vec4>& out) override;
   // The node forces (SSBO 3) of the last substep.
   void download_node_forces(std::vector<glm::vec4>& out);
+
+  // The uploaded buffers, for a stage that works on the nodes in place between substeps (the
+  // contact response, gl_contact_response.h), so that it need not hold names that a later
+  // upload() would replace: look them up on each use. Throws Error before upload().
+  [[nodiscard]] const SimulationBuffers& state_buffers() const { return buffers("state_buffers"); }
 
   // SSBO 0's buffer name (0 before upload()).
   [[nodiscard]] std::uint32_t gl_position_buffer() const override;

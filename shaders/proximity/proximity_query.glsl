@@ -1,0 +1,72 @@
+// One work item of the proximity search: face i of mesh pair p's mesh a (items numbered pair by
+// pair, pair_first[p] the first of pair p's) queries mesh b's BVH with its box grown by
+// reach[a] + reach[b], and each leaf face found gives the candidates of the face pair
+// (emit_face_pair_candidates), as CpuProximity::find does for that face: within one mesh only
+// faces of higher index sharing no corner.
+#include "collision/bvh.glsl"
+#include "collision/meshes.glsl"
+#include "collision/surface.glsl"
+#include "common/layout.glsl"
+#include "proximity/proximity.glsl"
+#include "proximity/proximity_buffers.glsl"
+
+layout(std430, binding = BINDING_BODY_PAIR) readonly buffer MeshPairs {
+  BodyPair mesh_pairs[];
+};
+layout(std430, binding = BINDING_BODY_BVH) readonly buffer BodyBvhs {
+  BodyBvh mesh_bvhs[];
+};
+layout(std430, binding = BINDING_PROXIMITY_OWNERS) readonly buffer Owners {
+  uint owners[];
+};
+layout(std430, binding = BINDING_PROXIMITY_REACH) readonly buffer Reaches {
+  float reach[];
+};
+layout(std430, binding = BINDING_PROXIMITY_PAIR_FIRST) readonly buffer PairFirst {
+  uint pair_first[];
+};
+
+uniform uint u_pair_count;
+uniform uint u_item_count;
+
+// broad_phase.glsl declares it for is_first_box_pair, which the search does not call.
+bool mask_says_overlap(uint mask_slot, uint box_a, uint box_b) { return false; }
+
+// The query's face a and the rules of bvh_visit.
+Face g_fa;
+uint g_index_a;
+uint g_owners_a;
+float g_grow;
+bool g_self;
+
+void bvh_visit(uint index_b) {
+  const Face fb = faces[index_b];
+  if (g_self && (index_b <= g_index_a || faces_share_vertex(g_fa, fb))) return;
+  emit_face_pair_candidates(g_fa, g_index_a, g_owners_a, fb, index_b, owners[index_b], g_grow);
+}
+
+// Runs work item `item` (< u_item_count).
+void run_proximity_item(uint item) {
+  // The pair whose items contain `item`: the last p with pair_first[p] <= item.
+  uint lo = 0u, hi = u_pair_count;
+  while (hi - lo > 1u) {
+    const uint mid = (lo + hi) / 2u;
+    if (pair_first[mid] <= item) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  const BodyPair pair = mesh_pairs[lo];
+  const MeshInfo mesh_a = meshes[pair.a];
+  g_index_a = mesh_a.face_offset + (item - pair_first[lo]);
+  g_fa = faces[g_index_a];
+  g_owners_a = owners[g_index_a];
+  g_grow = reach[pair.a] + reach[pair.b];
+  g_self = pair.a == pair.b;
+  vec3 xa[3];
+  xa[0] = vertex_position(g_fa.body, g_fa.a);
+  xa[1] = vertex_position(g_fa.body, g_fa.b);
+  xa[2] = vertex_position(g_fa.body, g_fa.c);
+  query_bvh(mesh_bvhs[pair.b].root, reach_box3(xa, g_grow));
+}

@@ -1,0 +1,209 @@
+// Contact response as per-element functions, mirroring src/core/response/contact_constraints.h
+// line for line: the same float operations in the same order, so that the GL and CPU backends
+// compute the same bits (tests/gl/gl_contact_response_test.cpp checks it). Change both files
+// together. The why of the method (Jacobi with per-constraint scaling, Coulomb friction,
+// restitution) is in the C++ header.
+//
+// count_active and gather_correction are not here: GLSL 4.30 cannot pass a buffer to a function,
+// so their loops are written out in response/contact_count.comp and response/contact_apply.comp,
+// again line for line.
+//
+// Every float is `precise`: without it the driver may fuse a * b + c into one fma (one rounding
+// instead of two) or reorder sums, and the results would drift from the C++ ones by an ulp here
+// and there, which a few substeps of Jacobi iteration amplify. dot, cross and the min / max of
+// glm are written out for the same reason (glm::dot sums (x + y) + z; glm::max(a, b) is
+// a < b ? b : a, which differs from GLSL's max only for NaN and signed zeros, but the mirror
+// should not differ at all).
+#include "common/layout.glsl"
+
+// Per-substep constants (response::ContactConstants).
+struct ContactConstants {
+  float h;                  // substep length, s
+  float friction_static;    // Coulomb static coefficient (>= 0)
+  float friction_dynamic;   // Coulomb dynamic coefficient (>= 0, <= friction_static)
+  float restitution;        // 0: the approach speed is absorbed, 1: given back along n
+  float max_untangle_step;  // m: most an untangling constraint moves its nodes per substep
+};
+
+// glm::dot: the products, then (x + y) + z.
+float contact_dot(vec3 a, vec3 b) {
+  precise vec3 t = a * b;
+  precise float r = (t.x + t.y) + t.z;
+  return r;
+}
+
+// glm::cross.
+vec3 contact_cross(vec3 x, vec3 y) {
+  precise vec3 r = vec3(x.y * y.z - y.y * x.z, x.z * y.x - y.z * x.x, x.x * y.y - y.x * x.y);
+  return r;
+}
+
+// glm::max and glm::min on floats, and glm::clamp(x, lo, hi) = min(max(x, lo), hi).
+float contact_max(float a, float b) { return a < b ? b : a; }
+float contact_min(float a, float b) { return b < a ? b : a; }
+float contact_clamp(float x, float lo, float hi) {
+  return contact_min(contact_max(x, lo), hi);
+}
+
+// plane_barycentric: the closest point of the plane projection of p on triangle (a, b, c) as
+// barycentric weights (u, v, w), u + v + w = 1 (not clamped here); false for a degenerate
+// triangle.
+bool plane_barycentric(vec3 p, vec3 a, vec3 b, vec3 c, out vec3 uvw) {
+  uvw = vec3(0.0);
+  precise vec3 ab = b - a, ac = c - a, ap = p - a;
+  precise float d00 = contact_dot(ab, ab), d01 = contact_dot(ab, ac), d11 = contact_dot(ac, ac);
+  precise float d20 = contact_dot(ap, ab), d21 = contact_dot(ap, ac);
+  precise float denominator = d00 * d11 - d01 * d01;
+  precise float threshold = 1e-12 * d00 * d11;
+  if (!(denominator > threshold)) return false;
+  precise float v = (d11 * d20 - d01 * d21) / denominator;
+  precise float w = (d00 * d21 - d01 * d20) / denominator;
+  precise vec3 result = vec3(1.0 - v - w, v, w);
+  uvw = result;
+  return true;
+}
+
+// segment_closest_parameters: (s, t) of the closest points a0 + s (a1 - a0) and
+// b0 + t (b1 - b0) of two segments, each in [0, 1]; false when either segment is degenerate.
+bool segment_closest_parameters(vec3 a0, vec3 a1, vec3 b0, vec3 b1, out float s, out float t) {
+  s = 0.0;
+  t = 0.0;
+  precise vec3 da = a1 - a0, db = b1 - b0, r = a0 - b0;
+  precise float aa = contact_dot(da, da), bb = contact_dot(db, db), ab = contact_dot(da, db);
+  precise float ar = contact_dot(da, r), br = contact_dot(db, r);
+  if (!(aa > 0.0) || !(bb > 0.0)) return false;
+  precise float denominator = aa * bb - ab * ab;
+  precise float threshold = 1e-12 * aa * bb;
+  // Parallel segments: any s works; take the one of a0 and let t and then s clamp.
+  precise float ss = 0.0;
+  if (denominator > threshold) {
+    precise float unclamped = (ab * br - bb * ar) / denominator;
+    ss = contact_clamp(unclamped, 0.0, 1.0);
+  }
+  precise float tt = (ab * ss + br) / bb;
+  if (tt < 0.0) {
+    tt = 0.0;
+    precise float unclamped = -ar / aa;
+    ss = contact_clamp(unclamped, 0.0, 1.0);
+  } else if (tt > 1.0) {
+    tt = 1.0;
+    precise float unclamped = (ab - ar) / aa;
+    ss = contact_clamp(unclamped, 0.0, 1.0);
+  }
+  s = ss;
+  t = tt;
+  return true;
+}
+
+// contact_geometry: normal n, weights b (sum 0) and C, the distance along n minus the thickness
+// (the constraint wants C >= 0), on the current positions. False when the constraint does not
+// apply now (vertex beside the face, beyond its band, degenerate).
+bool contact_geometry(ContactPair pair, vec3 x[4], out vec3 n, out float b[4], out float c) {
+  n = vec3(0.0);
+  b = float[4](0.0, 0.0, 0.0, 0.0);
+  c = 0.0;
+  if (pair.kind == CONTACT_EDGE_EDGE) {
+    float s = 0.0, t = 0.0;
+    if (!segment_closest_parameters(x[0], x[1], x[2], x[3], s, t)) return false;
+    precise vec3 d = (x[0] + s * (x[1] - x[0])) - (x[2] + t * (x[3] - x[2]));
+    precise float distance = sqrt(contact_dot(d, d));
+    precise float crossing = 1e-7 * pair.thickness;
+    if (!(distance > crossing)) return false;  // crossing: no direction
+    precise vec3 unit = d / distance;
+    n = unit;
+    precise float one_minus_s = 1.0 - s;
+    precise float one_minus_t = 1.0 - t;
+    b[0] = one_minus_s;
+    b[1] = s;
+    b[2] = -one_minus_t;
+    b[3] = -t;
+    precise float gap = distance - pair.thickness;
+    c = gap;
+    return true;
+  }
+  // Vertex x[0] against face (x[1], x[2], x[3]), along the face's outward normal.
+  precise vec3 normal = contact_cross(x[2] - x[1], x[3] - x[1]);
+  precise float area2 = sqrt(contact_dot(normal, normal));
+  vec3 uvw = vec3(0.0);
+  if (!(area2 > 0.0) || !plane_barycentric(x[0], x[1], x[2], x[3], uvw)) return false;
+  precise vec3 unit = normal / area2;
+  n = unit;
+  precise float height = contact_dot(x[0] - x[1], unit);
+  if (pair.kind == CONTACT_VERTEX_FACE) {
+    // Only where the vertex lies over the face, and not deeper behind it than the thickness.
+    if (uvw.x < 0.0 || uvw.y < 0.0 || uvw.z < 0.0) return false;
+    if (height < -pair.thickness) return false;
+  } else {
+    // Untangling (CONTACT_UNTANGLE): weights clamped into the face.
+    precise vec3 clamped = vec3(contact_clamp(uvw.x, 0.0, 1.0), contact_clamp(uvw.y, 0.0, 1.0),
+                                contact_clamp(uvw.z, 0.0, 1.0));
+    precise float total = (clamped.x + clamped.y) + clamped.z;
+    precise vec3 normalized = clamped / total;
+    uvw = normalized;
+  }
+  b[0] = 1.0;
+  b[1] = -uvw.x;
+  b[2] = -uvw.y;
+  b[3] = -uvw.z;
+  precise float gap = height - pair.thickness;
+  c = gap;
+  return true;
+}
+
+// solve_contact, the pair pass: one constraint's position corrections of its four nodes (xyz)
+// and whether each counts in its node's active count (w = 1: active and movable), from the
+// current positions (w = inverse mass) and velocities.
+void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], ContactConstants k,
+                   out vec4 correction[4]) {
+  for (int i = 0; i < 4; ++i) correction[i] = vec4(0.0);
+  const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
+  vec3 n = vec3(0.0);
+  float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
+  float c = 0.0;
+  if (!contact_geometry(pair, x, n, b, c) || !(c < 0.0)) return;
+  precise float weight = 0.0;
+  precise vec3 relative_velocity = vec3(0.0);
+  for (int i = 0; i < 4; ++i) {
+    weight += position[i].w * b[i] * b[i];
+    relative_velocity += b[i] * velocity[i].xyz;
+  }
+  if (!(weight > 0.0)) return;  // every node fixed
+  precise float depth = c;
+  if (pair.kind == CONTACT_UNTANGLE) depth = contact_max(depth, -k.max_untangle_step);
+  precise float approach = contact_max(-contact_dot(relative_velocity, n), 0.0);
+  precise float normal_step = -depth + k.restitution * approach * k.h;  // >= 0, along n
+  precise vec3 tangential = relative_velocity - contact_dot(relative_velocity, n) * n;
+  precise float slip = sqrt(contact_dot(tangential, tangential));
+  precise float normal_speed = normal_step / k.h;
+  precise float keep = 0.0;  // the share of the tangential velocity friction leaves
+  precise float static_limit = k.friction_static * normal_speed;
+  if (slip > static_limit) {
+    keep = 1.0 - k.friction_dynamic * normal_speed / slip;
+    keep = contact_max(keep, 0.0);
+  }
+  precise vec3 step = (normal_step * n - (1.0 - keep) * k.h * tangential) / weight;
+  for (int i = 0; i < 4; ++i) {
+    const float movable = position[i].w > 0.0 ? 1.0 : 0.0;
+    precise vec3 d = position[i].w * b[i] * step;
+    correction[i] = vec4(d, movable);
+  }
+}
+
+// apply_correction: the position moves by the correction and the velocity by it over h; then a
+// free node is kept within `reach` (frame_start.w) of where it started the frame. Fixed nodes
+// (inverse mass 0) get no correction.
+void apply_correction(inout vec4 position, inout vec4 velocity, vec3 correction,
+                      vec4 frame_start, float h) {
+  if (!(position.w > 0.0)) return;
+  precise vec3 p = position.xyz + correction;
+  precise vec3 v = velocity.xyz + correction / h;
+  velocity = vec4(v, 0.0);
+  precise vec3 moved = p - frame_start.xyz;
+  const float reach = frame_start.w;
+  precise float distance = sqrt(contact_dot(moved, moved));
+  if (distance > reach) {
+    precise float scale = reach / distance;
+    p = frame_start.xyz + moved * scale;
+  }
+  position = vec4(p, position.w);
+}

@@ -1,0 +1,34 @@
+#version 430
+// The contact response's count pass: one invocation per node counts its active constraints
+// (correction w > 0) over its CSR list of constraint corners, in list order (count_active in
+// src/core/response/contact_constraints.h, written out here because GLSL cannot pass a buffer
+// to a function). Each invocation writes only its own node's count.
+#include "common/layout.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = BINDING_CONTACT_CORRECTION) readonly buffer ContactCorrections {
+  vec4 corrections[];
+};
+layout(std430, binding = BINDING_NODE_CONTACT_OFFSET) readonly buffer NodeContactOffsets {
+  uint node_contact_offset[];
+};
+layout(std430, binding = BINDING_NODE_CONTACT_LIST) readonly buffer NodeContactList {
+  uint node_contact_list[];
+};
+layout(std430, binding = BINDING_NODE_CONTACT_COUNT) writeonly buffer NodeContactCounts {
+  uint node_contact_count[];
+};
+
+uniform uint u_node_count;
+
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  if (i >= u_node_count) return;  // the last work group reaches past the end
+  // count_active, line for line.
+  const uint begin = node_contact_offset[i];
+  const uint end = node_contact_offset[i + 1u];
+  uint count = 0u;
+  for (uint e = begin; e < end; ++e) count += corrections[node_contact_list[e]].w > 0.0 ? 1u : 0u;
+  node_contact_count[i] = count;
+}

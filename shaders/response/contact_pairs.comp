@@ -1,0 +1,45 @@
+#version 430
+// The contact response's pair pass: one invocation per constraint p reads its four nodes'
+// positions and velocities and writes their corrections to the constraint's own slots 4 p + k
+// (solve_contact). No two invocations write the same slot, and nothing here writes a node.
+#include "common/layout.glsl"
+#include "response/contact_constraints.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = BINDING_NODE_POSITION) readonly buffer NodePositions {
+  vec4 positions[];
+};
+layout(std430, binding = BINDING_NODE_VELOCITY) readonly buffer NodeVelocities {
+  vec4 velocities[];
+};
+layout(std430, binding = BINDING_CONTACT_PAIR) readonly buffer ContactPairs {
+  ContactPair pairs[];
+};
+layout(std430, binding = BINDING_CONTACT_CORRECTION) writeonly buffer ContactCorrections {
+  vec4 corrections[];
+};
+
+uniform uint u_pair_count;
+uniform float u_h;
+uniform float u_friction_static;
+uniform float u_friction_dynamic;
+uniform float u_restitution;
+uniform float u_max_untangle_step;
+
+void main() {
+  const uint p = gl_GlobalInvocationID.x;
+  if (p >= u_pair_count) return;  // the last work group reaches past the end
+  const ContactPair pair = pairs[p];
+  vec4 x[4], v[4];
+  for (uint i = 0u; i < 4u; ++i) {
+    x[i] = positions[pair.nodes[i]];
+    v[i] = velocities[pair.nodes[i]];
+  }
+  vec4 correction[4];
+  solve_contact(pair, x, v,
+                ContactConstants(u_h, u_friction_static, u_friction_dynamic, u_restitution,
+                                 u_max_untangle_step),
+                correction);
+  for (uint k = 0u; k < 4u; ++k) corrections[4u * p + k] = correction[k];
+}

@@ -1,0 +1,27 @@
+#pragma once
+// What GlContactResponse::begin_frame checks before it allocates or uploads anything: that a
+// frame's constraints fit the simulation they correct, so that no shader reads past a buffer,
+// and which buffers they need (for the device's size limit). No GL here: these run, and are
+// tested, without a context.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/response/frame_constraints.h"
+#include "simulation_upload_checks.h"
+
+namespace deformcd::gl {
+
+// Throws Error naming the first entry that does not fit a simulation of `node_count` nodes and
+// `body_count` bodies: a constraint node out of range or an unknown kind, node_offset not a
+// non-decreasing cover of node_list with node_count + 1 entries, a list entry naming no
+// constraint corner, fewer body_motion entries than bodies, or more corners than 32 bits count.
+void check_constraints_fit(const response::FrameConstraints& constraints, std::uint32_t node_count,
+                           std::uint32_t body_count);
+
+// The buffers GlContactResponse needs for `constraints` over `node_count` nodes, in binding
+// order (for check_buffer_sizes).
+[[nodiscard]] std::vector<BufferSize> contact_buffer_sizes(
+    const response::FrameConstraints& constraints, std::uint32_t node_count);
+
+}  // namespace deformcd::gl

@@ -1,0 +1,174 @@
+#include "gl_contact_response.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <span>
+#include <string>
+#include <utility>
+
+#include "buffer_from.h"
+#include "contact_upload_checks.h"
+#include "deformcd/error.h"
+
+namespace deformcd::gl {
+
+namespace {
+
+constexpr std::string_view kOwner = "GL contact response";
+
+// Each pass launches one invocation per element in a single 1D dispatch.
+void check_fits_one_dispatch(const ComputeProgram& program, std::size_t invocations,
+                             std::uint32_t max_work_groups) {
+  const std::uint64_t most = std::uint64_t{max_work_groups} * program.work_group_size()[0];
+  if (invocations > most) {
+    throw GlError(std::string(kOwner) + ": '" + program.shader_name() + "' would need " +
+                  std::to_string(invocations) + " invocations, more than one dispatch allows (" +
+                  std::to_string(most) + ")");
+  }
+}
+
+// A buffer to replace `buffer` with when it holds fewer than `needed` elements (at least one:
+// no binding is ever a zero-size buffer), else nothing. 1.5 x the need, within the limit, so
+// that a contact set growing over a few frames reallocates rarely.
+template <class T>
+std::optional<Ssbo<T>> replacement(const std::optional<Ssbo<T>>& buffer, std::uint64_t needed,
+                                   std::uint64_t max_bytes, const BufferLabel& label) {
+  needed = std::max<std::uint64_t>(needed, 1u);
+  if (buffer && buffer->size() >= needed) return std::nullopt;
+  const std::uint64_t most = std::max<std::uint64_t>(max_bytes / sizeof(T), needed);
+  return allocate<T>(std::min(needed + needed / 2u, most), label);
+}
+
+template <class T>
+void adopt(std::optional<Ssbo<T>>& buffer, std::optional<Ssbo<T>>& grown) {
+  if (grown) buffer = std::move(grown);
+}
+
+}  // namespace
+
+GlContactResponse::GlContactResponse(Context& context, GlSimulation& simulation,
+                                     const GlContactResponseOptions& options)
+    : GlContactResponse(query_device_info(context), simulation, options) {}
+
+GlContactResponse::GlContactResponse(const DeviceInfo& device, GlSimulation& simulation,
+                                     const GlContactResponseOptions& options)
+    : simulation_(simulation),
+      max_buffer_bytes_(options.max_buffer_bytes > 0
+                            ? std::min(options.max_buffer_bytes, device.max_ssbo_block_bytes)
+                            : device.max_ssbo_block_bytes),
+      limit_is_device_(options.max_buffer_bytes == 0 ||
+                       options.max_buffer_bytes >= device.max_ssbo_block_bytes),
+      max_work_groups_x_(device.max_work_group_count[0]),
+      frame_start_("response/contact_frame_start.comp"),
+      pairs_("response/contact_pairs.comp"),
+      count_("response/contact_count.comp"),
+      apply_("response/contact_apply.comp") {}
+
+void GlContactResponse::begin_frame(const response::FrameConstraints& constraints) {
+  // Everything is checked, and every buffer that must grow allocated, before the first change:
+  // a failure keeps the previous frame's constraints.
+  const SimulationBuffers& sim = simulation_.state_buffers();
+  check_constraints_fit(constraints, sim.node_count, sim.body_count);
+  const std::vector<BufferSize> sizes = contact_buffer_sizes(constraints, sim.node_count);
+  check_buffer_sizes(sizes, max_buffer_bytes_,
+                     limit_is_device_ ? "the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE"
+                                      : "GlContactResponseOptions::max_buffer_bytes",
+                     kOwner);
+  check_fits_one_dispatch(pairs_, constraints.pairs.size(), max_work_groups_x_);
+  for (const ComputeProgram* per_node : {&frame_start_, &count_, &apply_})
+    check_fits_one_dispatch(*per_node, sim.node_count, max_work_groups_x_);
+
+  const std::uint64_t nodes = sim.node_count;
+  const std::uint64_t pairs = constraints.pairs.size();
+  const auto grow = [&](const auto& buffer, std::uint64_t needed, gpu::Binding binding) {
+    return replacement(buffer, needed, max_buffer_bytes_, label_of(sizes, binding, kOwner));
+  };
+  auto new_pairs = grow(buffers_.pairs, pairs, gpu::kContactPair);
+  auto new_corrections = grow(buffers_.corrections, 4u * pairs, gpu::kContactCorrection);
+  auto new_offset = grow(buffers_.node_offset, nodes + 1u, gpu::kNodeContactOffset);
+  auto new_list = grow(buffers_.node_list, constraints.node_list.size(), gpu::kNodeContactList);
+  auto new_count = grow(buffers_.node_count, nodes, gpu::kNodeContactCount);
+  auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
+  auto new_motion = grow(buffers_.body_motion, constraints.body_motion.size(), gpu::kBodyMotion);
+
+  frame_ready_ = false;  // until the upload below has completed
+  adopt(buffers_.pairs, new_pairs);
+  adopt(buffers_.corrections, new_corrections);
+  adopt(buffers_.node_offset, new_offset);
+  adopt(buffers_.node_list, new_list);
+  adopt(buffers_.node_count, new_count);
+  adopt(buffers_.frame_start, new_start);
+  adopt(buffers_.body_motion, new_motion);
+  // Corrections and counts need no initial values: each projection writes all it reads.
+  buffers_.pairs->upload(std::span<const gpu::ContactPair>(constraints.pairs));
+  buffers_.node_offset->upload(std::span<const std::uint32_t>(constraints.node_offset));
+  buffers_.node_list->upload(std::span<const std::uint32_t>(constraints.node_list));
+  buffers_.body_motion->upload(std::span<const float>(constraints.body_motion));
+
+  pair_count_ = static_cast<std::uint32_t>(pairs);
+  node_count_ = sim.node_count;
+  frame_positions_ = sim.positions.name();
+  pairs_.set_uniform("u_pair_count", pair_count_);
+  count_.set_uniform("u_node_count", node_count_);
+  apply_.set_uniform("u_node_count", node_count_);
+  frame_start_.set_uniform("u_node_count", node_count_);
+
+  sim.positions.bind(gpu::kNodePosition);
+  sim.node_body.bind(gpu::kNodeBody);
+  buffers_.body_motion->bind(gpu::kBodyMotion);
+  buffers_.frame_start->bind(gpu::kFrameStart);
+  frame_start_.dispatch_covering(node_count_);
+  // The node passes read the frame starts; the next substep overwrites the positions read here.
+  storage_barrier();
+  frame_ready_ = true;
+}
+
+void GlContactResponse::project(const response::ContactConstants& k) {
+  if (!frame_ready_) throw Error("GlContactResponse::project before begin_frame()");
+  const SimulationBuffers& sim = simulation_.state_buffers();
+  // A new upload allocates new buffers before releasing the old ones, so its positions buffer
+  // has another name, and the frame starts recorded from the old one do not apply.
+  if (sim.node_count != node_count_ || sim.positions.name() != frame_positions_) {
+    throw Error(
+        "GlContactResponse::project: the simulation was uploaded again since begin_frame(); "
+        "begin a frame with constraints for its nodes first");
+  }
+  // Bound on every call: other passes (the simulation, the collision detector) may have rebound
+  // the points since.
+  sim.positions.bind(gpu::kNodePosition);
+  sim.velocities.bind(gpu::kNodeVelocity);
+  buffers_.pairs->bind(gpu::kContactPair);
+  buffers_.corrections->bind(gpu::kContactCorrection);
+  buffers_.node_offset->bind(gpu::kNodeContactOffset);
+  buffers_.node_list->bind(gpu::kNodeContactList);
+  buffers_.node_count->bind(gpu::kNodeContactCount);
+  buffers_.frame_start->bind(gpu::kFrameStart);
+
+  if (pair_count_ > 0) {
+    pairs_.set_uniform("u_h", k.h);
+    pairs_.set_uniform("u_friction_static", k.friction_static);
+    pairs_.set_uniform("u_friction_dynamic", k.friction_dynamic);
+    pairs_.set_uniform("u_restitution", k.restitution);
+    pairs_.set_uniform("u_max_untangle_step", k.max_untangle_step);
+    pairs_.dispatch_covering(pair_count_);
+    storage_barrier();  // the count pass reads the corrections' w
+  }
+  // With no constraints the node passes still run: the node pass clamps every free node within
+  // its frame-start reach, as the CPU backend does.
+  count_.dispatch_covering(node_count_);
+  storage_barrier();  // the node pass reads the counts
+  apply_.set_uniform("u_h", k.h);
+  apply_.dispatch_covering(node_count_);
+  // The next substep (and the next projection's pair pass), the collision shaders and renderers
+  // drawing from SSBO 0 read the corrected nodes; the next pair pass overwrites the corrections
+  // read here.
+  memory_barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+}
+
+std::vector<glm::vec4> GlContactResponse::download_frame_start() const {
+  if (!frame_ready_) throw Error("GlContactResponse::download_frame_start before begin_frame()");
+  return buffers_.frame_start->download(0, node_count_);
+}
+
+}  // namespace deformcd::gl

@@ -1,0 +1,99 @@
+#pragma once
+// The contact response on the GPU (issue 12): the same passes as the CPU backend
+// (src/cpu/cpu_contact_response.h), as compute shaders over the GL simulation's own node
+// buffers, corrected in place between its substeps.
+//
+// Thread-to-data mapping: response/contact_frame_start.comp runs once per frame, one invocation
+// per node, recording its position and its body's motion bound (SSBO 34). Each projection then
+// runs response/contact_pairs.comp, one invocation per constraint, writing its four corner slots
+// (SSBO 30); response/contact_count.comp, one per node, counting its active corners over its CSR
+// list (SSBOs 31, 32) into SSBO 33; response/contact_apply.comp, one per node, gathering its
+// corrections over the same list in list order and writing only its own position and velocity.
+// Gathers instead of scattering with atomics: GL 4.3 has no float atomics, and a fixed
+// summation order makes the result independent of the schedule and equal to the CPU's bit for
+// bit (shaders/response/contact_constraints.glsl mirrors src/core/response/contact_constraints.h).
+//
+// A frame's constraints are uploaded once, in begin_frame; a projection issues three dispatches
+// and no readback or wait, so that the substep loop never stalls on the GPU.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "compute_program.h"
+#include "core/response/response_backend.h"
+#include "deformcd/gl/context.h"
+#include "deformcd/gl/device_info.h"
+#include "deformcd/gl/ssbo.h"
+#include "deformcd/gpu_layout.h"
+#include "gl_simulation.h"
+
+namespace deformcd::gl {
+
+struct GlContactResponseOptions {
+  // Largest buffer begin_frame() allocates, in bytes. 0: the device's
+  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE. A smaller value caps GPU memory per buffer (and lets tests
+  // reach the limit cheaply).
+  std::uint64_t max_buffer_bytes = 0;
+};
+
+// The response's own buffers, bound at the gpu::Binding points. Each is reallocated only when a
+// frame needs more than it holds, so a contact set of steady size allocates nothing per frame.
+struct ContactBuffers {
+  std::optional<Ssbo<gpu::ContactPair>> pairs;     // SSBO 29
+  std::optional<Ssbo<glm::vec4>> corrections;      // SSBO 30: 4 per constraint
+  std::optional<Ssbo<std::uint32_t>> node_offset;  // SSBO 31: nodes + 1
+  std::optional<Ssbo<std::uint32_t>> node_list;    // SSBO 32
+  std::optional<Ssbo<std::uint32_t>> node_count;   // SSBO 33: per node
+  std::optional<Ssbo<glm::vec4>> frame_start;      // SSBO 34: per node
+  std::optional<Ssbo<float>> body_motion;          // SSBO 35: per body
+};
+
+class GlContactResponse final : public response::ResponseBackend {
+ public:
+  // Corrects `simulation`'s positions and velocities (SSBOs 0 and 1; SSBO 13 gives each node's
+  // body), which must outlive this. Makes `context` current and compiles the four shaders
+  // (GlError if that fails). The context must outlive this object and be current on the
+  // calling thread for every call, destruction included. The simulation may be uploaded (again)
+  // at any time before a begin_frame(); its buffers are looked up on every call.
+  GlContactResponse(Context& context, GlSimulation& simulation,
+                    const GlContactResponseOptions& options = {});
+
+  // Checks the constraints against the simulation's nodes and bodies and against the buffer
+  // limit before allocating anything (Error for constraints that do not fit, GlError for a
+  // buffer too large or a driver that refuses the memory; the previous frame's constraints are
+  // kept then), uploads them, and records every node's frame start on the GPU. Throws Error
+  // before the simulation's upload().
+  void begin_frame(const response::FrameConstraints& constraints) override;
+  // The pair, count and node passes with storage barriers between them, ending with a barrier so
+  // that the next substep, the collision shaders and renderers see the corrected nodes. Throws
+  // Error before begin_frame(), or when the simulation was uploaded again since.
+  void project(const response::ContactConstants& constants) override;
+
+  // The frame starts (SSBO 34) that begin_frame recorded, one per node (for tests).
+  [[nodiscard]] std::vector<glm::vec4> download_frame_start() const;
+
+ private:
+  GlContactResponse(const DeviceInfo& device, GlSimulation& simulation,
+                    const GlContactResponseOptions& options);
+
+  GlSimulation& simulation_;
+  std::uint64_t max_buffer_bytes_ = 0;
+  bool limit_is_device_ = true;  // whether max_buffer_bytes_ is the device's, for messages
+  std::uint32_t max_work_groups_x_ = 0;
+  ComputeProgram frame_start_;
+  ComputeProgram pairs_;
+  ComputeProgram count_;
+  ComputeProgram apply_;
+  ContactBuffers buffers_;
+  // The frame begin_frame set up: project() refuses to run on a simulation uploaded since (its
+  // node count or buffers differ), whose frame starts would be stale.
+  bool frame_ready_ = false;
+  std::uint32_t pair_count_ = 0;
+  std::uint32_t node_count_ = 0;
+  std::uint32_t frame_positions_ = 0;  // the simulation's SSBO 0 name at begin_frame
+};
+
+}  // namespace deformcd::gl

@@ -1,0 +1,221 @@
+#pragma once
+// Worlds and constraint sets for the contact response tests: nodes placed by hand or at random
+// (no springs, no tetrahedra: the response alone is under test), hand-made constraints that
+// reach every branch of src/core/response/contact_constraints.h, random ones, and bitwise
+// comparison of two node arrays.
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "core/response/frame_constraints.h"
+#include "deformcd/gpu_layout.h"
+#include "deformcd/simulation_state.h"
+
+namespace deformcd::test {
+
+/// A world of unconnected nodes (xyz, w = inverse mass) in `body_count` bodies.
+inline SimulationState free_nodes(std::vector<glm::vec4> positions,
+                                  std::vector<glm::vec4> velocities,
+                                  std::vector<std::uint32_t> node_body, std::uint32_t body_count) {
+  SimulationState w;
+  const std::size_t n = positions.size();
+  w.positions = std::move(positions);
+  w.velocities = std::move(velocities);
+  w.node_body = std::move(node_body);
+  w.forces.assign(n, glm::vec4(0.0f));
+  w.node_spring_offset.assign(n + 1, 0u);
+  w.node_tet_offset.assign(n + 1, 0u);
+  w.body_params.assign(body_count, gpu::BodyParams{glm::vec4(0.0f), 0.0f, 0.0f, 0.0f, 0.0f});
+  for (std::uint32_t b = 0; b < body_count; ++b)
+    w.body_names.push_back("body " + std::to_string(b));
+  return w;
+}
+
+/// Components of xyzw whose bits differ between two equally long arrays (0: bit-identical,
+/// signed zeros and NaN payloads included).
+inline std::size_t bitwise_differences(const std::vector<glm::vec4>& a,
+                                       const std::vector<glm::vec4>& b) {
+  std::size_t differ = a.size() == b.size() ? 0 : 1;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+    for (int k = 0; k < 4; ++k)
+      differ += std::memcmp(&a[i][k], &b[i][k], sizeof(float)) != 0 ? 1 : 0;
+  return differ;
+}
+
+/// One scenario of the hand-made set: its constraints' first and last index, and whether the
+/// CPU reference moves its nodes (so that the set provably reaches the branch it names).
+struct ContactScenario {
+  std::string name;
+  std::uint32_t first_node = 0;
+  std::uint32_t node_count = 0;
+  bool moves = false;
+};
+
+struct HandMadeContacts {
+  SimulationState world;
+  response::FrameConstraints constraints;
+  std::vector<ContactScenario> scenarios;
+};
+
+/// Every branch of the constraint functions, each scenario on nodes of its own, 1 m apart, so
+/// that none disturbs another (except where sharing is the point). Thickness 0.01 m.
+inline HandMadeContacts hand_made_contacts() {
+  constexpr float kThickness = 0.01f;
+  HandMadeContacts out;
+  std::vector<glm::vec4> x, v;
+  std::vector<std::uint32_t> body;
+  float slot = 0.0f;
+  // Adds a scenario: `nodes` placed around (slot, 0, 0), inverse masses w, velocities vel,
+  // constraints over local node indices.
+  const auto add = [&](const std::string& name, const std::vector<glm::vec3>& nodes,
+                       const std::vector<float>& w, const std::vector<glm::vec3>& vel,
+                       const std::vector<std::pair<std::uint32_t, glm::uvec4>>& pairs, bool moves,
+                       std::uint32_t body_of_nodes = 0) {
+    const auto first = static_cast<std::uint32_t>(x.size());
+    const glm::vec3 origin(slot, 0.0f, 0.0f);
+    slot += 1.0f;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      x.emplace_back(origin + nodes[i], w[i]);
+      v.emplace_back(vel.empty() ? glm::vec3(0.0f) : vel[i], 0.0f);
+      body.push_back(body_of_nodes);
+    }
+    for (const auto& [kind, local] : pairs) {
+      gpu::ContactPair p{};
+      for (int k = 0; k < 4; ++k)
+        p.nodes[k] = first + local[k];
+      p.kind = kind;
+      p.thickness = kThickness;
+      out.constraints.pairs.push_back(p);
+    }
+    out.scenarios.push_back({name, first, static_cast<std::uint32_t>(nodes.size()), moves});
+  };
+  // A face in z = 0 around the origin, counter-clockwise seen from +z (normal +z).
+  const glm::vec3 f0(-0.1f, -0.1f, 0.0f), f1(0.1f, -0.1f, 0.0f), f2(0.0f, 0.1f, 0.0f);
+  const std::vector<float> free4 = {1.0f, 2.0f, 0.5f, 1.0f};
+  const std::uint32_t vf = gpu::kContactVertexFace, ee = gpu::kContactEdgeEdge,
+                      un = gpu::kContactUntangle;
+  const glm::uvec4 v_on_f(0, 1, 2, 3);
+
+  add("vertex-face, above within the thickness", {{0.01f, 0.0f, 0.004f}, f0, f1, f2}, free4, {},
+      {{vf, v_on_f}}, true);
+  add("vertex-face, above beyond the thickness", {{0.0f, 0.0f, 0.05f}, f0, f1, f2}, free4, {},
+      {{vf, v_on_f}}, false);
+  add("vertex-face, below within the thickness", {{0.0f, -0.02f, -0.006f}, f0, f1, f2}, free4, {},
+      {{vf, v_on_f}}, true);
+  add("vertex-face, below deeper than the thickness", {{0.0f, 0.0f, -0.03f}, f0, f1, f2}, free4, {},
+      {{vf, v_on_f}}, false);
+  add("vertex-face, beside the face", {{0.3f, 0.0f, 0.002f}, f0, f1, f2}, free4, {}, {{vf, v_on_f}},
+      false);
+  add("vertex-face, degenerate (collinear) face",
+      {{0.0f, 0.0f, 0.002f}, f0, f1, {0.0f, -0.1f, 0.0f}}, free4, {}, {{vf, v_on_f}}, false);
+  add("vertex-face, face fixed (inverse mass 0)", {{0.02f, 0.01f, 0.003f}, f0, f1, f2},
+      {1.0f, 0.0f, 0.0f, 0.0f}, {}, {{vf, v_on_f}}, true);
+  add("vertex-face, every node fixed", {{0.0f, 0.0f, 0.003f}, f0, f1, f2}, {0.0f, 0.0f, 0.0f, 0.0f},
+      {}, {{vf, v_on_f}}, false);
+  add("edge-edge, crossing within the thickness",
+      {{-0.1f, 0.01f, 0.003f}, {0.1f, 0.0f, 0.003f}, {0.02f, -0.1f, 0.0f}, {0.0f, 0.1f, 0.0f}},
+      free4, {}, {{ee, v_on_f}}, true);
+  add("edge-edge, crossing exactly (no direction)",
+      {{-0.1f, 0.0f, 0.0f}, {0.1f, 0.0f, 0.0f}, {0.0f, -0.1f, 0.0f}, {0.0f, 0.1f, 0.0f}}, free4, {},
+      {{ee, v_on_f}}, false);
+  add("edge-edge, parallel and overlapping",
+      {{-0.1f, 0.0f, 0.0f}, {0.1f, 0.0f, 0.0f}, {-0.05f, 0.004f, 0.001f}, {0.15f, 0.004f, 0.001f}},
+      free4, {}, {{ee, v_on_f}}, true);
+  add("edge-edge, closest at an end (t clamped)",
+      {{-0.1f, 0.0f, 0.0f}, {0.1f, 0.0f, 0.0f}, {0.05f, 0.005f, 0.0f}, {0.05f, 0.2f, 0.003f}},
+      free4, {}, {{ee, v_on_f}}, true);
+  add("edge-edge, degenerate edge",
+      {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {-0.1f, 0.002f, 0.0f}, {0.1f, 0.002f, 0.0f}}, free4,
+      {}, {{ee, v_on_f}}, false);
+  add("untangle, deep (step bounded)", {{0.01f, 0.01f, -0.2f}, f0, f1, f2}, free4, {},
+      {{un, v_on_f}}, true);
+  add("untangle, beside the face (weights clamped)", {{0.4f, 0.3f, -0.05f}, f0, f1, f2}, free4, {},
+      {{un, v_on_f}}, true);
+  // One vertex under a fan of four faces around it, sharing their nodes: counts of 4 and 2.
+  add("shared nodes, a vertex under a fan of faces",
+      {{0.0f, 0.0f, -0.003f},
+       {0.0f, 0.0f, 0.0f},
+       {0.1f, 0.0f, 0.0f},
+       {0.0f, 0.1f, 0.0f},
+       {-0.1f, 0.0f, 0.0f},
+       {0.0f, -0.1f, 0.0f},
+       {0.03f, 0.03f, -0.004f}},
+      {1.0f, 1.0f, 1.0f, 0.5f, 2.0f, 1.0f, 1.0f}, {},
+      {{vf, {0, 1, 2, 3}},
+       {vf, {0, 1, 3, 4}},
+       {vf, {0, 1, 4, 5}},
+       {vf, {0, 1, 5, 2}},
+       {vf, {6, 1, 2, 3}},
+       {un, {0, 2, 3, 4}}},
+      true);
+  // Friction: the same approach with a small slip (static: the tangential velocity is taken
+  // out entirely) and a large one (dynamic: reduced by friction_dynamic x the normal speed).
+  add("friction, static", {{0.0f, 0.0f, 0.005f}, f0, f1, f2}, free4,
+      {{0.05f, 0.0f, -1.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}},
+      {{vf, v_on_f}}, true);
+  add("friction, dynamic", {{0.0f, 0.0f, 0.005f}, f0, f1, f2}, free4,
+      {{40.0f, 10.0f, -1.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}},
+      {{vf, v_on_f}}, true);
+  add("restitution, head-on approach", {{0.0f, 0.0f, 0.009f}, f0, f1, f2}, free4,
+      {{0.0f, 0.0f, -3.0f}, {0.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 1.0f}},
+      {{vf, v_on_f}}, true);
+  // Body 1's motion bound is small: the push is cut at the reach from the frame start.
+  add("motion clamp (body 1)", {{0.0f, 0.0f, -0.009f}, f0, f1, f2}, free4, {}, {{vf, v_on_f}}, true,
+      1);
+
+  out.world = free_nodes(std::move(x), std::move(v), std::move(body), 2);
+  out.constraints.body_motion = {0.5f, 0.002f};
+  response::index_constraints_by_node(static_cast<std::uint32_t>(out.world.node_count()),
+                                      out.constraints);
+  return out;
+}
+
+struct RandomContacts {
+  SimulationState world;
+  response::FrameConstraints constraints;
+};
+
+/// `pairs` constraints of every kind on `nodes` nodes packed into a 5 cm cube (so that most
+/// constraints are active and nodes are shared by many), with random velocities, about a
+/// tenth of the nodes fixed, three bodies of different motion bounds.
+inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes,
+                                      std::uint32_t pairs) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::uniform_int_distribution<std::uint32_t> node(0, nodes - 1);
+  std::vector<glm::vec4> x, v;
+  std::vector<std::uint32_t> body;
+  for (std::uint32_t i = 0; i < nodes; ++i) {
+    const float inverse_mass = unit(rng) < 0.1f ? 0.0f : 0.5f + 2.0f * unit(rng);
+    x.emplace_back(0.05f * unit(rng), 0.05f * unit(rng), 0.05f * unit(rng), inverse_mass);
+    v.emplace_back(2.0f * unit(rng) - 1.0f, 2.0f * unit(rng) - 1.0f, 2.0f * unit(rng) - 1.0f, 0.0f);
+    body.push_back(i % 3u);
+  }
+  RandomContacts out{free_nodes(std::move(x), std::move(v), std::move(body), 3), {}};
+  for (std::uint32_t p = 0; p < pairs; ++p) {
+    gpu::ContactPair pair{};
+    // Four different nodes.
+    for (int k = 0; k < 4; ++k) {
+      std::uint32_t n = 0;
+      do {
+        n = node(rng);
+      } while (std::find(pair.nodes, pair.nodes + k, n) != pair.nodes + k);
+      pair.nodes[k] = n;
+    }
+    pair.kind = p % 3u;
+    pair.thickness = 0.005f + 0.03f * unit(rng);
+    out.constraints.pairs.push_back(pair);
+  }
+  out.constraints.body_motion = {0.2f, 0.01f, 0.003f};
+  response::index_constraints_by_node(nodes, out.constraints);
+  return out;
+}
+
+}  // namespace deformcd::test

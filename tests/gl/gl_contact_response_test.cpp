@@ -1,0 +1,359 @@
+// The GL contact response (src/gpu/gl/gl_contact_response.h) against the CPU one
+// (src/cpu/cpu_contact_response.h): the shaders mirror src/core/response/contact_constraints.h
+// line for line with `precise` arithmetic and gather in the same list order, so positions and
+// velocities are compared bit for bit after every projection, on hand-made constraints that
+// reach every branch, on random dense ones, and inside a running simulation. Also: what an
+// empty frame does (only the motion clamp), determinism, and the checked errors.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <initializer_list>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "contact_test_worlds.h"
+#include "core/response/contact_constraints.h"
+#include "cpu/cpu_contact_response.h"
+#include "cpu/executor.h"
+#include "deformcd/body.h"
+#include "deformcd/error.h"
+#include "gl_test_context.h"
+#include "gpu/gl/contact_upload_checks.h"
+#include "gpu/gl/gl_contact_response.h"
+#include "gpu/gl/gl_simulation.h"
+#include "sim_test_worlds.h"
+
+namespace deformcd::gl {
+namespace {
+
+using response::ContactConstants;
+using response::FrameConstraints;
+
+// Two constant sets: no restitution and a small untangling step, then restitution, stronger
+// friction and a smaller step; a substep of 1 ms.
+constexpr ContactConstants kPlain{1e-3f, 0.5f, 0.3f, 0.0f, 0.005f};
+constexpr ContactConstants kBouncy{1e-3f, 0.8f, 0.6f, 0.5f, 0.002f};
+const std::vector<ContactConstants> kSchedule = {kPlain, kPlain, kPlain, kBouncy, kBouncy, kBouncy};
+
+// GL and CPU side by side on one world: the GL response corrects a GlSimulation's buffers, the
+// CPU one a copy of the state.
+struct SideBySide {
+  SideBySide(Context& context, const SimulationState& world)
+      : simulation(context),
+        gl(context, simulation),
+        cpu_state(world),
+        cpu(cpu_state, std::make_shared<cpu::Executor>(2)) {
+    simulation.upload(world);
+  }
+
+  void begin_frame(const FrameConstraints& c) {
+    gl.begin_frame(c);
+    cpu.begin_frame(c);
+  }
+  void project(const ContactConstants& k) {
+    gl.project(k);
+    cpu.project(k);
+  }
+  // Expects GL's positions and velocities to equal the CPU's bit for bit.
+  void expect_equal(const std::string& where) {
+    std::vector<glm::vec4> x, v;
+    simulation.download_positions(x);
+    simulation.download_velocities(v);
+    EXPECT_EQ(test::bitwise_differences(x, cpu_state.positions), 0u)
+        << where << ": positions differ by up to " << test::max_distance(x, cpu_state.positions)
+        << " m";
+    EXPECT_EQ(test::bitwise_differences(v, cpu_state.velocities), 0u)
+        << where << ": velocities differ by up to " << test::max_distance(v, cpu_state.velocities)
+        << " m/s";
+  }
+
+  GlSimulation simulation;
+  GlContactResponse gl;
+  SimulationState cpu_state;
+  cpu::CpuContactResponse cpu;
+};
+
+// Runs the schedule on both backends, comparing after every projection.
+void expect_agreement(Context& context, const SimulationState& world, const FrameConstraints& c,
+                      const std::string& where) {
+  SideBySide both(context, world);
+  both.begin_frame(c);
+  for (std::size_t s = 0; s < kSchedule.size(); ++s) {
+    both.project(kSchedule[s]);
+    both.expect_equal(where + ", projection " + std::to_string(s + 1));
+  }
+  // Not a comparison of two untouched copies: a good share of the nodes were moved.
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < world.node_count(); ++i)
+    moved += both.cpu_state.positions[i] != world.positions[i] ? 1 : 0;
+  EXPECT_GT(moved, world.node_count() / 4) << where << ": nodes moved by the response";
+}
+
+class GlContactResponseTest : public test_support::GlTest {};
+
+TEST_F(GlContactResponseTest, HandMadeCasesEqualTheCpuBitForBit) {
+  const test::HandMadeContacts set = test::hand_made_contacts();
+  expect_agreement(context(), set.world, set.constraints, "hand-made");
+
+  // The set reaches what each scenario names: on the CPU reference after one projection, the
+  // nodes of a scenario moved exactly when they should.
+  SimulationState state = set.world;
+  cpu::CpuContactResponse cpu(state, std::make_shared<cpu::Executor>(1));
+  cpu.begin_frame(set.constraints);
+  cpu.project(kPlain);
+  for (const test::ContactScenario& s : set.scenarios) {
+    bool moved = false;
+    for (std::uint32_t i = s.first_node; i < s.first_node + s.node_count; ++i)
+      moved = moved || state.positions[i] != set.world.positions[i];
+    EXPECT_EQ(moved, s.moves) << s.name;
+    if (s.name.starts_with("motion clamp")) {
+      const float reach = set.constraints.body_motion[1];
+      const float moved_by = glm::distance(glm::vec3(state.positions[s.first_node]),
+                                           glm::vec3(set.world.positions[s.first_node]));
+      EXPECT_NEAR(moved_by, reach, 1e-6f) << "the push should be cut at the reach";
+    }
+  }
+}
+
+TEST_F(GlContactResponseTest, RandomDenseConstraintSetsEqualTheCpuBitForBit) {
+  for (std::uint32_t seed : {1u, 2u, 3u}) {
+    const test::RandomContacts set = test::random_contacts(seed, 300, 1500);
+    expect_agreement(context(), set.world, set.constraints, "seed " + std::to_string(seed));
+  }
+  // Many work groups, most nodes in several constraints.
+  const test::RandomContacts large = test::random_contacts(11, 5000, 20000);
+  expect_agreement(context(), large.world, large.constraints, "5000 nodes, 20000 constraints");
+}
+
+// The response between the substeps of a running simulation (two overlapping grids, stepped by
+// the GL mass-spring backend): before each projection the CPU takes GL's state, so that only
+// the response is compared, and it agrees bit for bit every time.
+TEST_F(GlContactResponseTest, InsideASimulationLoopEqualsTheCpuEverySubstep) {
+  BodyInit a, b;
+  a.body = build_body(test::tet_grid(4, 3, 3, 0.05), {.stiffness = 2e4}, "A");
+  b.body = build_body(test::tet_grid(3, 3, 3, 0.05, {0.15, 0.02, 0.02}), {.stiffness = 2e4}, "B");
+  b.carry_velocity = {-0.5f, 0.0f, 0.0f};
+  const SimulationState world = assemble_simulation({a, b});
+  // Random constraints between A's and B's nodes, of every kind.
+  FrameConstraints c =
+      test::random_contacts(5, static_cast<std::uint32_t>(world.node_count()), 800).constraints;
+  c.body_motion = {0.01f, 0.004f};
+
+  SideBySide both(context(), world);
+  const sim::SubstepConstants substep = test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f});
+  both.begin_frame(c);
+  for (int s = 0; s < 12; ++s) {
+    both.simulation.substep(substep);
+    both.simulation.download_positions(both.cpu_state.positions);
+    both.simulation.download_velocities(both.cpu_state.velocities);
+    both.project(s < 6 ? kPlain : kBouncy);
+    both.expect_equal("substep " + std::to_string(s + 1));
+  }
+  std::vector<glm::vec4> x;
+  both.simulation.download_positions(x);
+  ASSERT_GT(test::max_distance(x, world.positions), 1e-3f) << "the nodes should have moved";
+}
+
+// An empty frame leaves every node as the simulation left it, except that a free node beyond
+// its body's reach from the frame start is pulled back onto that sphere (apply_correction with
+// no correction); fixed nodes are carried beyond it untouched.
+TEST_F(GlContactResponseTest, AnEmptyFrameOnlyClampsTheMotion) {
+  std::vector<glm::vec4> x, v;
+  std::vector<std::uint32_t> body;
+  for (std::uint32_t i = 0; i < 40; ++i) {
+    const float inverse_mass = i % 10 == 3 ? 0.0f : 1.0f;
+    const auto f = [](std::uint32_t n) { return static_cast<float>(n); };
+    x.emplace_back(0.01f * f(i), 0.02f * f(i % 7), -0.01f * f(i % 5), inverse_mass);
+    v.emplace_back(test::hash_unit(i, 1), test::hash_unit(i, 2), test::hash_unit(i, 3), 0.0f);
+    body.push_back(i % 2);
+  }
+  SimulationState world = test::free_nodes(x, v, body, 2);
+  world.body_params[0].carry_velocity = {0.5f, 0.0f, 0.0f, 0.0f};
+  world.body_params[1].carry_velocity = {0.0f, -1.0f, 0.0f, 0.0f};
+  FrameConstraints empty;
+  empty.body_motion = {1.0f, 0.004f};  // body 0 stays within its reach, body 1 does not
+  response::index_constraints_by_node(static_cast<std::uint32_t>(world.node_count()), empty);
+
+  GlSimulation simulation(context());
+  simulation.upload(world);
+  GlContactResponse gl(context(), simulation);
+  gl.begin_frame(empty);
+  const std::vector<glm::vec4> start = gl.download_frame_start();
+  ASSERT_EQ(start.size(), world.node_count());
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    EXPECT_EQ(start[i], glm::vec4(glm::vec3(world.positions[i]), empty.body_motion[body[i]]))
+        << "frame start of node " << i;
+  }
+
+  const sim::SubstepConstants substep = test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f});
+  int clamped = 0;
+  for (int s = 0; s < 10; ++s) {
+    simulation.substep(substep);
+    std::vector<glm::vec4> before_x, before_v, after_x, after_v;
+    simulation.download_positions(before_x);
+    simulation.download_velocities(before_v);
+    gl.project(kPlain);
+    simulation.download_positions(after_x);
+    simulation.download_velocities(after_v);
+    std::vector<glm::vec4> expected_x = before_x, expected_v = before_v;
+    for (std::size_t i = 0; i < expected_x.size(); ++i) {
+      response::apply_correction(expected_x[i], expected_v[i], glm::vec3(0.0f), start[i], kPlain.h);
+      clamped += expected_x[i] != before_x[i] ? 1 : 0;
+    }
+    EXPECT_EQ(test::bitwise_differences(after_x, expected_x), 0u) << "substep " << s + 1;
+    EXPECT_EQ(test::bitwise_differences(after_v, expected_v), 0u) << "substep " << s + 1;
+  }
+  EXPECT_GT(clamped, 0) << "body 1 should have reached its bound";
+  std::vector<glm::vec4> final_x;
+  simulation.download_positions(final_x);
+  for (std::size_t i = 0; i < final_x.size(); ++i) {
+    const float moved = glm::distance(glm::vec3(final_x[i]), glm::vec3(start[i]));
+    if (world.positions[i].w > 0.0f) {
+      // Up to a few ulps of the coordinates (~0.4 m: 3e-8 m each) beyond the reach.
+      EXPECT_LE(moved, start[i].w + 1e-7f) << "free node " << i;
+    } else if (body[i] == 1) {
+      EXPECT_GT(moved, start[i].w) << "fixed node " << i << " is carried, never clamped";
+    }
+  }
+}
+
+// The per-node gathers have a fixed order, so the result does not depend on how invocations
+// are scheduled: two runs are identical, and so is a response reused over frames of other
+// sizes (its buffers grown and kept) with a fresh one.
+TEST_F(GlContactResponseTest, ResultsDoNotDependOnTheScheduleOrOnEarlierFrames) {
+  const test::RandomContacts set = test::random_contacts(7, 400, 3000);
+  std::vector<glm::vec4> runs[2];
+  for (std::vector<glm::vec4>& out : runs) {
+    GlSimulation simulation(context());
+    simulation.upload(set.world);
+    GlContactResponse gl(context(), simulation);
+    gl.begin_frame(set.constraints);
+    for (const ContactConstants& k : kSchedule)
+      gl.project(k);
+    simulation.download_positions(out);
+  }
+  EXPECT_EQ(test::bitwise_differences(runs[0], runs[1]), 0u);
+  EXPECT_GT(test::max_distance(runs[0], set.world.positions), 1e-3f);
+
+  // One response through frames of 10, 3000, 0 and again 3000 constraints.
+  GlSimulation simulation(context());
+  simulation.upload(set.world);
+  GlContactResponse reused(context(), simulation);
+  FrameConstraints few = test::random_contacts(8, 400, 10).constraints;
+  FrameConstraints none;
+  none.body_motion = set.constraints.body_motion;
+  response::index_constraints_by_node(400, none);
+  for (const FrameConstraints* frame :
+       std::initializer_list<const FrameConstraints*>{&few, &set.constraints, &none}) {
+    reused.begin_frame(*frame);
+    reused.project(kPlain);
+  }
+  simulation.upload(set.world);
+  reused.begin_frame(set.constraints);
+  for (const ContactConstants& k : kSchedule)
+    reused.project(k);
+  std::vector<glm::vec4> reused_x;
+  simulation.download_positions(reused_x);
+  EXPECT_EQ(test::bitwise_differences(reused_x, runs[0]), 0u);
+}
+
+TEST_F(GlContactResponseTest, ProjectNeedsAFrameOfTheCurrentUpload) {
+  const test::RandomContacts set = test::random_contacts(3, 50, 40);
+  GlSimulation simulation(context());
+  GlContactResponse gl(context(), simulation);
+  EXPECT_THROW(gl.begin_frame(set.constraints), Error) << "before the simulation's upload";
+  simulation.upload(set.world);
+  EXPECT_THROW(gl.project(kPlain), Error) << "before begin_frame";
+  gl.begin_frame(set.constraints);
+  gl.project(kPlain);
+  simulation.upload(set.world);  // new buffers: the frame starts no longer apply
+  EXPECT_THROW(gl.project(kPlain), Error);
+  gl.begin_frame(set.constraints);
+  EXPECT_NO_THROW(gl.project(kPlain));
+}
+
+// Constraints that do not fit are refused before anything changes: the previous frame is kept,
+// and projecting it gives what it gave without the refused call.
+TEST_F(GlContactResponseTest, RefusedConstraintsKeepThePreviousFrame) {
+  const test::RandomContacts set = test::random_contacts(4, 60, 100);
+  FrameConstraints bad_node = test::random_contacts(9, 60, 200).constraints;
+  bad_node.pairs[150].nodes[2] = 60;
+  FrameConstraints bad_motion = test::random_contacts(9, 60, 200).constraints;
+  bad_motion.body_motion.resize(2);
+  std::vector<glm::vec4> results[2];
+  for (int refused = 0; refused < 2; ++refused) {
+    GlSimulation simulation(context());
+    simulation.upload(set.world);
+    GlContactResponse gl(context(), simulation);
+    gl.begin_frame(set.constraints);
+    if (refused == 1) {
+      EXPECT_THROW(gl.begin_frame(bad_node), Error);
+      EXPECT_THROW(gl.begin_frame(bad_motion), Error);
+    }
+    for (const ContactConstants& k : kSchedule)
+      gl.project(k);
+    simulation.download_positions(results[refused]);
+  }
+  EXPECT_EQ(test::bitwise_differences(results[0], results[1]), 0u);
+}
+
+TEST_F(GlContactResponseTest, BuffersBeyondTheLimitAreRefusedByName) {
+  const test::RandomContacts set = test::random_contacts(4, 60, 100);
+  GlSimulation simulation(context());
+  simulation.upload(set.world);
+  // 100 constraints: 3,200 bytes of pairs and 6,400 of corrections; the per-node buffers fit.
+  GlContactResponse gl(context(), simulation, {.max_buffer_bytes = 3000});
+  try {
+    gl.begin_frame(set.constraints);
+    FAIL() << "expected a GlError";
+  } catch (const GlError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("Contact Pair (SSBO 29)"), std::string::npos) << message;
+    EXPECT_NE(message.find("Contact Correction (SSBO 30)"), std::string::npos) << message;
+    EXPECT_NE(message.find("GlContactResponseOptions::max_buffer_bytes"), std::string::npos)
+        << message;
+    EXPECT_EQ(message.find("Frame Start"), std::string::npos) << message;
+  }
+}
+
+// The host-side checks, without GL.
+TEST(ContactUploadChecks, AcceptIndexedConstraintsAndNameWhatDoesNotFit) {
+  const test::RandomContacts set = test::random_contacts(2, 30, 20);
+  EXPECT_NO_THROW(check_constraints_fit(set.constraints, 30, 3));
+  const auto message = [&](FrameConstraints c, std::uint32_t nodes, std::uint32_t bodies) {
+    try {
+      check_constraints_fit(c, nodes, bodies);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message(set.constraints, 31, 3).find("node_offset has 31 entries for 31 nodes"),
+            std::string::npos);
+  EXPECT_NE(message(set.constraints, 30, 4).find("body_motion has 3 entries for 4 bodies"),
+            std::string::npos);
+  FrameConstraints c = set.constraints;
+  c.pairs[7].kind = 3;
+  EXPECT_NE(message(c, 30, 3).find("constraint 7 has kind 3"), std::string::npos);
+  c = set.constraints;
+  c.pairs[5].nodes[1] = 30;
+  EXPECT_NE(message(c, 30, 3).find("constraint 5 has node 30, but there are 30 nodes"),
+            std::string::npos);
+  c = set.constraints;
+  c.node_list[4] = 80;
+  EXPECT_NE(message(c, 30, 3).find("node_list[4] = 80 names no constraint corner"),
+            std::string::npos);
+  c = set.constraints;
+  c.node_list.pop_back();
+  EXPECT_NE(message(c, 30, 3).find("node_list has 79 entries"), std::string::npos);
+  c = set.constraints;
+  std::swap(c.node_offset[3], c.node_offset[20]);
+  EXPECT_NE(message(c, 30, 3).find("node_offset decreases"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace deformcd::gl
