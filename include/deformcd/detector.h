@@ -164,15 +164,17 @@ class Detector {
   /// b.face), a.body <= b.body (body = mesh index, face = triangle index in the caller's
   /// order, nodes = its vertex indices); the same on every backend and broad phase.
   [[nodiscard]] std::vector<Contact> contacts() const;
-  /// The vertex-triangle and edge-edge pairs whose bounding boxes come within
-  /// reach[mesh_a] + reach[mesh_b] of each other on the current positions (one reach per mesh,
-  /// >= 0): every pair closer than that, and some farther. Over the mesh pairs detect() tests;
+  /// The vertex-triangle and edge-edge pairs that may come closer than reach[mesh_a] +
+  /// reach[mesh_b] over a period in which each mesh drifts by drift[mesh] (m; empty: none) and
+  /// each vertex strays at most its mesh's reach from its drifted path: the pairs whose boxes,
+  /// swept along the relative drift, come within the sum of the reaches on the current
+  /// positions (a superset of those closer than that). Over the mesh pairs detect() tests;
   /// within one mesh, primitives of triangles sharing a vertex are neighbours and left out.
   /// Each pair once, sorted by (mesh_a, mesh_b, kind, vertices). For a contact response that
-  /// keeps bodies `thickness` apart while they move at most `motion` each: reach = thickness / 2
-  /// + motion. Runs on the CPU on every backend (GL positions are read back). Throws InputError
-  /// for a reach list of the wrong length or a negative or non-finite reach.
-  [[nodiscard]] std::vector<ProximityPair> find_proximity(std::span<const float> reach);
+  /// keeps bodies `thickness` apart: reach = thickness / 2 + the most a vertex strays. Throws
+  /// InputError for lists of the wrong length, a negative or non-finite reach or drift.
+  [[nodiscard]] std::vector<ProximityPair> find_proximity(std::span<const float> reach,
+                                                          std::span<const glm::vec3> drift = {});
   /// Counts of the last pass (all 0 before the first).
   [[nodiscard]] CollisionCounts counts() const;
   /// One flag per triangle of every mesh (mesh m's from face_offset(m)): 1 when the triangle is

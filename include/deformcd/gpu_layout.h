@@ -54,7 +54,7 @@ enum Binding : std::uint32_t {
   kNodeContactList = 32,    ///< uint per (node, constraint corner): the slot 4 p + k, sorted
   kNodeContactCount = 33,   ///< uint per node: its active constraints this substep
   kFrameStart = 34,         ///< glm::vec4 per node: position at the frame's start, w = reach
-  kBodyMotion = 35,         ///< float per body: how far a free node may move in the frame, m
+  kBodyMotion = 35,         ///< glm::vec4 per body: drift velocity (xyz, m/s), reach (w, m)
 };
 
 /// BvhNode::face of an internal node.

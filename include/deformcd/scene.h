@@ -14,8 +14,8 @@
 
 #include <functional>
 
-#include "deformcd/response.h"
 #include "deformcd/body.h"
+#include "deformcd/response.h"
 #include "deformcd/simulation_state.h"
 #include "deformcd/tetrahedralize_options.h"
 

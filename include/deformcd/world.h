@@ -72,11 +72,14 @@ struct FrameTimes {
   double response_s = 0.0;    ///< the contact response's projections (after every substep)
 };
 
-/// The contact constraints of the last frame (all 0 without response).
+/// The contact constraints of the last frame's last search (all 0 without response).
 struct ResponseCounts {
   std::uint64_t vertex_face = 0;  ///< vertex-triangle proximity pairs
   std::uint64_t edge_edge = 0;    ///< edge-edge proximity pairs
   std::uint64_t untangle = 0;     ///< vertices of intersecting faces pushed out
+  /// Proximity searches in the frame: one, plus one each time a node strayed beyond the reach
+  /// the last one assumed.
+  std::uint64_t searches = 0;
 };
 
 /// The simulation blew up: a state became NaN/Inf or a node moved implausibly far in a step.

@@ -43,7 +43,7 @@
 #define BINDING_NODE_CONTACT_LIST 32    // uint per (node, constraint corner): slot 4 p + k
 #define BINDING_NODE_CONTACT_COUNT 33   // uint per node: active constraints this substep
 #define BINDING_FRAME_START 34          // vec4 per node: frame-start position, w = reach
-#define BINDING_BODY_MOTION 35          // float per body: how far a free node may move, m
+#define BINDING_BODY_MOTION 35          // vec4 per body: drift velocity (xyz, m/s), reach (w, m)
 
 // Leaf boxes per body: a 3-level octree, 4 x 4 x 4 leaves (gpu::kLeafBoxesPerBody).
 #define LEAF_BOXES_PER_BODY 64u

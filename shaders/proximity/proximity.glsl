@@ -59,6 +59,13 @@ Box reach_box3(vec3 p[3], float reach) {
 // collision::face_corner.
 uint face_corner(Face f, uint k) { return k == 0u ? f.a : (k == 1u ? f.b : f.c); }
 
+// sweep_box: the box and the box moved by d (glm::min / glm::max written out, componentwise).
+Box sweep_box(Box box, vec3 d) {
+  const vec3 lo = vec3(0.0 < d.x ? 0.0 : d.x, 0.0 < d.y ? 0.0 : d.y, 0.0 < d.z ? 0.0 : d.z);
+  const vec3 hi = vec3(d.x < 0.0 ? 0.0 : d.x, d.y < 0.0 ? 0.0 : d.y, d.z < 0.0 ? 0.0 : d.z);
+  return Box(vec4(box.min.xyz + lo, 0.0), vec4(box.max.xyz + hi, 0.0));
+}
+
 // faces_share_vertex.
 bool faces_share_vertex(Face a, Face b) {
   for (uint i = 0u; i < 3u; ++i) {
@@ -71,7 +78,7 @@ bool faces_share_vertex(Face a, Face b) {
 // emit_face_pair_candidates: fa's owned vertices against fb, fb's owned vertices against fa,
 // then fa's owned edges against fb's.
 void emit_face_pair_candidates(Face fa, uint index_a, uint owners_a, Face fb, uint index_b,
-                               uint owners_b, float reach) {
+                               uint owners_b, float reach, vec3 sweep) {
   vec3 xa[3], xb[3];
   xa[0] = vertex_position(fa.body, fa.a);
   xa[1] = vertex_position(fa.body, fa.b);
@@ -82,18 +89,18 @@ void emit_face_pair_candidates(Face fa, uint index_a, uint owners_a, Face fb, ui
   const Box box_a = reach_box3(xa, 0.0);
   const Box box_b = reach_box3(xb, 0.0);
   for (uint k = 0u; k < 3u; ++k) {
-    if ((owners_a & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(reach_box1(xa[k], reach), box_b))
+    if ((owners_a & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(sweep_box(reach_box1(xa[k], reach), sweep), box_b))
       proximity_emit(ProximityCandidate(CONTACT_VERTEX_FACE, fa.body, fb.body, index_b,
                                         uvec4(face_corner(fa, k), fb.a, fb.b, fb.c)));
   }
   for (uint k = 0u; k < 3u; ++k) {
-    if ((owners_b & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(reach_box1(xb[k], reach), box_a))
+    if ((owners_b & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(sweep_box(reach_box1(xb[k], reach), -sweep), box_a))
       proximity_emit(ProximityCandidate(CONTACT_VERTEX_FACE, fb.body, fa.body, index_a,
                                         uvec4(face_corner(fb, k), fa.a, fa.b, fa.c)));
   }
   for (uint i = 0u; i < 3u; ++i) {
     if ((owners_a & (OWNS_EDGE0 << i)) == 0u) continue;
-    const Box grown = reach_box2(xa[i], xa[(i + 1u) % 3u], reach);
+    const Box grown = sweep_box(reach_box2(xa[i], xa[(i + 1u) % 3u], reach), sweep);
     for (uint j = 0u; j < 3u; ++j) {
       if ((owners_b & (OWNS_EDGE0 << j)) == 0u) continue;
       if (boxes_overlap(grown, reach_box2(xb[j], xb[(j + 1u) % 3u], 0.0)))

@@ -1,9 +1,8 @@
 #version 430
 // The contact response's node pass: one invocation per node sums its constraints' corrections
-// over its CSR list in list order, each scaled by 1 / the largest active count among the
-// constraint's four nodes (gather_correction in src/core/response/contact_constraints.h,
-// written out here because GLSL cannot pass a buffer to a function), then applies the sum to
-// its own position and velocity and clamps it within its frame-start reach (apply_correction).
+// over its CSR list in list order (gather_correction in src/core/response/contact_constraints.h,
+// written out here because GLSL cannot pass a buffer to a function), applies the sums to its
+// own position and velocity and flags a stray beyond its reach (apply_correction).
 // Each invocation reads and writes only its own node's position and velocity.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
@@ -16,9 +15,6 @@ layout(std430, binding = BINDING_NODE_POSITION) buffer NodePositions {
 layout(std430, binding = BINDING_NODE_VELOCITY) buffer NodeVelocities {
   vec4 velocities[];
 };
-layout(std430, binding = BINDING_CONTACT_PAIR) readonly buffer ContactPairs {
-  ContactPair pairs[];
-};
 layout(std430, binding = BINDING_CONTACT_CORRECTION) readonly buffer ContactCorrections {
   vec4 corrections[];
 };
@@ -28,15 +24,22 @@ layout(std430, binding = BINDING_NODE_CONTACT_OFFSET) readonly buffer NodeContac
 layout(std430, binding = BINDING_NODE_CONTACT_LIST) readonly buffer NodeContactList {
   uint node_contact_list[];
 };
-layout(std430, binding = BINDING_NODE_CONTACT_COUNT) readonly buffer NodeContactCounts {
+// The counts, and after them (at u_node_count) the flag a node sets when it strays.
+layout(std430, binding = BINDING_NODE_CONTACT_COUNT) buffer NodeContactCounts {
   uint node_contact_count[];
 };
 layout(std430, binding = BINDING_FRAME_START) readonly buffer FrameStarts {
   vec4 frame_start[];
 };
+layout(std430, binding = BINDING_NODE_BODY) readonly buffer NodeBody {
+  uint node_body[];
+};
+layout(std430, binding = BINDING_BODY_MOTION) readonly buffer BodyMotion {
+  vec4 body_motion[];
+};
 
 uniform uint u_node_count;
-uniform float u_h;
+uniform float u_elapsed;
 
 void main() {
   const uint i = gl_GlobalInvocationID.x;
@@ -44,23 +47,20 @@ void main() {
   // gather_correction, line for line.
   const uint begin = node_contact_offset[i];
   const uint end = node_contact_offset[i + 1u];
-  precise vec3 sum = vec3(0.0);
+  precise vec3 dx = vec3(0.0);
+  precise vec3 dv = vec3(0.0);
   for (uint e = begin; e < end; ++e) {
     const uint slot = node_contact_list[e];
-    const vec4 correction = corrections[slot];
-    if (!(correction.w > 0.0)) continue;
-    const uvec4 nodes = pairs[slot / 4u].nodes;
-    uint most = 1u;
-    for (uint k = 0u; k < 4u; ++k) {
-      const uint count = node_contact_count[nodes[k]];
-      most = most < count ? count : most;  // glm::max(most, count)
-    }
-    precise vec3 share = correction.xyz / float(most);
-    sum += share;
+    dx += corrections[2u * slot].xyz;
+    dv += corrections[2u * slot + 1u].xyz;
   }
   vec4 position = positions[i];
   vec4 velocity = velocities[i];
-  apply_correction(position, velocity, sum, frame_start[i], u_h);
+  // Every writer writes the same 1, so the flag is the same whatever the order.
+  if (apply_correction(position, velocity, dx, dv, frame_start[i], body_motion[node_body[i]],
+                       u_elapsed)) {
+    node_contact_count[u_node_count] = 1u;
+  }
   positions[i] = position;
   velocities[i] = velocity;
 }

@@ -23,6 +23,7 @@ struct ContactConstants {
   float friction_dynamic;   // Coulomb dynamic coefficient (>= 0, <= friction_static)
   float restitution;        // 0: the approach speed is absorbed, 1: given back along n
   float max_untangle_step;  // m: most an untangling constraint moves its nodes per substep
+  float elapsed;            // s: from the frame's start to the end of this substep
 };
 
 // glm::dot: the products, then (x + y) + z.
@@ -150,12 +151,24 @@ bool contact_geometry(ContactPair pair, vec3 x[4], out vec3 n, out float b[4], o
   return true;
 }
 
-// solve_contact, the pair pass: one constraint's position corrections of its four nodes (xyz)
-// and whether each counts in its node's active count (w = 1: active and movable), from the
-// current positions (w = inverse mass) and velocities.
-void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], ContactConstants k,
-                   out vec4 correction[4]) {
-  for (int i = 0; i < 4; ++i) correction[i] = vec4(0.0);
+// contact_active: whether the constraint acts now (its distance along n below its thickness).
+bool contact_active(ContactPair pair, vec4 position[4]) {
+  const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
+  vec3 n = vec3(0.0);
+  float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
+  float c = 0.0;
+  return contact_geometry(pair, x, n, b, c) && c < 0.0;
+}
+
+// solve_contact, line for line: corrections of the four nodes into correction[2 k] (position
+// change) and correction[2 k + 1] (velocity change), the nodes weighing by mass splitting
+// (count[k] x inverse mass). The approach velocity is cancelled (restitution x it given back),
+// moving the nodes by that change x h; the depth left is removed by position alone (an
+// untangling constraint by at most max_untangle_step); Coulomb friction on the tangential
+// relative velocity.
+void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
+                   ContactConstants k, out vec4 correction[8]) {
+  for (int i = 0; i < 8; ++i) correction[i] = vec4(0.0);
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
@@ -164,46 +177,44 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], Contact
   precise float weight = 0.0;
   precise vec3 relative_velocity = vec3(0.0);
   for (int i = 0; i < 4; ++i) {
-    weight += position[i].w * b[i] * b[i];
+    weight += float(count[i]) * position[i].w * b[i] * b[i];
     relative_velocity += b[i] * velocity[i].xyz;
   }
   if (!(weight > 0.0)) return;  // every node fixed
-  precise float depth = c;
-  if (pair.kind == CONTACT_UNTANGLE) depth = contact_max(depth, -k.max_untangle_step);
   precise float approach = contact_max(-contact_dot(relative_velocity, n), 0.0);
-  precise float normal_step = -depth + k.restitution * approach * k.h;  // >= 0, along n
+  precise float normal_speed = (1.0 + k.restitution) * approach;
+  precise float push = contact_max(-c - approach * k.h, 0.0);
+  if (pair.kind == CONTACT_UNTANGLE) push = contact_min(push, k.max_untangle_step);
   precise vec3 tangential = relative_velocity - contact_dot(relative_velocity, n) * n;
   precise float slip = sqrt(contact_dot(tangential, tangential));
-  precise float normal_speed = normal_step / k.h;
   precise float keep = 0.0;  // the share of the tangential velocity friction leaves
   precise float static_limit = k.friction_static * normal_speed;
   if (slip > static_limit) {
-    keep = 1.0 - k.friction_dynamic * normal_speed / slip;
-    keep = contact_max(keep, 0.0);
+    keep = contact_max(1.0 - k.friction_dynamic * normal_speed / slip, 0.0);
   }
-  precise vec3 step = (normal_step * n - (1.0 - keep) * k.h * tangential) / weight;
+  precise vec3 dv = (normal_speed * n - (1.0 - keep) * tangential) / weight;
+  precise vec3 dx = dv * k.h + (push / weight) * n;
   for (int i = 0; i < 4; ++i) {
-    const float movable = position[i].w > 0.0 ? 1.0 : 0.0;
-    precise vec3 d = position[i].w * b[i] * step;
-    correction[i] = vec4(d, movable);
+    precise float scale = position[i].w * b[i];
+    precise vec3 move = scale * dx;
+    precise vec3 speed = scale * dv;
+    correction[2 * i] = vec4(move, 0.0);
+    correction[2 * i + 1] = vec4(speed, 0.0);
   }
 }
 
-// apply_correction: the position moves by the correction and the velocity by it over h; then a
-// free node is kept within `reach` (frame_start.w) of where it started the frame. Fixed nodes
-// (inverse mass 0) get no correction.
-void apply_correction(inout vec4 position, inout vec4 velocity, vec3 correction,
-                      vec4 frame_start, float h) {
-  if (!(position.w > 0.0)) return;
-  precise vec3 p = position.xyz + correction;
-  precise vec3 v = velocity.xyz + correction / h;
+// apply_correction, line for line: the corrections move the position and the velocity; returns
+// whether a free node strayed beyond `reach` (frame_start.w) from its window-start position
+// carried along by its body's drift (body_motion.xyz x elapsed). Fixed nodes are left alone.
+bool apply_correction(inout vec4 position, inout vec4 velocity, vec3 dx, vec3 dv,
+                      vec4 frame_start, vec4 body_motion, float elapsed) {
+  if (!(position.w > 0.0)) return false;
+  precise vec3 p = position.xyz + dx;
+  precise vec3 v = velocity.xyz + dv;
   velocity = vec4(v, 0.0);
-  precise vec3 moved = p - frame_start.xyz;
-  const float reach = frame_start.w;
-  precise float distance = sqrt(contact_dot(moved, moved));
-  if (distance > reach) {
-    precise float scale = reach / distance;
-    p = frame_start.xyz + moved * scale;
-  }
   position = vec4(p, position.w);
+  precise vec3 centre = frame_start.xyz + body_motion.xyz * elapsed;
+  precise vec3 moved = p - centre;
+  precise float reach_squared = frame_start.w * frame_start.w;
+  return contact_dot(moved, moved) > reach_squared;
 }

@@ -1,6 +1,7 @@
 #version 430
 // The contact response's count pass: one invocation per node counts its active constraints
-// (correction w > 0) over its CSR list of constraint corners, in list order (count_active in
+// (the activity pass's flag in the w of each constraint's first correction slot) over its CSR
+// list of constraint corners, in list order (count_active in
 // src/core/response/contact_constraints.h, written out here because GLSL cannot pass a buffer
 // to a function). Each invocation writes only its own node's count.
 #include "common/layout.glsl"
@@ -29,6 +30,8 @@ void main() {
   const uint begin = node_contact_offset[i];
   const uint end = node_contact_offset[i + 1u];
   uint count = 0u;
-  for (uint e = begin; e < end; ++e) count += corrections[node_contact_list[e]].w > 0.0 ? 1u : 0u;
+  for (uint e = begin; e < end; ++e) count += corrections[8u * (node_contact_list[e] / 4u)].w > 0.0 ? 1u : 0u;
   node_contact_count[i] = count;
+  // The slot after the nodes' counts is the node pass's stray flag: cleared here, before it.
+  if (i == 0u) node_contact_count[u_node_count] = 0u;
 }

@@ -1,6 +1,7 @@
 #version 430
-// The contact response's pair pass: one invocation per constraint p reads its four nodes'
-// positions and velocities and writes their corrections to the constraint's own slots 4 p + k
+// The contact response's solve pass (after the activity and count passes): one invocation per constraint p reads its four nodes'
+// positions and velocities and writes their corrections to the constraint's own slots: corner
+// 4 p + k's at 2 (4 p + k) (position) and 2 (4 p + k) + 1 (velocity)
 // (solve_contact). No two invocations write the same slot, and nothing here writes a node.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
@@ -19,6 +20,9 @@ layout(std430, binding = BINDING_CONTACT_PAIR) readonly buffer ContactPairs {
 layout(std430, binding = BINDING_CONTACT_CORRECTION) writeonly buffer ContactCorrections {
   vec4 corrections[];
 };
+layout(std430, binding = BINDING_NODE_CONTACT_COUNT) readonly buffer NodeContactCounts {
+  uint node_contact_count[];
+};
 
 uniform uint u_pair_count;
 uniform float u_h;
@@ -36,10 +40,12 @@ void main() {
     x[i] = positions[pair.nodes[i]];
     v[i] = velocities[pair.nodes[i]];
   }
-  vec4 correction[4];
-  solve_contact(pair, x, v,
+  uint count[4];
+  for (uint i = 0u; i < 4u; ++i) count[i] = node_contact_count[pair.nodes[i]];
+  vec4 correction[8];
+  solve_contact(pair, x, v, count,
                 ContactConstants(u_h, u_friction_static, u_friction_dynamic, u_restitution,
-                                 u_max_untangle_step),
+                                 u_max_untangle_step, 0.0),
                 correction);
-  for (uint k = 0u; k < 4u; ++k) corrections[4u * p + k] = correction[k];
+  for (uint k = 0u; k < 8u; ++k) corrections[8u * p + k] = correction[k];
 }

@@ -286,7 +286,8 @@ std::vector<Contact> Detector::contacts() const {
   return collision::make_contacts(pairs, impl_->data.faces, impl_->data.meshes);
 }
 
-std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach) {
+std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach,
+                                                    std::span<const glm::vec3> drift) {
   Impl& d = *impl_;
   if (reach.size() != d.meshes.size()) {
     throw InputError("find_proximity",
@@ -299,13 +300,26 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
                                                 " (find_proximity wants a finite value >= 0)");
     }
   }
+  if (!drift.empty() && drift.size() != d.meshes.size()) {
+    throw InputError("find_proximity",
+                     "takes one drift per mesh (or none): " + std::to_string(d.meshes.size()) +
+                         " expected, " + std::to_string(drift.size()) + " given");
+  }
+  for (std::size_t m = 0; m < drift.size(); ++m) {
+    if (!std::isfinite(drift[m].x) || !std::isfinite(drift[m].y) || !std::isfinite(drift[m].z)) {
+      throw InputError(label_of(d.data, m), "has a non-finite drift " + describe(drift[m]));
+    }
+  }
+  const std::vector<glm::vec3> no_drift(drift.empty() ? d.meshes.size() : 0u, glm::vec3(0.0f));
+  if (drift.empty()) drift = no_drift;
   d.require_positions();
   d.complete();  // a GL pass may still read the buffers the read-back below copies
   if (d.check_positions) d.check_finite();
   std::vector<std::vector<glm::vec3>> read_back;
   const std::vector<collision::MeshVertices> pose = d.host_vertices(read_back);
   if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
-  const std::vector<collision::ProximityCandidate> found = d.proximity->find(pose.data(), reach);
+  const std::vector<collision::ProximityCandidate> found =
+      d.proximity->find(pose.data(), reach, drift);
   std::vector<ProximityPair> out;
   out.reserve(found.size());
   for (const collision::ProximityCandidate& c : found) {

@@ -1,5 +1,7 @@
 #include "cpu_contact_response.h"
 
+#include <atomic>
+
 #include "parallel_for.h"
 
 namespace deformcd::cpu {
@@ -13,44 +15,62 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   frame_start_.resize(nodes);
   counts_.assign(nodes, 0u);
   corrections_.assign(8u * constraints_.pairs.size(), glm::vec4(0.0f));
+  active_.assign(constraints_.pairs.size(), 0u);
   executor_->run([&] {
     parallel_for(nodes, [&](std::size_t i) {
-      frame_start_[i] =
-          glm::vec4(glm::vec3(state_.positions[i]), constraints_.body_motion[state_.node_body[i]]);
+      frame_start_[i] = glm::vec4(glm::vec3(state_.positions[i]),
+                                  constraints_.body_motion[state_.node_body[i]].w);
     });
   });
 }
 
-void CpuContactResponse::project(const response::ContactConstants& k) {
+bool CpuContactResponse::project(const response::ContactConstants& k) {
+  std::atomic<bool> strayed{false};  // an OR: the same whatever the order
   const std::vector<gpu::ContactPair>& pairs = constraints_.pairs;
+  const std::uint32_t* offset = constraints_.node_offset.data();
+  const std::uint32_t* list = constraints_.node_list.data();
+  const auto gather = [&](const gpu::ContactPair& pair, glm::vec4 x[4], glm::vec4 v[4]) {
+    for (std::uint32_t i = 0; i < 4u; ++i) {
+      x[i] = state_.positions[pair.nodes[i]];
+      v[i] = state_.velocities[pair.nodes[i]];
+    }
+  };
   executor_->run([&] {
-    // Pair pass: each constraint writes its own four slots.
+    // Activity pass, count pass, solve pass, node pass: each writes only its own element's
+    // slots, and each node reads its own list in order.
+    parallel_for(
+        pairs.size(),
+        [&](std::size_t p) {
+          glm::vec4 x[4], v[4];
+          gather(pairs[p], x, v);
+          active_[p] = response::contact_active(pairs[p], x) ? 1u : 0u;
+        },
+        256);
+    parallel_for(state_.positions.size(), [&](std::size_t i) {
+      counts_[i] = response::count_active(list, offset[i], offset[i + 1], active_.data());
+    });
     parallel_for(
         pairs.size(),
         [&](std::size_t p) {
           const gpu::ContactPair& pair = pairs[p];
           glm::vec4 x[4], v[4];
-          for (std::uint32_t i = 0; i < 4u; ++i) {
-            x[i] = state_.positions[pair.nodes[i]];
-            v[i] = state_.velocities[pair.nodes[i]];
-          }
-          response::solve_contact(pair, x, v, k, &corrections_[8u * p]);
+          gather(pair, x, v);
+          const std::uint32_t count[4] = {counts_[pair.nodes[0]], counts_[pair.nodes[1]],
+                                          counts_[pair.nodes[2]], counts_[pair.nodes[3]]};
+          response::solve_contact(pair, x, v, count, k, &corrections_[8u * p]);
         },
         256);
-    const std::uint32_t* offset = constraints_.node_offset.data();
-    const std::uint32_t* list = constraints_.node_list.data();
-    // Count pass, then node pass: each node reads its own list in order.
-    parallel_for(state_.positions.size(), [&](std::size_t i) {
-      counts_[i] = response::count_active(list, offset[i], offset[i + 1], corrections_.data());
-    });
     parallel_for(state_.positions.size(), [&](std::size_t i) {
       glm::vec3 dx, dv;
-      response::gather_correction(list, offset[i], offset[i + 1], corrections_.data(),
-                                  pairs.data(), counts_.data(), dx, dv);
-      response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv,
-                                 frame_start_[i]);
+      response::gather_correction(list, offset[i], offset[i + 1], corrections_.data(), dx, dv);
+      if (response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv,
+                                     frame_start_[i], constraints_.body_motion[state_.node_body[i]],
+                                     k.elapsed)) {
+        strayed.store(true, std::memory_order_relaxed);
+      }
     });
   });
+  return strayed.load();
 }
 
 }  // namespace deformcd::cpu

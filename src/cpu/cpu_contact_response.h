@@ -1,7 +1,7 @@
 #pragma once
-// The contact response on the CPU, in parallel with oneTBB: the same three passes as the GL
-// backend's shaders (pair, count, node), over the simulation state's positions and velocities
-// in place.
+// The contact response on the CPU, in parallel with oneTBB: the same four passes as the GL
+// backend's shaders (activity, count, solve, node), over the simulation state's positions and
+// velocities in place.
 
 #include <memory>
 #include <vector>
@@ -18,7 +18,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor);
 
   void begin_frame(const response::FrameConstraints& constraints) override;
-  void project(const response::ContactConstants& constants) override;
+  [[nodiscard]] bool project(const response::ContactConstants& constants) override;
 
  private:
   SimulationState& state_;
@@ -27,6 +27,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::vector<glm::vec4> frame_start_;  // SSBO 34
   std::vector<glm::vec4> corrections_;  // SSBO 30
   std::vector<std::uint32_t> counts_;   // SSBO 33
+  std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep
 };
 
 }  // namespace deformcd::cpu

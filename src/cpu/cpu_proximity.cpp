@@ -28,7 +28,8 @@ void CpuProximity::refit(collision::VertexPositions positions) {
 }
 
 std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexPositions positions,
-                                                              std::span<const float> reach) {
+                                                              std::span<const float> reach,
+                                                              std::span<const glm::vec3> drift) {
   std::vector<collision::ProximityCandidate> all;
   executor_->run([&] {
     refit(positions);
@@ -37,6 +38,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
       const gpu::BodyBvh& tree_b = upkeep_.tree(pair.b);
       const float grow = reach[pair.a] + reach[pair.b];
       const bool self = pair.a == pair.b;
+      const glm::vec3 sweep = drift[pair.a] - drift[pair.b];
       std::vector<std::vector<collision::ProximityCandidate>> per_face(mesh_a.face_count);
       parallel_for(
           mesh_a.face_count,
@@ -45,7 +47,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
             const gpu::Face& fa = data_.faces[index_a];
             glm::vec3 xa[3];
             collision::face_vertices(positions, fa, xa);
-            const gpu::Box query = collision::reach_box(xa, 3u, grow);
+            const gpu::Box query = collision::sweep_box(collision::reach_box(xa, 3u, grow), sweep);
             auto& out = per_face[i];
             collision::query_bvh(
                 upkeep_.nodes().data(), boxes_.data(), tree_b.root, query,
@@ -54,7 +56,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
                   if (self && (index_b <= index_a || collision::faces_share_vertex(fa, fb))) return;
                   collision::emit_face_pair_candidates(
                       positions, fa, index_a, owners_[index_a], fb, index_b, owners_[index_b], grow,
-                      [&](const collision::ProximityCandidate& c) { out.push_back(c); });
+                      sweep, [&](const collision::ProximityCandidate& c) { out.push_back(c); });
                 });
           },
           64);

@@ -22,10 +22,11 @@ class CpuProximity {
   /// Over the meshes and mesh pairs of `data` (its hierarchies are not needed).
   CpuProximity(const collision::CollisionData& data, std::shared_ptr<Executor> executor);
 
-  /// The candidates on `positions` whose boxes come within reach[mesh_a] + reach[mesh_b] (one
-  /// reach per mesh, >= 0), sorted.
+  /// The candidates on `positions` whose boxes, swept along drift[mesh_a] - drift[mesh_b], come
+  /// within reach[mesh_a] + reach[mesh_b] (one reach, >= 0, and one drift per mesh), sorted.
   [[nodiscard]] std::vector<collision::ProximityCandidate> find(
-      collision::VertexPositions positions, std::span<const float> reach);
+      collision::VertexPositions positions, std::span<const float> reach,
+      std::span<const glm::vec3> drift);
 
  private:
   void refit(collision::VertexPositions positions);

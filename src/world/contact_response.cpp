@@ -77,36 +77,58 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
   max_untangle_step_ = settings.untangle_step * smallest_edge;
 }
 
-std::vector<float> ContactResponse::body_motion() {
-  // How far a node may move in the frame: twice what its velocity at the start would carry it,
-  // plus what gravity adds, plus half the thickness so that resting bodies keep some play.
-  // Nodes are held within it (apply_correction), so no pair beyond the search is missed.
+std::vector<glm::vec4> ContactResponse::body_motion() {
+  // Each body drifts with the mean velocity of its nodes at the window's start; a node may stray
+  // from its drifted path by twice what its own deviation from that mean would carry it in a
+  // frame, plus what gravity adds, plus half the thickness so that resting bodies keep some
+  // play. A node that strays farther starts a new search (project), so no pair is missed; the
+  // drift keeps fast bodies from inflating every box by their speed.
   const SimulationState* state = simulation_.host_state();
   if (state == nullptr) simulation_.download_velocities(velocities_);
   const std::vector<glm::vec4>& v = state != nullptr ? state->velocities : velocities_;
-  std::vector<float> fastest(objects_.size(), 0.0f);
+  const float dt = step_.dt;
+  std::vector<glm::vec4> motion(objects_.size());
   for (std::size_t b = 0; b < objects_.size(); ++b) {
     const gpu::ObjectInfo& o = objects_[b];
+    glm::dvec3 sum(0.0);
     for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i)
-      fastest[b] = std::max(fastest[b], glm::length(glm::vec3(v[i]) + carry_[b]));
-  }
-  const float dt = step_.dt;
-  std::vector<float> motion(objects_.size());
-  for (std::size_t b = 0; b < objects_.size(); ++b) {
-    motion[b] = 2.0f * fastest[b] * dt + glm::length(step_.gravity) * dt * dt +
-                0.5f * thickness_[b];
+      sum += glm::dvec3(glm::vec3(v[i]));
+    const glm::vec3 drift = glm::vec3(sum / static_cast<double>(o.node_count)) + carry_[b];
+    float stray = 0.0f;
+    for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i)
+      stray = std::max(stray, glm::length(glm::vec3(v[i]) + carry_[b] - drift));
+    // Capped at half a mean edge: a faster frame searches again when a node gets that far,
+    // rather than inflating every box (the search's cost grows with the reach squared).
+    const float travel = 2.0f * stray * dt + glm::length(step_.gravity) * dt * dt;
+    const float cap = std::max(0.25f * mean_edge_[b], thickness_[b]);
+    motion[b] = glm::vec4(drift, 0.5f * thickness_[b] + std::min(travel, cap));
   }
   return motion;
 }
 
-void ContactResponse::begin_frame(Detector& detector, const std::vector<Contact>& intersections) {
+void ContactResponse::begin_frame(Detector& detector, std::vector<Contact> intersections) {
+  detector_ = &detector;
+  intersections_ = std::move(intersections);
+  counts_ = {};
+  search();
+}
+
+void ContactResponse::search() {
+  Detector& detector = *detector_;
+  const std::vector<Contact>& intersections = intersections_;
+  elapsed_ = 0.0f;
+  const std::uint64_t searches = counts_.searches + 1u;
   response::FrameConstraints c;
   c.body_motion = body_motion();
   std::vector<float> reach(objects_.size());
-  for (std::size_t b = 0; b < objects_.size(); ++b)
-    reach[b] = 0.5f * thickness_[b] + c.body_motion[b];
+  std::vector<glm::vec3> drift(objects_.size());
+  for (std::size_t b = 0; b < objects_.size(); ++b) {
+    reach[b] = 0.5f * thickness_[b] + c.body_motion[b].w;
+    drift[b] = glm::vec3(c.body_motion[b]) * step_.dt;
+  }
   counts_ = {};
-  for (const ProximityPair& p : detector.find_proximity(reach)) {
+  counts_.searches = searches;
+  for (const ProximityPair& p : detector.find_proximity(reach, drift)) {
     gpu::ContactPair pair{};
     const std::uint32_t first_a = objects_[p.mesh_a].node_offset;
     const std::uint32_t first_b = objects_[p.mesh_b].node_offset;
@@ -148,13 +170,15 @@ void ContactResponse::begin_frame(Detector& detector, const std::vector<Contact>
 }
 
 void ContactResponse::project(float h) {
+  elapsed_ += h;
   response::ContactConstants k{};
   k.h = h;
+  k.elapsed = elapsed_;
   k.friction_static = settings_.friction_static;
   k.friction_dynamic = settings_.friction_dynamic;
   k.restitution = settings_.restitution;
   k.max_untangle_step = max_untangle_step_;
-  backend_->project(k);
+  if (backend_->project(k)) search();
 }
 
 }  // namespace deformcd

@@ -26,11 +26,13 @@ class ContactResponse {
                   sim::SimulationBackend& simulation,
                   std::unique_ptr<response::ResponseBackend> backend);
 
-  /// The frame's constraints on the current positions: every proximity pair `detector` finds
-  /// within each body's thickness and motion bound, and for each intersecting face pair of
-  /// `intersections` (the last exact pass) its vertices against the other face.
-  void begin_frame(Detector& detector, const std::vector<Contact>& intersections);
-  /// One projection after a substep of length h.
+  /// Starts a frame: the constraints on the current positions are every proximity pair
+  /// `detector` finds within each body's thickness and reach, and for each intersecting face
+  /// pair of `intersections` (the last exact pass) its vertices against the other face.
+  /// `detector` must outlive the frame.
+  void begin_frame(Detector& detector, std::vector<Contact> intersections);
+  /// One projection after a substep of length h. When a node has strayed beyond its reach, the
+  /// search runs again on the positions now (a new window), so no pair is missed.
   void project(float h);
 
   /// m: body b's contact thickness.
@@ -38,7 +40,8 @@ class ContactResponse {
   [[nodiscard]] const ResponseCounts& counts() const { return counts_; }
 
  private:
-  [[nodiscard]] std::vector<float> body_motion();
+  [[nodiscard]] std::vector<glm::vec4> body_motion();
+  void search();
 
   ResponseSettings settings_;
   StepSettings step_;
@@ -47,10 +50,13 @@ class ContactResponse {
   std::vector<gpu::ObjectInfo> objects_;
   std::vector<std::uint32_t> node_body_;
   std::vector<glm::vec3> carry_;
-  std::vector<float> thickness_;    // per body
-  std::vector<float> mean_edge_;    // per body, surface
+  std::vector<float> thickness_;  // per body
+  std::vector<float> mean_edge_;  // per body, surface
   std::vector<glm::vec4> velocities_;
   float max_untangle_step_ = 0.0f;
+  Detector* detector_ = nullptr;        // of the frame
+  std::vector<Contact> intersections_;  // of the frame
+  float elapsed_ = 0.0f;                // since the window began
   ResponseCounts counts_;
 };
 

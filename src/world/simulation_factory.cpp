@@ -4,6 +4,7 @@
 #include "cpu/cpu_simulation.h"
 #include "deformcd/error.h"
 #ifdef DEFORMCD_HAS_GL
+#include "gpu/gl/gl_contact_response.h"
 #include "gpu/gl/gl_simulation.h"
 #endif
 
@@ -22,12 +23,18 @@ std::unique_ptr<sim::SimulationBackend> create_simulation(BackendKind kind, gl::
   return std::make_unique<cpu::CpuSimulation>(std::move(executor));
 }
 
-std::unique_ptr<response::ResponseBackend> create_response(BackendKind kind, gl::Context* context,
-                                                           sim::SimulationBackend& simulation,
-                                                           std::shared_ptr<cpu::Executor> executor) {
-  (void)context;
+std::unique_ptr<response::ResponseBackend> create_response(
+    BackendKind kind, gl::Context* context, sim::SimulationBackend& simulation,
+    std::shared_ptr<cpu::Executor> executor) {
   if (kind == BackendKind::kGl) {
-    throw Error("contact response runs on the CPU backend only so far (use --backend cpu)");
+#ifdef DEFORMCD_HAS_GL
+    // create_simulation made a GlSimulation for kGl.
+    return std::make_unique<gl::GlContactResponse>(*context,
+                                                   static_cast<gl::GlSimulation&>(simulation));
+#else
+    (void)context;
+    throw GlError("this deformcd was built without the OpenGL backend (DEFORMCD_WITH_GL=OFF)");
+#endif
   }
   return std::make_unique<cpu::CpuContactResponse>(*simulation.host_state(), std::move(executor));
 }

@@ -166,12 +166,13 @@ inline HandMadeContacts hand_made_contacts() {
   add("restitution, head-on approach", {{0.0f, 0.0f, 0.009f}, f0, f1, f2}, free4,
       {{0.0f, 0.0f, -3.0f}, {0.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 1.0f}},
       {{vf, v_on_f}}, true);
-  // Body 1's motion bound is small: the push is cut at the reach from the frame start.
-  add("motion clamp (body 1)", {{0.0f, 0.0f, -0.009f}, f0, f1, f2}, free4, {}, {{vf, v_on_f}}, true,
-      1);
+  // Body 1's reach is small: the push takes the vertex beyond it, and a new search is due.
+  add("beyond the reach (body 1)", {{0.0f, 0.0f, -0.009f}, f0, f1, f2}, free4, {}, {{vf, v_on_f}},
+      true, 1);
 
   out.world = free_nodes(std::move(x), std::move(v), std::move(body), 2);
-  out.constraints.body_motion = {0.5f, 0.002f};
+  out.constraints.body_motion = {glm::vec4(0.0f, 0.0f, 0.0f, 0.5f),
+                                 glm::vec4(0.0f, 0.0f, 0.0f, 0.002f)};
   response::index_constraints_by_node(static_cast<std::uint32_t>(out.world.node_count()),
                                       out.constraints);
   return out;
@@ -213,7 +214,10 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes,
     pair.thickness = 0.005f + 0.03f * unit(rng);
     out.constraints.pairs.push_back(pair);
   }
-  out.constraints.body_motion = {0.2f, 0.01f, 0.003f};
+  // Drifts as well as reaches: the clamp's centre moves along them.
+  out.constraints.body_motion = {glm::vec4(0.5f, 0.0f, -0.25f, 0.2f),
+                                 glm::vec4(0.0f, 0.0f, 0.0f, 0.01f),
+                                 glm::vec4(-1.0f, 2.0f, 0.5f, 0.003f)};
   response::index_constraints_by_node(nodes, out.constraints);
   return out;
 }

@@ -66,7 +66,8 @@ struct GpuFixture {
 
 class GlProximityTest : public test_support::GlTest {
  protected:
-  // GL's list equals the CPU's for each reach list; returns the CPU's list sizes.
+  // GL's list equals the CPU's for each reach list, without drift and with the meshes drifting
+  // apart and together; returns the CPU's list sizes without drift.
   std::vector<std::size_t> expect_cpu_candidates(const test::CollisionFixture& f,
                                                  const std::vector<std::vector<float>>& reaches,
                                                  const std::string& where) {
@@ -75,11 +76,19 @@ class GlProximityTest : public test_support::GlTest {
     cpu::CpuProximity cpu(f.data, std::make_shared<cpu::Executor>(2));
     std::vector<std::size_t> sizes;
     for (const std::vector<float>& reach : reaches) {
-      const std::vector<collision::ProximityCandidate> expected = cpu.find(f.vertices(), reach);
-      const std::vector<collision::ProximityCandidate> found = gl.find(gpu.sources(), reach);
-      EXPECT_EQ(found.size(), expected.size()) << where << ", reach " << reach[0];
-      EXPECT_TRUE(found == expected) << where << ", reach " << reach[0];
-      sizes.push_back(expected.size());
+      for (const float speed : {0.0f, 0.05f, -0.03f}) {
+        std::vector<glm::vec3> drift(reach.size(), glm::vec3(0.0f));
+        for (std::size_t m = 0; m < drift.size(); ++m)
+          drift[m] = speed * glm::vec3(m % 2 == 0 ? 1.0f : -1.0f, 0.5f, 0.25f * float(m));
+        const std::vector<collision::ProximityCandidate> expected =
+            cpu.find(f.vertices(), reach, drift);
+        const std::vector<collision::ProximityCandidate> found =
+            gl.find(gpu.sources(), reach, drift);
+        EXPECT_EQ(found.size(), expected.size())
+            << where << ", reach " << reach[0] << " drift " << speed;
+        EXPECT_TRUE(found == expected) << where << ", reach " << reach[0] << " drift " << speed;
+        if (speed == 0.0f) sizes.push_back(expected.size());
+      }
     }
     return sizes;
   }
@@ -139,8 +148,10 @@ TEST_F(GlProximityTest, OverAGlCollisionsRefittedTreesGivesTheCpuCandidates) {
         }
     }
     collision.prepare_proximity();
-    const std::vector<collision::ProximityCandidate> found = gl.find_bound(reach);
-    const std::vector<collision::ProximityCandidate> expected = cpu.find(f.vertices(), reach);
+    const std::vector<glm::vec3> drift(reach.size(), glm::vec3(0.01f, -0.02f, 0.0f));
+    const std::vector<collision::ProximityCandidate> found = gl.find_bound(reach, drift);
+    const std::vector<collision::ProximityCandidate> expected =
+        cpu.find(f.vertices(), reach, drift);
     EXPECT_GT(expected.size(), 0u);
     EXPECT_EQ(found.size(), expected.size()) << "step " << step;
     EXPECT_TRUE(found == expected) << "step " << step;
@@ -155,7 +166,8 @@ TEST_F(GlProximityTest, ReachListOfTheWrongLengthIsRefused) {
   const GpuFixture gpu(f);
   GlProximity gl(context(), f.data);
   const std::vector<float> one = {0.01f};
-  EXPECT_THROW((void)gl.find(gpu.sources(), one), Error);
+  const std::vector<glm::vec3> one_drift = {glm::vec3(0.0f)};
+  EXPECT_THROW((void)gl.find(gpu.sources(), one, one_drift), Error);
 }
 
 }  // namespace

@@ -59,6 +59,12 @@ inline constexpr std::uint32_t kOwnsEdge0 = 8u;
   return {glm::vec4(lo - reach, 0.0f), glm::vec4(hi + reach, 0.0f)};
 }
 
+/// `box` swept along `d`: the union of the box and the box moved by d.
+[[nodiscard]] inline gpu::Box sweep_box(const gpu::Box& box, const glm::vec3& d) {
+  return {glm::vec4(glm::vec3(box.min) + glm::min(d, glm::vec3(0.0f)), 0.0f),
+          glm::vec4(glm::vec3(box.max) + glm::max(d, glm::vec3(0.0f)), 0.0f)};
+}
+
 /// Whether two faces of one mesh share a corner: their primitives are neighbours on the surface
 /// and never a proximity pair.
 [[nodiscard]] inline bool faces_share_vertex(const gpu::Face& a, const gpu::Face& b) {
@@ -72,13 +78,15 @@ inline constexpr std::uint32_t kOwnsEdge0 = 8u;
 /// The candidates of one face pair (fa of mesh a, fb of mesh b, whose boxes grown by `reach`
 /// overlap; for one mesh, fa < fb and the faces share no corner) in a fixed order: fa's owned
 /// vertices against fb, fb's owned vertices against fa, then fa's owned edges against fb's.
-/// `reach` is the sum of the two meshes' reaches: a primitive's box is grown by it and tested
-/// against the other's plain box.
+/// `reach` is the sum of the two meshes' reaches and `sweep` mesh a's drift minus mesh b's over
+/// the period: a primitive of fa (of fb) is grown by the reach and swept along sweep (along
+/// -sweep), and tested against the other's plain box. Primitives moving apart from each
+/// other along their meshes' drifts by less than their reaches are then always found.
 template <class Emit>
 void emit_face_pair_candidates(VertexPositions positions, const gpu::Face& fa,
                                std::uint32_t index_a, std::uint32_t owners_a, const gpu::Face& fb,
                                std::uint32_t index_b, std::uint32_t owners_b, float reach,
-                               const Emit& emit) {
+                               const glm::vec3& sweep, const Emit& emit) {
   glm::vec3 xa[3], xb[3];
   face_vertices(positions, fa, xa);
   face_vertices(positions, fb, xb);
@@ -86,7 +94,7 @@ void emit_face_pair_candidates(VertexPositions positions, const gpu::Face& fa,
   const gpu::Box box_b = reach_box(xb, 3u, 0.0f);
   for (std::uint32_t k = 0; k < 3u; ++k) {
     if ((owners_a & (kOwnsVertex0 << k)) != 0u &&
-        boxes_overlap(reach_box(&xa[k], 1u, reach), box_b))
+        boxes_overlap(sweep_box(reach_box(&xa[k], 1u, reach), sweep), box_b))
       emit(ProximityCandidate{gpu::kContactVertexFace,
                               fa.body,
                               fb.body,
@@ -95,7 +103,7 @@ void emit_face_pair_candidates(VertexPositions positions, const gpu::Face& fa,
   }
   for (std::uint32_t k = 0; k < 3u; ++k) {
     if ((owners_b & (kOwnsVertex0 << k)) != 0u &&
-        boxes_overlap(reach_box(&xb[k], 1u, reach), box_a))
+        boxes_overlap(sweep_box(reach_box(&xb[k], 1u, reach), -sweep), box_a))
       emit(ProximityCandidate{gpu::kContactVertexFace,
                               fb.body,
                               fa.body,
@@ -105,7 +113,7 @@ void emit_face_pair_candidates(VertexPositions positions, const gpu::Face& fa,
   for (std::uint32_t i = 0; i < 3u; ++i) {
     if ((owners_a & (kOwnsEdge0 << i)) == 0u) continue;
     const glm::vec3 edge_a[2] = {xa[i], xa[(i + 1u) % 3u]};
-    const gpu::Box grown = reach_box(edge_a, 2u, reach);
+    const gpu::Box grown = sweep_box(reach_box(edge_a, 2u, reach), sweep);
     for (std::uint32_t j = 0; j < 3u; ++j) {
       if ((owners_b & (kOwnsEdge0 << j)) == 0u) continue;
       const glm::vec3 edge_b[2] = {xb[j], xb[(j + 1u) % 3u]};

@@ -1,15 +1,18 @@
 #pragma once
-// Contact response as pure per-element functions (issue 12): one contact constraint's
-// corrections (the pair pass), one node's count of active constraints and one node's Jacobi
-// update (the node passes). The CPU backend calls these; shaders/response/*.glsl mirror them
-// line for line, so both backends compute the same floating-point operations in the same order.
+// Contact response as pure per-element functions (issue 12), in four passes per substep: which
+// constraints are active (per constraint), each node's count of them (per node), each
+// constraint's corrections (per constraint), each node's sum (per node). The CPU backend calls
+// these; shaders/response/*.glsl mirror them line for line, so both backends compute the same
+// floating-point operations in the same order.
 //
 // A constraint couples four nodes with weights b (the gradient of its distance along its normal
 // n is b_k n for node k) that sum to zero, so every correction w_k b_k lambda n, with w_k the
-// inverse mass, conserves momentum. Constraints are solved in parallel (Jacobi) and a node
-// touched by several sums their corrections; to stay stable without breaking that
-// conservation, each constraint is scaled as a whole by 1 / the largest active-constraint count
-// of its nodes (rather than each node averaging its own, which would not conserve momentum).
+// inverse mass, conserves momentum. Constraints are solved in parallel (Jacobi) by mass
+// splitting (Tonge, Benevolenski and Voroshilov 2012): a node in n active constraints lends each
+// a sub-node of 1/n its mass, each constraint is solved with those, and the node takes the mean
+// of its sub-nodes' moves, i.e. the sum of w_k b_k lambda n over its constraints. That conserves
+// momentum exactly, does not overshoot where constraints pile up on a node, and solves in one
+// step the constraints that agree (ten vertices resting on one face).
 
 #include <cmath>
 #include <cstdint>
@@ -29,6 +32,7 @@ struct ContactConstants {
   float friction_dynamic;   ///< Coulomb dynamic coefficient (>= 0, <= friction_static)
   float restitution;        ///< 0: the approach speed is absorbed, 1: given back along n
   float max_untangle_step;  ///< m: most an untangling constraint moves its nodes per substep
+  float elapsed;            ///< s: from the frame's start to the end of this substep
 };
 
 /// Closest point of the plane projection of p on triangle (a, b, c) as barycentric weights
@@ -115,19 +119,40 @@ inline bool contact_geometry(const gpu::ContactPair& pair, const glm::vec3 x[4],
   return true;
 }
 
-/// The pair pass: one constraint's corrections of its four nodes, from the current positions
-/// (w = inverse mass) and velocities, into correction[2 k] (position change, w = 1 when it
-/// counts in node k's active count: active and movable) and correction[2 k + 1] (velocity
-/// change). Along the normal, the approach velocity is cancelled (and restitution x it given
-/// back), which also moves the nodes by that velocity change x h; depth left after that is
-/// removed by position alone, without adding velocity (so a deep start or a tunnel does not
-/// turn into a launch), an untangling constraint by at most max_untangle_step per substep.
-/// Tangentially, Coulomb friction on the relative velocity: static while it is within
-/// friction_static x the normal velocity change, else reduced by friction_dynamic x it. All
-/// along the constraint's weights, so momentum is conserved.
+/// The activity pass: whether the constraint acts now (its distance along n is below its
+/// thickness), from the current positions.
+inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 position[4]) {
+  const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
+                          glm::vec3(position[3])};
+  glm::vec3 n(0.0f);
+  float b[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  float c = 0.0f;
+  return contact_geometry(pair, x, n, b, c) && c < 0.0f;
+}
+
+/// The count pass for one node: its active constraints, over its CSR list of constraint
+/// corners (slot 4 p + k) in list order; `active` holds one flag per constraint.
+inline std::uint32_t count_active(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
+                                  const std::uint32_t* active) {
+  std::uint32_t count = 0;
+  for (std::uint32_t e = begin; e < end; ++e)
+    count += active[list[e] / 4u];
+  return count;
+}
+
+/// The solve pass: one active constraint's corrections of its four nodes into correction[2 k]
+/// (position change) and correction[2 k + 1] (velocity change), from the current positions
+/// (w = inverse mass), velocities and the nodes' active counts (mass splitting: node k weighs
+/// as if its inverse mass were count[k] x w). Along the normal, the approach velocity is
+/// cancelled (and restitution x it given back), which also moves the nodes by that velocity
+/// change x h; depth left after that is removed by position alone, without adding velocity (so
+/// a deep start or a tunnel does not turn into a launch), an untangling constraint by at most
+/// max_untangle_step per substep. Tangentially, Coulomb friction on the relative velocity:
+/// static while it is within friction_static x the normal velocity change, else reduced by
+/// friction_dynamic x it. All along the constraint's weights, so momentum is conserved.
 inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position[4],
-                          const glm::vec4 velocity[4], const ContactConstants& k,
-                          glm::vec4 correction[8]) {
+                          const glm::vec4 velocity[4], const std::uint32_t count[4],
+                          const ContactConstants& k, glm::vec4 correction[8]) {
   for (int i = 0; i < 8; ++i)
     correction[i] = glm::vec4(0.0f);
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
@@ -139,7 +164,7 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   float weight = 0.0f;
   glm::vec3 relative_velocity(0.0f);
   for (int i = 0; i < 4; ++i) {
-    weight += position[i].w * b[i] * b[i];
+    weight += static_cast<float>(count[i]) * position[i].w * b[i] * b[i];
     relative_velocity += b[i] * glm::vec3(velocity[i]);
   }
   if (!(weight > 0.0f)) return;  // every node fixed
@@ -156,56 +181,40 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   const glm::vec3 dv = (normal_speed * n - (1.0f - keep) * tangential) / weight;
   const glm::vec3 dx = dv * k.h + (push / weight) * n;
   for (int i = 0; i < 4; ++i) {
-    const float movable = position[i].w > 0.0f ? 1.0f : 0.0f;
     const float scale = position[i].w * b[i];
-    correction[2 * i] = glm::vec4(scale * dx, movable);
+    correction[2 * i] = glm::vec4(scale * dx, 0.0f);
     correction[2 * i + 1] = glm::vec4(scale * dv, 0.0f);
   }
 }
 
-/// The count pass for one node: its active constraints, over its CSR list of constraint
-/// corners (slot 4 p + k, whose corrections are at 2 slot and 2 slot + 1), in list order.
-inline std::uint32_t count_active(const std::uint32_t* list, std::uint32_t begin,
-                                  std::uint32_t end, const glm::vec4* corrections) {
-  std::uint32_t count = 0;
-  for (std::uint32_t e = begin; e < end; ++e)
-    count += corrections[2u * list[e]].w > 0.0f ? 1u : 0u;
-  return count;
-}
-
-/// The node pass: one node's summed position and velocity corrections, each constraint scaled
-/// by 1 / the largest active count among its four nodes (see the file comment), in list order.
+/// The node pass: one node's summed position and velocity corrections over its list, in list
+/// order (an inactive constraint's are zero).
 inline void gather_correction(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
-                              const glm::vec4* corrections, const gpu::ContactPair* pairs,
-                              const std::uint32_t* counts, glm::vec3& dx, glm::vec3& dv) {
+                              const glm::vec4* corrections, glm::vec3& dx, glm::vec3& dv) {
   dx = glm::vec3(0.0f);
   dv = glm::vec3(0.0f);
   for (std::uint32_t e = begin; e < end; ++e) {
     const std::uint32_t slot = list[e];
-    if (!(corrections[2u * slot].w > 0.0f)) continue;
-    const gpu::ContactPair& pair = pairs[slot / 4u];
-    std::uint32_t most = 1u;
-    for (int k = 0; k < 4; ++k)
-      most = glm::max(most, counts[pair.nodes[k]]);
-    const float share = 1.0f / static_cast<float>(most);
-    dx += glm::vec3(corrections[2u * slot]) * share;
-    dv += glm::vec3(corrections[2u * slot + 1u]) * share;
+    dx += glm::vec3(corrections[2u * slot]);
+    dv += glm::vec3(corrections[2u * slot + 1u]);
   }
 }
 
-/// Applies a node's corrections to its position and velocity; then a free node is kept within
-/// `reach` (frame_start.w) of where it started the frame (frame_start.xyz): the motion bound
-/// the frame's proximity search assumed. Fixed nodes (inverse mass 0) are left alone.
-inline void apply_correction(glm::vec4& position, glm::vec4& velocity, const glm::vec3& dx,
-                             const glm::vec3& dv, const glm::vec4& frame_start) {
-  if (!(position.w > 0.0f)) return;
-  glm::vec3 p = glm::vec3(position) + dx;
+/// Applies a node's corrections to its position and velocity, and says whether a free node
+/// has strayed beyond `reach` (frame_start.w) from where it started the search window
+/// (frame_start.xyz) carried along by its body's drift (body_motion.xyz x elapsed): beyond the
+/// motion the window's proximity search assumed, so that the search must run again. Fixed
+/// nodes (inverse mass 0) are left alone and never stray (their motion is prescribed).
+inline bool apply_correction(glm::vec4& position, glm::vec4& velocity, const glm::vec3& dx,
+                             const glm::vec3& dv, const glm::vec4& frame_start,
+                             const glm::vec4& body_motion, float elapsed) {
+  if (!(position.w > 0.0f)) return false;
+  const glm::vec3 p = glm::vec3(position) + dx;
   velocity = glm::vec4(glm::vec3(velocity) + dv, 0.0f);
-  const glm::vec3 moved = p - glm::vec3(frame_start);
-  const float reach = frame_start.w;
-  const float distance = std::sqrt(glm::dot(moved, moved));
-  if (distance > reach) p = glm::vec3(frame_start) + moved * (reach / distance);
   position = glm::vec4(p, position.w);
+  const glm::vec3 centre = glm::vec3(frame_start) + glm::vec3(body_motion) * elapsed;
+  const glm::vec3 moved = p - centre;
+  return glm::dot(moved, moved) > frame_start.w * frame_start.w;
 }
 
 }  // namespace deformcd::response

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec4.hpp>
+
 #include "deformcd/gpu_layout.h"
 
 namespace deformcd::response {
@@ -17,9 +19,10 @@ struct FrameConstraints {
   std::vector<std::uint32_t> node_offset;
   /// SSBO 32: slots 4 p + k (pair p's node k), ascending within each node.
   std::vector<std::uint32_t> node_list;
-  /// Per body: how far (m) a free node may move from its frame-start position in this frame;
-  /// the proximity search assumed no more.
-  std::vector<float> body_motion;
+  /// SSBO 35, per body: its drift velocity (xyz, m/s: the mean velocity of its nodes at the
+  /// frame's start) and its reach (w, m): a free node stays within the reach of its
+  /// frame-start position carried along by the drift; the proximity search assumed no more.
+  std::vector<glm::vec4> body_motion;
 };
 
 /// Fills node_offset and node_list for `node_count` nodes from `pairs` (count, scan, emit in

@@ -15,12 +15,14 @@ class ResponseBackend {
   ResponseBackend(const ResponseBackend&) = delete;
   ResponseBackend& operator=(const ResponseBackend&) = delete;
 
-  /// Takes the frame's constraints and records the current positions as the frame's start
-  /// (w = the node's body's motion bound).
+  /// Takes a search window's constraints and records the current positions as its start
+  /// (w = the node's body's reach).
   virtual void begin_frame(const FrameConstraints& constraints) = 0;
   /// One Jacobi projection of every constraint on the current positions and velocities:
-  /// the pair pass, the count pass, the node pass (see contact_constraints.h).
-  virtual void project(const ContactConstants& constants) = 0;
+  /// the pair pass, the count pass, the node pass (see contact_constraints.h). Returns whether
+  /// a free node strayed beyond its reach (apply_correction): the window's constraints no
+  /// longer cover every pair, and a new search must begin one.
+  [[nodiscard]] virtual bool project(const ContactConstants& constants) = 0;
 
  protected:
   ResponseBackend() = default;

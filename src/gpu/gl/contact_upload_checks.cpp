@@ -77,12 +77,12 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
   const std::uint64_t nodes = node_count;
   return {
       {"Contact Pair", gpu::kContactPair, pairs, sizeof(gpu::ContactPair)},
-      {"Contact Correction", gpu::kContactCorrection, 4u * pairs, sizeof(glm::vec4)},
+      {"Contact Correction", gpu::kContactCorrection, 8u * pairs, sizeof(glm::vec4)},
       {"Node Contact Offset", gpu::kNodeContactOffset, nodes + 1u, sizeof(std::uint32_t)},
       {"Node Contact List", gpu::kNodeContactList, c.node_list.size(), sizeof(std::uint32_t)},
-      {"Node Contact Count", gpu::kNodeContactCount, nodes, sizeof(std::uint32_t)},
+      {"Node Contact Count", gpu::kNodeContactCount, nodes + 1u, sizeof(std::uint32_t)},
       {"Frame Start", gpu::kFrameStart, nodes, sizeof(glm::vec4)},
-      {"Body Motion", gpu::kBodyMotion, c.body_motion.size(), sizeof(float)},
+      {"Body Motion", gpu::kBodyMotion, c.body_motion.size(), sizeof(glm::vec4)},
   };
 }
 

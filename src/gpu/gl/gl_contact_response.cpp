@@ -61,6 +61,7 @@ GlContactResponse::GlContactResponse(const DeviceInfo& device, GlSimulation& sim
                        options.max_buffer_bytes >= device.max_ssbo_block_bytes),
       max_work_groups_x_(device.max_work_group_count[0]),
       frame_start_("response/contact_frame_start.comp"),
+      activity_("response/contact_activity.comp"),
       pairs_("response/contact_pairs.comp"),
       count_("response/contact_count.comp"),
       apply_("response/contact_apply.comp") {}
@@ -85,10 +86,10 @@ void GlContactResponse::begin_frame(const response::FrameConstraints& constraint
     return replacement(buffer, needed, max_buffer_bytes_, label_of(sizes, binding, kOwner));
   };
   auto new_pairs = grow(buffers_.pairs, pairs, gpu::kContactPair);
-  auto new_corrections = grow(buffers_.corrections, 4u * pairs, gpu::kContactCorrection);
+  auto new_corrections = grow(buffers_.corrections, 8u * pairs, gpu::kContactCorrection);
   auto new_offset = grow(buffers_.node_offset, nodes + 1u, gpu::kNodeContactOffset);
   auto new_list = grow(buffers_.node_list, constraints.node_list.size(), gpu::kNodeContactList);
-  auto new_count = grow(buffers_.node_count, nodes, gpu::kNodeContactCount);
+  auto new_count = grow(buffers_.node_count, nodes + 1u, gpu::kNodeContactCount);
   auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
   auto new_motion = grow(buffers_.body_motion, constraints.body_motion.size(), gpu::kBodyMotion);
 
@@ -104,11 +105,12 @@ void GlContactResponse::begin_frame(const response::FrameConstraints& constraint
   buffers_.pairs->upload(std::span<const gpu::ContactPair>(constraints.pairs));
   buffers_.node_offset->upload(std::span<const std::uint32_t>(constraints.node_offset));
   buffers_.node_list->upload(std::span<const std::uint32_t>(constraints.node_list));
-  buffers_.body_motion->upload(std::span<const float>(constraints.body_motion));
+  buffers_.body_motion->upload(std::span<const glm::vec4>(constraints.body_motion));
 
   pair_count_ = static_cast<std::uint32_t>(pairs);
   node_count_ = sim.node_count;
   frame_positions_ = sim.positions.name();
+  activity_.set_uniform("u_pair_count", pair_count_);
   pairs_.set_uniform("u_pair_count", pair_count_);
   count_.set_uniform("u_node_count", node_count_);
   apply_.set_uniform("u_node_count", node_count_);
@@ -124,7 +126,7 @@ void GlContactResponse::begin_frame(const response::FrameConstraints& constraint
   frame_ready_ = true;
 }
 
-void GlContactResponse::project(const response::ContactConstants& k) {
+bool GlContactResponse::project(const response::ContactConstants& k) {
   if (!frame_ready_) throw Error("GlContactResponse::project before begin_frame()");
   const SimulationBuffers& sim = simulation_.state_buffers();
   // A new upload allocates new buffers before releasing the old ones, so its positions buffer
@@ -144,7 +146,18 @@ void GlContactResponse::project(const response::ContactConstants& k) {
   buffers_.node_list->bind(gpu::kNodeContactList);
   buffers_.node_count->bind(gpu::kNodeContactCount);
   buffers_.frame_start->bind(gpu::kFrameStart);
+  buffers_.body_motion->bind(gpu::kBodyMotion);
+  sim.node_body.bind(gpu::kNodeBody);
 
+  // Activity, count, solve, node pass (contact_constraints.h), each reading what the one
+  // before wrote. With no constraints the node passes still run: the node pass watches every
+  // free node's reach, as the CPU backend does.
+  if (pair_count_ > 0) {
+    activity_.dispatch_covering(pair_count_);
+    storage_barrier();  // the count pass reads the activity flags
+  }
+  count_.dispatch_covering(node_count_);
+  storage_barrier();  // the solve pass reads the counts
   if (pair_count_ > 0) {
     pairs_.set_uniform("u_h", k.h);
     pairs_.set_uniform("u_friction_static", k.friction_static);
@@ -152,18 +165,18 @@ void GlContactResponse::project(const response::ContactConstants& k) {
     pairs_.set_uniform("u_restitution", k.restitution);
     pairs_.set_uniform("u_max_untangle_step", k.max_untangle_step);
     pairs_.dispatch_covering(pair_count_);
-    storage_barrier();  // the count pass reads the corrections' w
+    storage_barrier();  // the node pass reads the corrections
   }
-  // With no constraints the node passes still run: the node pass clamps every free node within
-  // its frame-start reach, as the CPU backend does.
-  count_.dispatch_covering(node_count_);
-  storage_barrier();  // the node pass reads the counts
-  apply_.set_uniform("u_h", k.h);
+  apply_.set_uniform("u_elapsed", k.elapsed);
   apply_.dispatch_covering(node_count_);
   // The next substep (and the next projection's pair pass), the collision shaders and renderers
   // drawing from SSBO 0 read the corrected nodes; the next pair pass overwrites the corrections
   // read here.
-  memory_barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+  memory_barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
+                 GL_BUFFER_UPDATE_BARRIER_BIT);
+  // The stray flag: the one wait of a projection (a new search must start before the next
+  // substep when it is set).
+  return buffers_.node_count->download(node_count_, 1)[0] != 0u;
 }
 
 std::vector<glm::vec4> GlContactResponse::download_frame_start() const {

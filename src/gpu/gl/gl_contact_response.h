@@ -43,12 +43,12 @@ struct GlContactResponseOptions {
 // frame needs more than it holds, so a contact set of steady size allocates nothing per frame.
 struct ContactBuffers {
   std::optional<Ssbo<gpu::ContactPair>> pairs;     // SSBO 29
-  std::optional<Ssbo<glm::vec4>> corrections;      // SSBO 30: 4 per constraint
+  std::optional<Ssbo<glm::vec4>> corrections;      // SSBO 30: 8 per constraint
   std::optional<Ssbo<std::uint32_t>> node_offset;  // SSBO 31: nodes + 1
   std::optional<Ssbo<std::uint32_t>> node_list;    // SSBO 32
-  std::optional<Ssbo<std::uint32_t>> node_count;   // SSBO 33: per node
+  std::optional<Ssbo<std::uint32_t>> node_count;   // SSBO 33: per node, + 1: the stray flag
   std::optional<Ssbo<glm::vec4>> frame_start;      // SSBO 34: per node
-  std::optional<Ssbo<float>> body_motion;          // SSBO 35: per body
+  std::optional<Ssbo<glm::vec4>> body_motion;      // SSBO 35: per body
 };
 
 class GlContactResponse final : public response::ResponseBackend {
@@ -70,7 +70,7 @@ class GlContactResponse final : public response::ResponseBackend {
   // The pair, count and node passes with storage barriers between them, ending with a barrier so
   // that the next substep, the collision shaders and renderers see the corrected nodes. Throws
   // Error before begin_frame(), or when the simulation was uploaded again since.
-  void project(const response::ContactConstants& constants) override;
+  [[nodiscard]] bool project(const response::ContactConstants& constants) override;
 
   // The frame starts (SSBO 34) that begin_frame recorded, one per node (for tests).
   [[nodiscard]] std::vector<glm::vec4> download_frame_start() const;
@@ -84,6 +84,7 @@ class GlContactResponse final : public response::ResponseBackend {
   bool limit_is_device_ = true;  // whether max_buffer_bytes_ is the device's, for messages
   std::uint32_t max_work_groups_x_ = 0;
   ComputeProgram frame_start_;
+  ComputeProgram activity_;
   ComputeProgram pairs_;
   ComputeProgram count_;
   ComputeProgram apply_;

@@ -69,28 +69,35 @@ GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionDat
 }
 
 std::vector<collision::ProximityCandidate> GlProximity::find(const ProximitySources& sources,
-                                                             std::span<const float> reach) {
-  check_reach(reach);  // before anything is rebound
+                                                             std::span<const float> reach,
+                                                             std::span<const glm::vec3> drift) {
+  check_reach(reach, drift);  // before anything is rebound
   bind_name(gpu::kNodePosition, sources.positions);
   bind_name(gpu::kFaceInfo, sources.faces);
   bind_name(gpu::kMeshInfo, sources.meshes);
   bind_name(gpu::kBvhNode, sources.bvh_nodes);
   bind_name(gpu::kBvhBox, sources.bvh_boxes);
   bind_name(gpu::kBodyBvh, sources.mesh_bvhs);
-  return find_bound(reach);
+  return find_bound(reach, drift);
 }
 
-void GlProximity::check_reach(std::span<const float> reach) const {
-  if (reach.size() != mesh_count_) {
-    throw Error("GlProximity::find takes one reach per mesh: " + std::to_string(mesh_count_) +
-                " expected, " + std::to_string(reach.size()) + " given");
+void GlProximity::check_reach(std::span<const float> reach,
+                              std::span<const glm::vec3> drift) const {
+  if (reach.size() != mesh_count_ || drift.size() != mesh_count_) {
+    throw Error("GlProximity::find takes one reach and one drift per mesh: " +
+                std::to_string(mesh_count_) + " expected, " + std::to_string(reach.size()) +
+                " and " + std::to_string(drift.size()) + " given");
   }
 }
 
-std::vector<collision::ProximityCandidate> GlProximity::find_bound(std::span<const float> reach) {
-  check_reach(reach);
+std::vector<collision::ProximityCandidate> GlProximity::find_bound(
+    std::span<const float> reach, std::span<const glm::vec3> drift) {
+  check_reach(reach, drift);
   if (item_count_ == 0) return {};
-  reach_.upload(reach);
+  std::vector<glm::vec4> packed(reach.size());
+  for (std::size_t m = 0; m < reach.size(); ++m)
+    packed[m] = glm::vec4(drift[m], reach[m]);
+  reach_.upload(std::span<const glm::vec4>(packed));
   mesh_pairs_.bind(gpu::kBodyPair);
   owners_.bind(kProximityOwnersBinding);
   reach_.bind(kProximityReachBinding);

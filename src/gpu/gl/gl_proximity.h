@@ -54,20 +54,23 @@ class GlProximity {
   // every call.
   GlProximity(Context& context, const collision::CollisionData& data);
 
-  // The candidates on the positions `sources` hold, whose boxes come within
-  // reach[mesh_a] + reach[mesh_b] (one reach per mesh), sorted: CpuProximity::find's list.
+  // The candidates on the positions `sources` hold, whose boxes swept along
+  // drift[mesh_a] - drift[mesh_b] come within reach[mesh_a] + reach[mesh_b] (one reach and one
+  // drift per mesh), sorted: CpuProximity::find's list.
   // Waits for the GPU (two read-backs). Throws Error for a reach list of the wrong length,
   // GlError naming the candidate buffer when it would exceed the device's buffer limit or the
   // driver refuses the memory.
   [[nodiscard]] std::vector<collision::ProximityCandidate> find(const ProximitySources& sources,
-                                                                std::span<const float> reach);
+                                                                std::span<const float> reach,
+                                                                std::span<const glm::vec3> drift);
   // The same over the buffers bound now at SSBOs 0, 7, 8, 25, 26 and 27, as
   // GlCollision::prepare_proximity leaves them (a positions buffer may be bound as a range).
-  [[nodiscard]] std::vector<collision::ProximityCandidate> find_bound(std::span<const float> reach);
+  [[nodiscard]] std::vector<collision::ProximityCandidate> find_bound(
+      std::span<const float> reach, std::span<const glm::vec3> drift);
 
  private:
   GlProximity(const DeviceInfo& device, const collision::CollisionData& data);
-  void check_reach(std::span<const float> reach) const;
+  void check_reach(std::span<const float> reach, std::span<const glm::vec3> drift) const;
 
   std::uint64_t max_buffer_bytes_ = 0;  // the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE
   std::uint32_t mesh_count_ = 0;
@@ -79,7 +82,7 @@ class GlProximity {
   Ssbo<std::uint32_t> owners_;                                     // per face
   Ssbo<gpu::BodyPair> mesh_pairs_;                                 // SSBO 22
   Ssbo<std::uint32_t> pair_first_;                                 // per mesh pair + 1
-  Ssbo<float> reach_;                                              // per mesh
+  Ssbo<glm::vec4> reach_;                                          // per mesh: drift, reach
   Ssbo<std::uint32_t> counts_;                                     // per work item
   Ssbo<std::uint32_t> offsets_;                                    // per work item + 1
   std::optional<Ssbo<collision::ProximityCandidate>> candidates_;  // grown as needed
