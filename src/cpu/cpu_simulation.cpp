@@ -5,6 +5,15 @@
 
 namespace deformcd::cpu {
 
+namespace {
+
+// Nodes per task of the node pass: a node sums about 50 spring terms and 17 tetrahedron corners
+// (the paper's models), so a few hundred nodes are enough work per task, and the lion's 4,161
+// nodes still make enough tasks for two threads to even out.
+constexpr std::size_t kNodeGrain = 256;
+
+}  // namespace
+
 CpuSimulation::CpuSimulation(std::shared_ptr<Executor> executor) : executor_(std::move(executor)) {}
 
 std::string CpuSimulation::device() const {
@@ -12,7 +21,13 @@ std::string CpuSimulation::device() const {
 }
 
 void CpuSimulation::upload(const SimulationState& state) {
+  sim::SpringEdges edges = sim::build_spring_edges(state);
+  sim::TetCorners corners = sim::build_tet_corners(state);
   state_ = state;
+  edges_ = std::move(edges);
+  corners_ = std::move(corners);
+  edge_states_.assign(edges_.size(), glm::vec4(0.0f));
+  corner_forces_.assign(corners_.slot_count, glm::vec4(0.0f));
 }
 
 void CpuSimulation::substep(const sim::SubstepConstants& c) {
@@ -21,39 +36,48 @@ void CpuSimulation::substep(const sim::SubstepConstants& c) {
 
 void CpuSimulation::step(const sim::SubstepConstants& c) {
   SimulationState& w = state_;
-  // SpringUpdate: one spring per element.
-  parallel_for(w.springs.size(), [&](std::size_t s) {
-    const gpu::Spring& spring = w.springs[s];
-    const gpu::BodyParams& p = w.body_params[w.node_body[spring.a]];
-    w.spring_forces[s] = glm::vec4(
-        sim::spring_force(glm::vec3(w.positions[spring.a]), glm::vec3(w.positions[spring.b]),
-                          glm::vec3(w.velocities[spring.a]), glm::vec3(w.velocities[spring.b]),
-                          spring.rest_length, spring.stiffness, p.damping),
-        0.0f);
-  });
-  // TetUpdate: one tetrahedron per element, its four corner forces.
-  parallel_for(w.tets.size(), [&](std::size_t t) {
-    const gpu::Tetra& tet = w.tets[t];
-    if (tet.stiffness == 0.0f) return;  // stays zero from assembly
+  const sim::SpringEdges& e = edges_;
+  const std::size_t edge_count = e.size();
+  // SpringUpdate, once per edge, and TetUpdate in one loop (one join fewer): elements
+  // [0, edges) are edges, the rest stiff tetrahedra. Each writes only its own slots.
+  parallel_for(edge_count + corners_.tets.size(), [&](std::size_t j) {
+    if (j < edge_count) {
+      const std::uint32_t a = e.a[j], b = e.b[j];
+      edge_states_[j] = sim::spring_edge_state(
+          glm::vec3(w.positions[a]), glm::vec3(w.positions[b]), glm::vec3(w.velocities[a]),
+          glm::vec3(w.velocities[b]), e.rest_length[j], e.damping[j]);
+      return;
+    }
+    const std::size_t t = j - edge_count;
+    const gpu::Tetra& tet = corners_.tets[t];
     glm::vec3 f[4];
     sim::tet_volume_forces(glm::vec3(w.positions[tet.a]), glm::vec3(w.positions[tet.b]),
                            glm::vec3(w.positions[tet.c]), glm::vec3(w.positions[tet.d]),
                            tet.rest_volume, tet.stiffness, f);
+    const std::uint32_t* slot = &corners_.corner_slot[4 * t];
     for (int k = 0; k < 4; ++k)
-      w.tet_forces[4 * t + k] = glm::vec4(f[k], 0.0f);
+      corner_forces_[slot[k]] = glm::vec4(f[k], 0.0f);
   });
-  // NodeForce: gather each node's springs, then its tetrahedron corners; NodeUpdate: integrate it.
-  // Both per node, fused on the CPU since nothing reads another node's force.
-  parallel_for(w.positions.size(), [&](std::size_t i) {
-    const glm::vec3 f =
-        sim::gather_node_force(w.node_spring_list.data(), w.node_spring_offset[i],
-                               w.node_spring_offset[i + 1], w.spring_forces.data()) +
-        sim::gather_tet_force(w.node_tet_list.data(), w.node_tet_offset[i],
-                              w.node_tet_offset[i + 1], w.tet_forces.data());
-    w.forces[i] = glm::vec4(f, 0.0f);
-    sim::integrate_node(w.positions[i], w.velocities[i], f,
-                        glm::vec3(w.body_params[w.node_body[i]].carry_velocity), c);
-  });
+  // NodeForce: each node sums its springs' terms in its list order, then its tetrahedron
+  // corners in theirs; NodeUpdate: integrate it. Both per node, fused on the CPU since nothing
+  // reads another node's force.
+  parallel_for(
+      w.positions.size(),
+      [&](std::size_t i) {
+        glm::vec3 springs(0.0f);
+        for (std::uint32_t k = e.node_offset[i]; k < e.node_offset[i + 1]; ++k) {
+          const sim::EdgeTerm term = e.node_terms[k];
+          springs += sim::spring_term(edge_states_[term.edge], term.signed_stiffness);
+        }
+        glm::vec3 tets(0.0f);
+        for (std::uint32_t k = corners_.node_offset[i]; k < corners_.node_offset[i + 1]; ++k)
+          tets += glm::vec3(corner_forces_[k]);
+        const glm::vec3 f = springs + tets;
+        w.forces[i] = glm::vec4(f, 0.0f);
+        sim::integrate_node(w.positions[i], w.velocities[i], f,
+                            glm::vec3(w.body_params[w.node_body[i]].carry_velocity), c);
+      },
+      kNodeGrain);
 }
 
 }  // namespace deformcd::cpu
