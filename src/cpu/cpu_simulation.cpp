@@ -64,15 +64,18 @@ void CpuSimulation::step(const sim::SubstepConstants& c) {
   parallel_for(
       w.positions.size(),
       [&](std::size_t i) {
-        glm::vec3 springs(0.0f);
+        // Summed as vec4s, which the compiler keeps in one SSE register each: x, y and z are
+        // the vec3 sums of sim::spring_term bit for bit (lanes are independent), w is unused.
+        glm::vec4 springs(0.0f);
         for (std::uint32_t k = e.node_offset[i]; k < e.node_offset[i + 1]; ++k) {
           const sim::EdgeTerm term = e.node_terms[k];
-          springs += sim::spring_term(edge_states_[term.edge], term.signed_stiffness);
+          const glm::vec4 state = edge_states_[term.edge];
+          springs += (term.signed_stiffness * state.w) * state;
         }
-        glm::vec3 tets(0.0f);
+        glm::vec4 tets(0.0f);
         for (std::uint32_t k = corners_.node_offset[i]; k < corners_.node_offset[i + 1]; ++k)
-          tets += glm::vec3(corner_forces_[k]);
-        const glm::vec3 f = springs + tets;
+          tets += corner_forces_[k];
+        const glm::vec3 f = glm::vec3(springs) + glm::vec3(tets);
         w.forces[i] = glm::vec4(f, 0.0f);
         sim::integrate_node(w.positions[i], w.velocities[i], f,
                             glm::vec3(w.body_params[w.node_body[i]].carry_velocity), c);

@@ -6,7 +6,7 @@
 //
 // Springs -> edges. The paper's bodies have one spring per tetrahedron edge, so an edge shared by
 // n tetrahedra carries n springs with the same two nodes and rest length (the lion: 108,870
-// springs on 26,929 edges). A spring's force is (k q) u, with u the unit vector along it and
+// springs on 24,883 edges). A spring's force is (k q) u, with u the unit vector along it and
 // q = (length - rest) + damping (dv . u) (sim::spring_force); u and q depend only on the two
 // nodes, the rest length and the damping, and swapping the ends negates u exactly and keeps q
 // exactly (negation is exact, and the dot products see the same products). So u and q are
