@@ -1,6 +1,7 @@
 #include "cpu_simulation.h"
 
 #include "core/sim/mass_spring.h"
+#include "mass_spring_batch.h"
 #include "parallel_for.h"
 
 namespace deformcd::cpu {
@@ -38,26 +39,47 @@ void CpuSimulation::step(const sim::SubstepConstants& c) {
   SimulationState& w = state_;
   const sim::SpringEdges& e = edges_;
   const std::size_t edge_count = e.size();
-  // SpringUpdate, once per edge, and TetUpdate in one loop (one join fewer): elements
-  // [0, edges) are edges, the rest stiff tetrahedra. Each writes only its own slots.
-  parallel_for(edge_count + corners_.tets.size(), [&](std::size_t j) {
-    if (j < edge_count) {
-      const std::uint32_t a = e.a[j], b = e.b[j];
-      edge_states_[j] = sim::spring_edge_state(
-          glm::vec3(w.positions[a]), glm::vec3(w.positions[b]), glm::vec3(w.velocities[a]),
-          glm::vec3(w.velocities[b]), e.rest_length[j], e.damping[j]);
-      return;
-    }
-    const std::size_t t = j - edge_count;
-    const gpu::Tetra& tet = corners_.tets[t];
-    glm::vec3 f[4];
-    sim::tet_volume_forces(glm::vec3(w.positions[tet.a]), glm::vec3(w.positions[tet.b]),
-                           glm::vec3(w.positions[tet.c]), glm::vec3(w.positions[tet.d]),
-                           tet.rest_volume, tet.stiffness, f);
-    const std::uint32_t* slot = &corners_.corner_slot[4 * t];
-    for (int k = 0; k < 4; ++k)
-      corner_forces_[slot[k]] = glm::vec4(f[k], 0.0f);
-  });
+  // SpringUpdate, once per edge, and TetUpdate in one loop (one join fewer), kBatch elements
+  // per iteration in SIMD lanes: iterations [0, edge batches) are edges, the rest stiff
+  // tetrahedra; a last partial batch runs the scalar functions. Each writes only its own slots.
+  const std::size_t edge_batches = (edge_count + kBatch - 1) / kBatch;
+  const std::size_t tet_count = corners_.tets.size();
+  const std::size_t tet_batches = (tet_count + kBatch - 1) / kBatch;
+  parallel_for(
+      edge_batches + tet_batches,
+      [&](std::size_t batch) {
+        if (batch < edge_batches) {
+          const std::size_t j = batch * kBatch;
+          if (j + kBatch <= edge_count) {
+            spring_edge_states(w.positions.data(), w.velocities.data(), &e.a[j], &e.b[j],
+                               &e.rest_length[j], &e.damping[j], &edge_states_[j]);
+            return;
+          }
+          for (std::size_t k = j; k < edge_count; ++k) {
+            const std::uint32_t a = e.a[k], b = e.b[k];
+            edge_states_[k] = sim::spring_edge_state(
+                glm::vec3(w.positions[a]), glm::vec3(w.positions[b]), glm::vec3(w.velocities[a]),
+                glm::vec3(w.velocities[b]), e.rest_length[k], e.damping[k]);
+          }
+          return;
+        }
+        const std::size_t t0 = (batch - edge_batches) * kBatch;
+        if (t0 + kBatch <= tet_count) {
+          tet_volume_forces(w.positions.data(), &corners_.tets[t0], &corners_.corner_slot[4 * t0],
+                            corner_forces_.data());
+          return;
+        }
+        for (std::size_t t = t0; t < tet_count; ++t) {
+          const gpu::Tetra& tet = corners_.tets[t];
+          glm::vec3 f[4];
+          sim::tet_volume_forces(glm::vec3(w.positions[tet.a]), glm::vec3(w.positions[tet.b]),
+                                 glm::vec3(w.positions[tet.c]), glm::vec3(w.positions[tet.d]),
+                                 tet.rest_volume, tet.stiffness, f);
+          for (std::size_t k = 0; k < 4; ++k)
+            corner_forces_[corners_.corner_slot[4 * t + k]] = glm::vec4(f[k], 0.0f);
+        }
+      },
+      kDefaultGrain / kBatch);
   // NodeForce: each node sums its springs' terms in its list order, then its tetrahedron
   // corners in theirs; NodeUpdate: integrate it. Both per node, fused on the CPU since nothing
   // reads another node's force.
