@@ -86,18 +86,21 @@ void CpuSimulation::step(const sim::SubstepConstants& c) {
   parallel_for(
       w.positions.size(),
       [&](std::size_t i) {
-        // Summed as vec4s, which the compiler keeps in one SSE register each: x, y and z are
-        // the vec3 sums of sim::spring_term bit for bit (lanes are independent), w is unused.
-        glm::vec4 springs(0.0f);
+        // Summed in 4 SIMD lanes, one vec4 load and one multiply-add pair per term: lanes x, y
+        // and z are the vec3 sums of sim::spring_term bit for bit (lanes are independent), lane
+        // w is unused.
+        Lanes springs(0.0f);
         for (std::uint32_t k = e.node_offset[i]; k < e.node_offset[i + 1]; ++k) {
           const sim::EdgeTerm term = e.node_terms[k];
-          const glm::vec4 state = edge_states_[term.edge];
-          springs += (term.signed_stiffness * state.w) * state;
+          const glm::vec4& state = edge_states_[term.edge];
+          springs +=
+              Lanes(term.signed_stiffness * state.w) * Lanes(&state.x, stdx::element_aligned);
         }
-        glm::vec4 tets(0.0f);
+        Lanes tets(0.0f);
         for (std::uint32_t k = corners_.node_offset[i]; k < corners_.node_offset[i + 1]; ++k)
-          tets += corner_forces_[k];
-        const glm::vec3 f = glm::vec3(springs) + glm::vec3(tets);
+          tets += Lanes(&corner_forces_[k].x, stdx::element_aligned);
+        const glm::vec3 f =
+            glm::vec3(springs[0], springs[1], springs[2]) + glm::vec3(tets[0], tets[1], tets[2]);
         w.forces[i] = glm::vec4(f, 0.0f);
         sim::integrate_node(w.positions[i], w.velocities[i], f,
                             glm::vec3(w.body_params[w.node_body[i]].carry_velocity), c);
