@@ -1,9 +1,10 @@
 #pragma once
-// The mass-spring step on the CPU, in parallel with oneTBB: the same forces as the GL backend's
-// shaders (SpringUpdate, TetUpdate, NodeForce, NodeUpdate) bit for bit, computed over an internal
-// layout (sim::SpringEdges, sim::TetCorners: each edge once for all its springs, tetrahedron
-// corner forces stored where their nodes read them) instead of the state's per-spring arrays.
-// The state's positions and velocities are stepped in place.
+// The mass-spring step on the CPU, in parallel with oneTBB: the arithmetic of the GL backend's
+// shaders (SpringUpdate, TetUpdate, NodeForce, NodeUpdate), with results bit-identical to those
+// per-spring passes run on the CPU, computed over an internal layout (sim::SpringEdges,
+// sim::TetCorners: each edge once for all its springs, tetrahedron corner forces stored where
+// their nodes read them) instead of the state's per-spring arrays. The state's positions and
+// velocities are stepped in place.
 
 #include <memory>
 

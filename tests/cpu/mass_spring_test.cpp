@@ -9,6 +9,7 @@
 #include "core/sim/mass_spring.h"
 #include "core/sim/node_force_lists.h"
 #include "cpu/cpu_simulation.h"
+#include "cpu/mass_spring_batch.h"
 #include "cpu/parallel_for.h"
 #include "support/world_fixtures.h"
 
@@ -19,6 +20,48 @@ constexpr float kPi = 3.14159265358979f;
 
 sim::SubstepConstants free_flight(float h) {
   return {h, glm::vec3(0.0f), 1.0f};
+}
+
+bool same_bits(const glm::vec3& x, const glm::vec3& y) {
+  return std::memcmp(&x, &y, sizeof(x)) == 0;
+}
+
+// spring_force = spring_term(spring_edge_state, +k) bit for bit; -k, or the ends swapped, give
+// its exact negation; and the SIMD batch functions equal the scalar ones lane by lane.
+TEST(CpuMassSpring, EdgeStateAndTermSplitTheSpringForceExactly) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f), positive(0.01f, 2.0f);
+  std::vector<glm::vec4> x, v;
+  std::vector<std::uint32_t> a, b;
+  std::vector<float> rest, damping;
+  for (std::uint32_t i = 0; i < 4 * cpu::kBatch; ++i) {
+    x.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng), 1.0f);
+    v.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng), 0.0f);
+  }
+  x[5] = x[4];  // a collapsed edge
+  for (std::uint32_t e = 0; e < 2 * cpu::kBatch; ++e) {
+    a.push_back(2 * e);
+    b.push_back(2 * e + 1);
+    rest.push_back(positive(rng));
+    damping.push_back(positive(rng) * 1e-3f);
+  }
+  std::vector<glm::vec4> batch(a.size());
+  for (std::size_t e = 0; e < a.size(); e += cpu::kBatch) {
+    cpu::spring_edge_states(x.data(), v.data(), &a[e], &b[e], &rest[e], &damping[e], &batch[e]);
+  }
+  for (std::size_t e = 0; e < a.size(); ++e) {
+    const glm::vec3 xa(x[a[e]]), xb(x[b[e]]), va(v[a[e]]), vb(v[b[e]]);
+    const float k = positive(rng) * 100.0f;
+    const glm::vec4 state = sim::spring_edge_state(xa, xb, va, vb, rest[e], damping[e]);
+    const glm::vec4 swapped = sim::spring_edge_state(xb, xa, vb, va, rest[e], damping[e]);
+    const glm::vec3 force = sim::spring_force(xa, xb, va, vb, rest[e], k, damping[e]);
+    EXPECT_EQ(std::memcmp(&state, &batch[e], sizeof(state)), 0) << "edge " << e;
+    EXPECT_TRUE(same_bits(sim::spring_term(state, k), force)) << "edge " << e;
+    if (e == 2) continue;  // collapsed: +0 where -force is -0, which no sum can tell apart
+    EXPECT_TRUE(same_bits(sim::spring_term(state, -k), -force)) << "edge " << e;
+    EXPECT_TRUE(same_bits(sim::spring_term(swapped, k), -force)) << "edge " << e;
+  }
+  EXPECT_EQ(batch[2], glm::vec4(0.0f)) << "the collapsed edge (nodes 4 and 5)";
 }
 
 TEST(CpuMassSpring, TwoMassesOscillateWithTheReducedMassPeriod) {
