@@ -1,14 +1,18 @@
 // One mass-spring substep (springs, tetrahedron volume forces, gather, integration) on each
-// backend, for the paper's four models. Reports ms per substep and springs per second.
+// backend, for the paper's four models, and for the 50k-face lion of the scaling scenes when
+// scripts/make_models.sh --fine has made it. Reports ms per substep and springs per second; the
+// CPU on 1 and on 2 threads (threads:N), for the thread scaling.
 // GL timing: glFinish after every substep, so each iteration measures completed GPU work;
 // wall-clock time (UseRealTime) on both backends, since llvmpipe and oneTBB work on other
 // threads than the caller.
 
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
+#include "core/sim/node_force_lists.h"
 #include "cpu/cpu_simulation.h"
 #include "deformcd/io.h"
 #include "deformcd/simulation_state.h"
@@ -47,18 +51,24 @@ void run(benchmark::State& state, sim::SimulationBackend& backend, const Simulat
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(world.springs.size()));
   state.counters["springs"] = static_cast<double>(world.springs.size());
   state.counters["nodes"] = static_cast<double>(world.node_count());
+  state.counters["edges"] = static_cast<double>(sim::build_spring_edges(world).size());
 }
 
 void register_all() {
-  for (const char* model : {"armadillo", "bunny", "dragon", "lion"}) {
+  for (const char* model : {"armadillo", "bunny", "dragon", "lion", "fine/lion_50k"}) {
     const std::string name(model);
-    benchmark::RegisterBenchmark(("substep/cpu/" + name).c_str(),
-                                 [name](benchmark::State& s) {
-                                   cpu::CpuSimulation backend;
-                                   run(s, backend, model_world(name));
-                                 })
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
+    const std::string path = std::string(DEFORMCD_SOURCE_DIR) + "/assets/models/" + name;
+    if (!std::filesystem::exists(path + ".node")) continue;  // a fine model not made
+    for (int threads : {1, 2}) {
+      benchmark::RegisterBenchmark(
+          ("substep/cpu/" + name + "/threads:" + std::to_string(threads)).c_str(),
+          [name, threads](benchmark::State& s) {
+            cpu::CpuSimulation backend(threads);
+            run(s, backend, model_world(name));
+          })
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
 #ifdef DEFORMCD_HAS_GL
     benchmark::RegisterBenchmark(("substep/gl/" + name).c_str(),
                                  [name](benchmark::State& s) {

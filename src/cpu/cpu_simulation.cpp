@@ -1,9 +1,19 @@
 #include "cpu_simulation.h"
 
 #include "core/sim/mass_spring.h"
+#include "mass_spring_batch.h"
 #include "parallel_for.h"
 
 namespace deformcd::cpu {
+
+namespace {
+
+// Nodes per task of the node pass: a node sums about 50 spring terms and 17 tetrahedron corners
+// (the paper's models), so a few hundred nodes are enough work per task, and the lion's 4,161
+// nodes still make enough tasks for two threads to even out.
+constexpr std::size_t kNodeGrain = 256;
+
+}  // namespace
 
 CpuSimulation::CpuSimulation(std::shared_ptr<Executor> executor) : executor_(std::move(executor)) {}
 
@@ -12,7 +22,13 @@ std::string CpuSimulation::device() const {
 }
 
 void CpuSimulation::upload(const SimulationState& state) {
+  sim::SpringEdges edges = sim::build_spring_edges(state);
+  sim::TetCorners corners = sim::build_tet_corners(state);
   state_ = state;
+  edges_ = std::move(edges);
+  corners_ = std::move(corners);
+  edge_states_.assign(edges_.size(), glm::vec4(0.0f));
+  corner_forces_.assign(corners_.slot_count, glm::vec4(0.0f));
 }
 
 void CpuSimulation::substep(const sim::SubstepConstants& c) {
@@ -21,39 +37,75 @@ void CpuSimulation::substep(const sim::SubstepConstants& c) {
 
 void CpuSimulation::step(const sim::SubstepConstants& c) {
   SimulationState& w = state_;
-  // SpringUpdate: one spring per element.
-  parallel_for(w.springs.size(), [&](std::size_t s) {
-    const gpu::Spring& spring = w.springs[s];
-    const gpu::BodyParams& p = w.body_params[w.node_body[spring.a]];
-    w.spring_forces[s] = glm::vec4(
-        sim::spring_force(glm::vec3(w.positions[spring.a]), glm::vec3(w.positions[spring.b]),
-                          glm::vec3(w.velocities[spring.a]), glm::vec3(w.velocities[spring.b]),
-                          spring.rest_length, spring.stiffness, p.damping),
-        0.0f);
-  });
-  // TetUpdate: one tetrahedron per element, its four corner forces.
-  parallel_for(w.tets.size(), [&](std::size_t t) {
-    const gpu::Tetra& tet = w.tets[t];
-    if (tet.stiffness == 0.0f) return;  // stays zero from assembly
-    glm::vec3 f[4];
-    sim::tet_volume_forces(glm::vec3(w.positions[tet.a]), glm::vec3(w.positions[tet.b]),
-                           glm::vec3(w.positions[tet.c]), glm::vec3(w.positions[tet.d]),
-                           tet.rest_volume, tet.stiffness, f);
-    for (int k = 0; k < 4; ++k)
-      w.tet_forces[4 * t + k] = glm::vec4(f[k], 0.0f);
-  });
-  // NodeForce: gather each node's springs, then its tetrahedron corners; NodeUpdate: integrate it.
-  // Both per node, fused on the CPU since nothing reads another node's force.
-  parallel_for(w.positions.size(), [&](std::size_t i) {
-    const glm::vec3 f =
-        sim::gather_node_force(w.node_spring_list.data(), w.node_spring_offset[i],
-                               w.node_spring_offset[i + 1], w.spring_forces.data()) +
-        sim::gather_tet_force(w.node_tet_list.data(), w.node_tet_offset[i],
-                              w.node_tet_offset[i + 1], w.tet_forces.data());
-    w.forces[i] = glm::vec4(f, 0.0f);
-    sim::integrate_node(w.positions[i], w.velocities[i], f,
-                        glm::vec3(w.body_params[w.node_body[i]].carry_velocity), c);
-  });
+  const sim::SpringEdges& e = edges_;
+  const std::size_t edge_count = e.size();
+  // SpringUpdate, once per edge, and TetUpdate in one loop (one join fewer), kBatch elements
+  // per iteration in SIMD lanes: iterations [0, edge batches) are edges, the rest stiff
+  // tetrahedra; a last partial batch runs the scalar functions. Each writes only its own slots.
+  const std::size_t edge_batches = (edge_count + kBatch - 1) / kBatch;
+  const std::size_t tet_count = corners_.tets.size();
+  const std::size_t tet_batches = (tet_count + kBatch - 1) / kBatch;
+  parallel_for(
+      edge_batches + tet_batches,
+      [&](std::size_t batch) {
+        if (batch < edge_batches) {
+          const std::size_t j = batch * kBatch;
+          if (j + kBatch <= edge_count) {
+            spring_edge_states(w.positions.data(), w.velocities.data(), &e.a[j], &e.b[j],
+                               &e.rest_length[j], &e.damping[j], &edge_states_[j]);
+            return;
+          }
+          for (std::size_t k = j; k < edge_count; ++k) {
+            const std::uint32_t a = e.a[k], b = e.b[k];
+            edge_states_[k] = sim::spring_edge_state(
+                glm::vec3(w.positions[a]), glm::vec3(w.positions[b]), glm::vec3(w.velocities[a]),
+                glm::vec3(w.velocities[b]), e.rest_length[k], e.damping[k]);
+          }
+          return;
+        }
+        const std::size_t t0 = (batch - edge_batches) * kBatch;
+        if (t0 + kBatch <= tet_count) {
+          tet_volume_forces(w.positions.data(), &corners_.tets[t0], &corners_.corner_slot[4 * t0],
+                            corner_forces_.data());
+          return;
+        }
+        for (std::size_t t = t0; t < tet_count; ++t) {
+          const gpu::Tetra& tet = corners_.tets[t];
+          glm::vec3 f[4];
+          sim::tet_volume_forces(glm::vec3(w.positions[tet.a]), glm::vec3(w.positions[tet.b]),
+                                 glm::vec3(w.positions[tet.c]), glm::vec3(w.positions[tet.d]),
+                                 tet.rest_volume, tet.stiffness, f);
+          for (std::size_t k = 0; k < 4; ++k)
+            corner_forces_[corners_.corner_slot[4 * t + k]] = glm::vec4(f[k], 0.0f);
+        }
+      },
+      kDefaultGrain / kBatch);
+  // NodeForce: each node sums its springs' terms in its list order, then its tetrahedron
+  // corners in theirs; NodeUpdate: integrate it. Both per node, fused on the CPU since nothing
+  // reads another node's force.
+  parallel_for(
+      w.positions.size(),
+      [&](std::size_t i) {
+        // Summed in 4 SIMD lanes, one vec4 load and one multiply-add pair per term: lanes x, y
+        // and z are the vec3 sums of sim::spring_term bit for bit (lanes are independent), lane
+        // w is unused.
+        Lanes springs(0.0f);
+        for (std::uint32_t k = e.node_offset[i]; k < e.node_offset[i + 1]; ++k) {
+          const sim::EdgeTerm term = e.node_terms[k];
+          const glm::vec4& state = edge_states_[term.edge];
+          springs +=
+              Lanes(term.signed_stiffness * state.w) * Lanes(&state.x, stdx::element_aligned);
+        }
+        Lanes tets(0.0f);
+        for (std::uint32_t k = corners_.node_offset[i]; k < corners_.node_offset[i + 1]; ++k)
+          tets += Lanes(&corner_forces_[k].x, stdx::element_aligned);
+        const glm::vec3 f =
+            glm::vec3(springs[0], springs[1], springs[2]) + glm::vec3(tets[0], tets[1], tets[2]);
+        w.forces[i] = glm::vec4(f, 0.0f);
+        sim::integrate_node(w.positions[i], w.velocities[i], f,
+                            glm::vec3(w.body_params[w.node_body[i]].carry_velocity), c);
+      },
+      kNodeGrain);
 }
 
 }  // namespace deformcd::cpu

@@ -1,9 +1,14 @@
 #pragma once
-// The mass-spring step on the CPU, in parallel with oneTBB: the same three phases as the GL
-// backend's shaders (SpringUpdate, NodeForce, NodeUpdate), over the same arrays.
+// The mass-spring step on the CPU, in parallel with oneTBB: the arithmetic of the GL backend's
+// shaders (SpringUpdate, TetUpdate, NodeForce, NodeUpdate), with results bit-identical to those
+// per-spring passes run on the CPU, computed over an internal layout (sim::SpringEdges,
+// sim::TetCorners: each edge once for all its springs, tetrahedron corner forces stored where
+// their nodes read them) instead of the state's per-spring arrays. The state's positions and
+// velocities are stepped in place.
 
 #include <memory>
 
+#include "core/sim/node_force_lists.h"
 #include "core/sim/simulation_backend.h"
 #include "executor.h"
 
@@ -26,13 +31,19 @@ class CpuSimulation final : public sim::SimulationBackend {
   [[nodiscard]] const glm::vec4* host_positions() const override { return state_.positions.data(); }
   [[nodiscard]] SimulationState* host_state() override { return &state_; }
 
-  /// The state being stepped (for tests; a World's detector reads its positions in place).
+  /// The state being stepped (for tests; a World's detector reads its positions in place). Its
+  /// spring_forces and tet_forces are not written (the step does not go through them).
   [[nodiscard]] const SimulationState& state() const { return state_; }
 
  private:
   void step(const sim::SubstepConstants& constants);
 
   SimulationState state_;
+  // Derived from state_ at upload (its springs and tetrahedra do not change afterwards).
+  sim::SpringEdges edges_;
+  std::vector<glm::vec4> edge_states_;  // per edge: (u, q), sim::spring_edge_state
+  sim::TetCorners corners_;
+  std::vector<glm::vec4> corner_forces_;  // per corner slot, node-major
   std::shared_ptr<Executor> executor_;
 };
 

@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include "core/sim/mass_spring.h"
+#include "core/sim/node_force_lists.h"
 #include "cpu/cpu_simulation.h"
+#include "cpu/mass_spring_batch.h"
 #include "cpu/parallel_for.h"
 #include "support/world_fixtures.h"
 
@@ -17,6 +20,48 @@ constexpr float kPi = 3.14159265358979f;
 
 sim::SubstepConstants free_flight(float h) {
   return {h, glm::vec3(0.0f), 1.0f};
+}
+
+bool same_bits(const glm::vec3& x, const glm::vec3& y) {
+  return std::memcmp(&x, &y, sizeof(x)) == 0;
+}
+
+// spring_force = spring_term(spring_edge_state, +k) bit for bit; -k, or the ends swapped, give
+// its exact negation; and the SIMD batch functions equal the scalar ones lane by lane.
+TEST(CpuMassSpring, EdgeStateAndTermSplitTheSpringForceExactly) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f), positive(0.01f, 2.0f);
+  std::vector<glm::vec4> x, v;
+  std::vector<std::uint32_t> a, b;
+  std::vector<float> rest, damping;
+  for (std::uint32_t i = 0; i < 4 * cpu::kBatch; ++i) {
+    x.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng), 1.0f);
+    v.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng), 0.0f);
+  }
+  x[5] = x[4];  // a collapsed edge
+  for (std::uint32_t e = 0; e < 2 * cpu::kBatch; ++e) {
+    a.push_back(2 * e);
+    b.push_back(2 * e + 1);
+    rest.push_back(positive(rng));
+    damping.push_back(positive(rng) * 1e-3f);
+  }
+  std::vector<glm::vec4> batch(a.size());
+  for (std::size_t e = 0; e < a.size(); e += cpu::kBatch) {
+    cpu::spring_edge_states(x.data(), v.data(), &a[e], &b[e], &rest[e], &damping[e], &batch[e]);
+  }
+  for (std::size_t e = 0; e < a.size(); ++e) {
+    const glm::vec3 xa(x[a[e]]), xb(x[b[e]]), va(v[a[e]]), vb(v[b[e]]);
+    const float k = positive(rng) * 100.0f;
+    const glm::vec4 state = sim::spring_edge_state(xa, xb, va, vb, rest[e], damping[e]);
+    const glm::vec4 swapped = sim::spring_edge_state(xb, xa, vb, va, rest[e], damping[e]);
+    const glm::vec3 force = sim::spring_force(xa, xb, va, vb, rest[e], k, damping[e]);
+    EXPECT_EQ(std::memcmp(&state, &batch[e], sizeof(state)), 0) << "edge " << e;
+    EXPECT_TRUE(same_bits(sim::spring_term(state, k), force)) << "edge " << e;
+    if (e == 2) continue;  // collapsed: +0 where -force is -0, which no sum can tell apart
+    EXPECT_TRUE(same_bits(sim::spring_term(state, -k), -force)) << "edge " << e;
+    EXPECT_TRUE(same_bits(sim::spring_term(swapped, k), -force)) << "edge " << e;
+  }
+  EXPECT_EQ(batch[2], glm::vec4(0.0f)) << "the collapsed edge (nodes 4 and 5)";
 }
 
 TEST(CpuMassSpring, TwoMassesOscillateWithTheReducedMassPeriod) {
@@ -108,6 +153,141 @@ TEST(CpuMassSpring, OneAndTwoThreadsGiveBitIdenticalStates) {
   ASSERT_EQ(one.size(), two.size());
   EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(glm::vec4)), 0);
   EXPECT_NE(std::memcmp(one.data(), start.positions.data(), one.size() * sizeof(glm::vec4)), 0);
+}
+
+// The passes as the state describes them (and the GL shaders run them): every spring's force
+// into spring_forces, every tetrahedron's corners into tet_forces, each node gathering both over
+// its lists; serial, one element at a time.
+void reference_substep(SimulationState& w, const sim::SubstepConstants& c) {
+  for (std::size_t s = 0; s < w.springs.size(); ++s) {
+    const gpu::Spring& spring = w.springs[s];
+    const gpu::BodyParams& p = w.body_params[w.node_body[spring.a]];
+    w.spring_forces[s] = glm::vec4(
+        sim::spring_force(glm::vec3(w.positions[spring.a]), glm::vec3(w.positions[spring.b]),
+                          glm::vec3(w.velocities[spring.a]), glm::vec3(w.velocities[spring.b]),
+                          spring.rest_length, spring.stiffness, p.damping),
+        0.0f);
+  }
+  for (std::size_t t = 0; t < w.tets.size(); ++t) {
+    const gpu::Tetra& tet = w.tets[t];
+    if (tet.stiffness == 0.0f) continue;
+    glm::vec3 f[4];
+    sim::tet_volume_forces(glm::vec3(w.positions[tet.a]), glm::vec3(w.positions[tet.b]),
+                           glm::vec3(w.positions[tet.c]), glm::vec3(w.positions[tet.d]),
+                           tet.rest_volume, tet.stiffness, f);
+    for (std::size_t k = 0; k < 4; ++k)
+      w.tet_forces[4 * t + k] = glm::vec4(f[k], 0.0f);
+  }
+  for (std::size_t i = 0; i < w.positions.size(); ++i) {
+    const glm::vec3 f =
+        sim::gather_node_force(w.node_spring_list.data(), w.node_spring_offset[i],
+                               w.node_spring_offset[i + 1], w.spring_forces.data()) +
+        sim::gather_tet_force(w.node_tet_list.data(), w.node_tet_offset[i],
+                              w.node_tet_offset[i + 1], w.tet_forces.data());
+    w.forces[i] = glm::vec4(f, 0.0f);
+    sim::integrate_node(w.positions[i], w.velocities[i], f,
+                        glm::vec3(w.body_params[w.node_body[i]].carry_velocity), c);
+  }
+}
+
+// Two shaken bodies, one with volume forces and one without (its tetrahedra skipped), damped,
+// one with fixed nodes and one carried; every other spring has its ends swapped, so that edges
+// carry springs of both orientations. Large enough for every pass to be split across threads.
+SimulationState two_shaken_bodies() {
+  std::vector<BodyInit> bodies(2);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> jitter(-0.02f, 0.02f), speed(-0.5f, 0.5f);
+  for (std::size_t n = 0; n < bodies.size(); ++n) {
+    BodyInit& init = bodies[n];
+    init.body = build_body(test::tet_grid(12 - 2 * static_cast<int>(n), 10, 8, 0.1,
+                                          {1.5 * static_cast<double>(n), 0.0, 0.0}),
+                           {.stiffness = 5.0e4});
+    for (std::size_t s = 1; s < init.body.springs.size(); s += 2)
+      std::swap(init.body.springs[s].a, init.body.springs[s].b);
+    for (auto& p : init.body.positions)
+      p += glm::vec4(jitter(rng), jitter(rng), jitter(rng), 0.0f);
+    for (auto& v : init.body.velocities)
+      v = glm::vec4(speed(rng), speed(rng), speed(rng), 0.0f);
+    init.damping = n == 0 ? 1e-3f : 4e-4f;
+  }
+  bodies[0].volume_stiffness = 2.0e4f;
+  bodies[0].fixed = {0, 1, 2};
+  bodies[1].carry_velocity = {-0.3f, 0.1f, 0.0f};
+  return assemble_simulation(bodies);
+}
+
+TEST(CpuMassSpring, EdgeListsHoldEachDistinctSpringOnceWithTheSignOfTheNodesEnd) {
+  const SimulationState w = two_shaken_bodies();
+  const sim::SpringEdges edges = sim::build_spring_edges(w);
+  EXPECT_LT(3 * edges.size(), w.springs.size()) << "shared tetrahedron edges merge";
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    EXPECT_LT(edges.a[e], edges.b[e]);
+    if (e > 0) {
+      EXPECT_TRUE(edges.a[e - 1] < edges.a[e] ||
+                  (edges.a[e - 1] == edges.a[e] && edges.b[e - 1] <= edges.b[e]));
+    }
+  }
+  ASSERT_EQ(edges.node_terms.size(), w.node_spring_list.size());
+  ASSERT_EQ(edges.node_offset, w.node_spring_offset);
+  for (std::size_t i = 0; i < w.node_count(); ++i) {
+    for (std::uint32_t k = w.node_spring_offset[i]; k < w.node_spring_offset[i + 1]; ++k) {
+      const std::int32_t tag = w.node_spring_list[k];
+      const gpu::Spring& s = w.springs[static_cast<std::size_t>(tag > 0 ? tag : -tag) - 1];
+      const sim::EdgeTerm term = edges.node_terms[k];
+      EXPECT_EQ(std::min(s.a, s.b), edges.a[term.edge]);
+      EXPECT_EQ(std::max(s.a, s.b), edges.b[term.edge]);
+      EXPECT_EQ(s.rest_length, edges.rest_length[term.edge]);
+      EXPECT_EQ(std::abs(term.signed_stiffness), s.stiffness);
+      EXPECT_EQ(term.signed_stiffness > 0.0f, i == edges.a[term.edge]) << "node " << i;
+    }
+  }
+}
+
+TEST(CpuMassSpring, TetCornersSkipZeroStiffnessAndListEachNodesCornersInOrder) {
+  const SimulationState w = two_shaken_bodies();
+  const sim::TetCorners corners = sim::build_tet_corners(w);
+  const std::size_t stiff = w.objects[0].tet_count;  // body 1 has no volume stiffness
+  ASSERT_EQ(corners.tets.size(), stiff);
+  ASSERT_EQ(corners.corner_slot.size(), 4 * stiff);
+  EXPECT_EQ(corners.slot_count, 4 * stiff);
+  std::vector<std::uint32_t> seen(corners.slot_count, 0);
+  for (std::size_t t = 0; t < stiff; ++t) {
+    const std::uint32_t nodes[4] = {corners.tets[t].a, corners.tets[t].b, corners.tets[t].c,
+                                    corners.tets[t].d};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const std::uint32_t slot = corners.corner_slot[4 * t + k];
+      ASSERT_LT(slot, corners.slot_count);
+      ++seen[slot];
+      EXPECT_GE(slot, corners.node_offset[nodes[k]]);
+      EXPECT_LT(slot, corners.node_offset[nodes[k] + 1]);
+    }
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1u), static_cast<std::ptrdiff_t>(seen.size()));
+}
+
+// The backend's layout (each edge once, node-major corner slots, fused passes) changes no bit of
+// the result against the per-spring passes, on any thread count.
+TEST(CpuMassSpring, StepEqualsThePerSpringPassesBitForBit) {
+  SimulationState reference = two_shaken_bodies();
+  ASSERT_GT(reference.tets.size(), 2 * cpu::kDefaultGrain);  // nodes: 2,376
+  const sim::SubstepConstants c{1e-3f, glm::vec3(0.0f, -9.81f, 0.0f), 0.999f};
+  for (int threads : {1, 2, 3}) {
+    cpu::CpuSimulation sim(threads);
+    sim.upload(reference);
+    SimulationState expected = reference;
+    for (int step = 0; step < 50; ++step) {
+      sim.substep(c);
+      reference_substep(expected, c);
+    }
+    const auto same = [](const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& y) {
+      return x.size() == y.size() &&
+             std::memcmp(x.data(), y.data(), x.size() * sizeof(glm::vec4)) == 0;
+    };
+    EXPECT_TRUE(same(sim.state().positions, expected.positions)) << threads << " threads";
+    EXPECT_TRUE(same(sim.state().velocities, expected.velocities)) << threads << " threads";
+    EXPECT_TRUE(same(sim.state().forces, expected.forces)) << threads << " threads";
+    EXPECT_FALSE(same(expected.positions, reference.positions));
+  }
 }
 
 TEST(CpuMassSpring, FixedNodesStayAndCarryVelocityMovesTheBody) {

@@ -36,6 +36,27 @@ inline glm::vec3 spring_force(const glm::vec3& xa, const glm::vec3& xb, const gl
   return magnitude * u;
 }
 
+/// spring_force in two parts, for a backend that computes each edge once for all the springs on
+/// it (node_force_lists.h): the edge's state (u, q), u the unit vector from a to b and
+/// q = (length - rest_length) + damping (vb - va) . u, or (0, 0) for a collapsed edge; then each
+/// spring's term (signed_stiffness q) u. With signed_stiffness = stiffness the term equals
+/// spring_force(...) bit for bit (the same operations on the same operands); with -stiffness,
+/// or with a and b swapped, its exact negation. CPU only so far: the GL shaders still compute
+/// spring_force per spring (shaders/sim/mass_spring.glsl), the same arithmetic.
+inline glm::vec4 spring_edge_state(const glm::vec3& xa, const glm::vec3& xb, const glm::vec3& va,
+                                   const glm::vec3& vb, float rest_length, float damping) {
+  const glm::vec3 d = xb - xa;
+  const float length = std::sqrt(glm::dot(d, d));
+  if (!(length > 0.0f)) return glm::vec4(0.0f);
+  const glm::vec3 u = d / length;
+  return glm::vec4(u, (length - rest_length) + damping * glm::dot(vb - va, u));
+}
+
+/// One spring's force on a node from its edge's state (spring_edge_state).
+inline glm::vec3 spring_term(const glm::vec4& edge_state, float signed_stiffness) {
+  return (signed_stiffness * edge_state.w) * glm::vec3(edge_state);
+}
+
 /// Volume forces on the four corners of tetrahedron (a, b, c, d), from the energy
 /// c (V - V0)^2 / 2: f_i = -c (V - V0) dV/dx_i, with c = gpu::Tetra::stiffness. They sum to
 /// zero (no net force) and push an inverted tetrahedron back through its base, which edge
