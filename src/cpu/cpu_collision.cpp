@@ -107,7 +107,7 @@ void CpuCollision::run(BroadPhase method) {
       break;
     }
     case BroadPhase::kBvh:
-      bvh_.run(vertices_.data(), faces_, narrow, collector_);
+      bvh_.run(vertices_.data(), narrow, collector_);
       break;
   }
   counters_.candidates = saturate_u32(collector_.gather(pairs_));
