@@ -67,9 +67,7 @@ void BvhBroadPhase::run(collision::VertexPositions positions, const NarrowPhase&
   for (const gpu::BodyPair& pair : touching_)
     queried_[traversed_mesh(pair, meshes_)] = 1u;
   // A tree nobody traverses may stay loose: its root box, all that is read of it, is exact.
-  for (std::uint32_t mesh = 0; mesh < queried_.size(); ++mesh) {
-    if (queried_[mesh] != 0u) trees_.rebuild_if_degraded(mesh, positions);
-  }
+  trees_.rebuild_degraded(queried_, positions);
   for (const gpu::BodyPair& pair : touching_)
     traverse(pair, narrow, out);
 }
