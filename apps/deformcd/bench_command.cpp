@@ -109,7 +109,8 @@ int bench(const BenchArgs& a) {
       o.cpu_threads > 0 ? o.cpu_threads : static_cast<int>(std::thread::hardware_concurrency());
   print_bench_table(std::cout, results);
   std::cout << "\nTimes: wall clock around each stage after waiting for the backend (glFinish "
-               "on GL, no timer queries); warm-up runs excluded"
+               "on GL), and on GL the device time of each stage from timer queries; warm-up "
+               "runs excluded"
             << (a.repeat > 1 ? "; the median of the repeats" : "") << ".\n";
   if (!a.json.empty()) {
     write_file_atomically(a.json, bench_json(results, record));

@@ -1,8 +1,10 @@
 #include "bench_report.h"
 
+#include <algorithm>
 #include <iomanip>
 #include <numeric>
 #include <sstream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -31,6 +33,12 @@ std::string csv_field(const std::string& text) {
   for (char c : text)
     out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
+}
+
+// What the device times of a scene are: "none" (CPU backend), "gpu", or "cpu" (GL on a
+// software renderer).
+std::string device_times_name(DeviceTimes times) {
+  return times == DeviceTimes::kGpu ? "gpu" : times == DeviceTimes::kCpu ? "cpu" : "none";
 }
 
 std::uint64_t candidates(const MethodRun& r) {
@@ -86,6 +94,31 @@ void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results
           << r.total_simulation_s() << std::setw(10) << r.total_collision_s() << std::setw(34)
           << ms.str() << std::setw(37) << cd.str() << std::setw(12) << r.pairs() << '\n';
     }
+    if (b.device_times != DeviceTimes::kNone) {
+      out << "device time (GL timer queries, GL_TIME_ELAPSED), ms/frame before | contact | after"
+          << (b.device_times == DeviceTimes::kCpu
+                  ? ";\n  the renderer is a software one, not a GPU: these are not GPU times "
+                    "(llvmpipe "
+                    "stamps its queries from its rasterizer's threads, which compute dispatches do "
+                    "not go through: they read about 0 there); see the wall clock above:\n"
+                  : ":\n");
+      out << std::left << std::setw(16) << "method" << std::right << std::setw(34)
+          << "sim + CD before | contact | after" << std::setw(37) << "CD before | contact | after"
+          << '\n';
+      for (const MethodRun& r : b.runs) {
+        const StageTimes t = stage_times(r, b.stages);
+        std::ostringstream all;
+        std::ostringstream cd;
+        all << std::fixed << std::setprecision(1);
+        cd << std::fixed << std::setprecision(1);
+        for (int s = 0; s < 3; ++s) {
+          all << (s ? " | " : "") << t.device_ms_per_frame[s];
+          cd << (s ? " | " : "") << t.collision_device_ms_per_frame[s];
+        }
+        out << std::left << std::setw(16) << broadphase_name(r.method) << std::right
+            << std::setw(34) << all.str() << std::setw(37) << cd.str() << '\n';
+      }
+    }
     for (const std::string& m : b.disagreements) {
       out << "WARNING: " << m << " found different contacts from "
           << broadphase_name(b.runs.front().method) << " on some frame\n";
@@ -107,6 +140,10 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
       nlohmann::json frames_per_stage;
       for (int s = 0; s < 3; ++s)
         frames_per_stage[kStageNames[s]] = t.frames[s];
+      nlohmann::json per_frame = {{"simulation_ms", milliseconds(r.simulation_s)},
+                                  {"collision_ms", milliseconds(r.collision_s)},
+                                  {"contacts", r.contacts},
+                                  {"candidates", r.candidates}};
       methods[name] = {{"total_s", r.total_s()},
                        {"simulation_s", r.total_simulation_s()},
                        {"collision_s", r.total_collision_s()},
@@ -115,11 +152,16 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
                        {"frames_per_stage", frames_per_stage},
                        {"pairs", r.pairs()},
                        {"candidates", candidates(r)},
-                       {"per_frame",
-                        {{"simulation_ms", milliseconds(r.simulation_s)},
-                         {"collision_ms", milliseconds(r.collision_s)},
-                         {"contacts", r.contacts},
-                         {"candidates", r.candidates}}}};
+                       {"per_frame", per_frame}};
+      if (t.device_times) {
+        nlohmann::json& m = methods[name];
+        m["device_simulation_s"] = r.total_simulation_device_s();
+        m["device_collision_s"] = r.total_collision_device_s();
+        m["device_ms_per_frame"] = per_stage(t.device_ms_per_frame);
+        m["collision_device_ms_per_frame"] = per_stage(t.collision_device_ms_per_frame);
+        m["per_frame"]["simulation_device_ms"] = milliseconds(r.simulation_device_s);
+        m["per_frame"]["collision_device_ms"] = milliseconds(r.collision_device_s);
+      }
       if (&r == &base) continue;
       improvements[name] = improvement(base.total_s(), r.total_s());
       speedups[name] = base.total_s() / r.total_s();
@@ -134,7 +176,8 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
                       {"improvement", improvements},
                       {"speedup", speedups},
                       {"collision_speedup", collision_speedups},
-                      {"methods_agree", b.disagreements.empty()}});
+                      {"methods_agree", b.disagreements.empty()},
+                      {"device_times", device_times_name(b.device_times)}});
   }
   return nlohmann::json{{"deformcd_version", record.version},
                         {"repeat", record.repeat},
@@ -149,7 +192,9 @@ std::string bench_csv(const std::vector<SceneBench>& results, const BenchRecord&
   std::ostringstream out;
   out << "scene,backend,device,method,frames,repeat,threads,total_s,simulation_s,collision_s,"
          "ms_before,ms_contact,ms_after,cd_ms_before,cd_ms_contact,cd_ms_after,pairs,"
-         "candidates,improvement,deformcd_version\n";
+         "candidates,improvement,deformcd_version,device_times,device_ms_before,"
+         "device_ms_contact,device_ms_after,cd_device_ms_before,cd_device_ms_contact,"
+         "cd_device_ms_after\n";
   out << std::setprecision(9);
   for (const SceneBench& b : results) {
     const MethodRun& base = b.runs.front();
@@ -164,7 +209,16 @@ std::string bench_csv(const std::vector<SceneBench>& results, const BenchRecord&
       for (double v : t.collision_ms_per_frame)
         out << ',' << v;
       out << ',' << r.pairs() << ',' << candidates(r) << ','
-          << improvement(base.total_s(), r.total_s()) << ',' << record.version << '\n';
+          << improvement(base.total_s(), r.total_s()) << ',' << record.version << ','
+          << device_times_name(b.device_times);
+      // Empty fields where nothing was measured (the CPU backend).
+      for (const auto* values : {&t.device_ms_per_frame, &t.collision_device_ms_per_frame}) {
+        for (double v : *values) {
+          out << ',';
+          if (t.device_times) out << v;
+        }
+      }
+      out << '\n';
     }
   }
   return out.str();

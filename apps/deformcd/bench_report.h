@@ -34,7 +34,10 @@ struct BenchRecord {
 ///  "frames_per_stage":{...},"pairs":..,"candidates":..,"per_frame":{"simulation_ms":[..],
 ///  "collision_ms":[..],"contacts":[..],"candidates":[..]}},...},
 ///  "improvement":{"octree":..},"speedup":{"octree":..},"collision_speedup":{...},
-///  "methods_agree":..},...]}
+///  "methods_agree":..,"device_times":"none"|"gpu"|"cpu"},...]}; on GL each method also has
+///  "device_simulation_s", "device_collision_s", "device_ms_per_frame",
+///  "collision_device_ms_per_frame" and per_frame "simulation_device_ms",
+///  "collision_device_ms" (timer queries; "cpu": a software renderer, CPU times).
 [[nodiscard]] std::string bench_json(const std::vector<SceneBench>& results,
                                      const BenchRecord& record);
 

@@ -1,8 +1,10 @@
 #include "bench_runner.h"
 
 #include <algorithm>
+#include <chrono>
 #include <numeric>
 
+#include "bench_device_timer.h"
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "model_input.h"
@@ -16,20 +18,47 @@ std::string_view backend_label(BackendKind kind) {
 }
 
 // `world` gives the backend, threads and self-collision; the method and timing are set here.
+// The two stages run apart, so that each is bracketed by its own clock readings and timer query:
+// step() simulates only (broad phase kNone), then detect_collisions() runs the method as step()
+// would after the simulation. Each wall-clock reading follows a wait for the backend (glFinish on
+// GL); the collision stage includes the wait for the pass (collision_counts(): complete(), a
+// rerun after an overflow). The queries end right after the stage's commands, before the waits,
+// and are read after the clock has stopped.
 MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& settings,
                   WorldOptions world_options, BroadPhase method, int frames,
                   const std::function<void()>& frame_done, std::string& device) {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
   world_options.broadphase = method;
-  world_options.measure_stage_times = true;
+  world_options.measure_stage_times = false;
   World world(bodies, settings, world_options);
   device = world.device();
+  StageDeviceTimer timer(world.backend_name() == "gl");
   MethodRun run;
   run.method = method;
   for (int f = 0; f < frames; ++f) {
+    world.set_broadphase(BroadPhase::kNone);
+    auto start = Clock::now();
+    timer.begin(BenchStage::kSimulation);
     world.step();
-    run.simulation_s.push_back(world.last_frame_times().simulation_s);
-    run.collision_s.push_back(world.last_frame_times().collision_s);
+    timer.end(BenchStage::kSimulation);
+    world.finish();
+    run.simulation_s.push_back(seconds_since(start));
+
+    world.set_broadphase(method);
+    start = Clock::now();
+    timer.begin(BenchStage::kCollision);
+    world.detect_collisions();
+    timer.end(BenchStage::kCollision);
     const CollisionCounts counts = world.collision_counts();
+    world.finish();
+    run.collision_s.push_back(seconds_since(start));
+
+    if (const auto s = timer.seconds(BenchStage::kSimulation))
+      run.simulation_device_s.push_back(*s);
+    if (const auto s = timer.seconds(BenchStage::kCollision)) run.collision_device_s.push_back(*s);
     run.contacts.push_back(counts.contacts);
     run.candidates.push_back(counts.candidates);
     frame_done();
@@ -59,21 +88,37 @@ double MethodRun::total_collision_s() const {
   return std::accumulate(collision_s.begin(), collision_s.end(), 0.0);
 }
 
+double MethodRun::total_simulation_device_s() const {
+  return std::accumulate(simulation_device_s.begin(), simulation_device_s.end(), 0.0);
+}
+
+double MethodRun::total_collision_device_s() const {
+  return std::accumulate(collision_device_s.begin(), collision_device_s.end(), 0.0);
+}
+
 std::uint64_t MethodRun::pairs() const {
   return std::accumulate(contacts.begin(), contacts.end(), std::uint64_t{0});
 }
 
 StageTimes stage_times(const MethodRun& run, const std::vector<Stage>& stages) {
   StageTimes t;
+  t.device_times = !run.collision_device_s.empty();
   for (std::size_t f = 0; f < stages.size() && f < run.collision_s.size(); ++f) {
     ++t.frames[stages[f]];
     t.ms_per_frame[stages[f]] += 1e3 * (run.simulation_s[f] + run.collision_s[f]);
     t.collision_ms_per_frame[stages[f]] += 1e3 * run.collision_s[f];
+    if (t.device_times) {
+      t.device_ms_per_frame[stages[f]] +=
+          1e3 * (run.simulation_device_s[f] + run.collision_device_s[f]);
+      t.collision_device_ms_per_frame[stages[f]] += 1e3 * run.collision_device_s[f];
+    }
   }
   for (int s = 0; s < 3; ++s) {
     if (t.frames[s] == 0) continue;
     t.ms_per_frame[s] /= t.frames[s];
     t.collision_ms_per_frame[s] /= t.frames[s];
+    t.device_ms_per_frame[s] /= t.frames[s];
+    t.collision_device_ms_per_frame[s] /= t.frames[s];
   }
   return t;
 }
@@ -132,6 +177,9 @@ std::vector<SceneBench> run_bench(const BenchOptions& o, const BenchProgress& pr
         bench.runs.push_back(std::move(repeats[repeats.size() / 2]));  // the median
       }
       bench.stages = stages_from(bench.runs.front().contacts);
+      bench.device_times = bench.runs.front().collision_device_s.empty() ? DeviceTimes::kNone
+                           : is_software_renderer(bench.device)          ? DeviceTimes::kCpu
+                                                                         : DeviceTimes::kGpu;
       for (const MethodRun& run : bench.runs) {
         if (run.contacts != bench.runs.front().contacts) {
           bench.disagreements.emplace_back(broadphase_name(run.method));

@@ -1,7 +1,7 @@
 #pragma once
 // `deformcd bench`: runs each scene with each collision method on each backend over the same
-// frames and measures the simulation and the collision stage of every frame (World's stage
-// times: the world waits for the backend, glFinish on GL, before reading the clock).
+// frames and measures the simulation and the collision stage of every frame: wall clock (after
+// waiting for the backend, glFinish on GL) and, on GL, device time from timer queries.
 
 #include <array>
 #include <cstdint>
@@ -28,9 +28,15 @@ struct MethodRun {
   std::vector<std::uint64_t> contacts;  ///< per frame 1..N
   /// Per frame 1..N: face pairs given to the triangle test.
   std::vector<std::uint64_t> candidates;
+  /// Per frame 1..N on GL: the stages' device time from timer queries (GL_TIME_ELAPSED).
+  /// Empty on the CPU.
+  std::vector<double> simulation_device_s;
+  std::vector<double> collision_device_s;
 
   [[nodiscard]] double total_simulation_s() const;
   [[nodiscard]] double total_collision_s() const;
+  [[nodiscard]] double total_simulation_device_s() const;
+  [[nodiscard]] double total_collision_device_s() const;
   /// The paper's V: the run's total time, simulation and collision detection.
   [[nodiscard]] double total_s() const { return total_simulation_s() + total_collision_s(); }
   [[nodiscard]] std::uint64_t pairs() const;
@@ -39,10 +45,17 @@ struct MethodRun {
 /// Per-stage means of one run, given the stage of each frame.
 struct StageTimes {
   std::array<int, 3> frames{};
-  std::array<double, 3> ms_per_frame{};            ///< simulation + collision
-  std::array<double, 3> collision_ms_per_frame{};  ///< collision only
+  std::array<double, 3> ms_per_frame{};                   ///< simulation + collision
+  std::array<double, 3> collision_ms_per_frame{};         ///< collision only
+  bool device_times = false;                              ///< the two below are measured (GL)
+  std::array<double, 3> device_ms_per_frame{};            ///< timer queries: simulation + collision
+  std::array<double, 3> collision_device_ms_per_frame{};  ///< timer queries: collision only
 };
 [[nodiscard]] StageTimes stage_times(const MethodRun& run, const std::vector<Stage>& stages);
+
+/// What the timer queries of a run measured: nothing (CPU backend), a GPU, or the CPU's cores
+/// running a software rasterizer (llvmpipe...), whose "device" times are CPU times.
+enum class DeviceTimes { kNone, kGpu, kCpu };
 
 /// One scene on one backend, every method over the same frames.
 struct SceneBench {
@@ -52,6 +65,7 @@ struct SceneBench {
   int frames = 0;
   std::vector<MethodRun> runs;  ///< in the order of the methods asked for
   std::vector<Stage> stages;    ///< per frame, from the first run's contacts
+  DeviceTimes device_times = DeviceTimes::kNone;
   /// Methods whose contact counts differ from the first method's on some frame (empty: all
   /// agree, as they must).
   std::vector<std::string> disagreements;

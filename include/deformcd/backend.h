@@ -2,6 +2,7 @@
 /// \file backend.h
 /// Which backend runs a world or a detector: OpenGL 4.3 compute shaders or the CPU.
 
+#include <string>
 #include <string_view>
 
 namespace deformcd {
@@ -19,5 +20,10 @@ enum class BackendKind {
 
 /// "auto", "gl" or "cpu"; throws Error listing the valid names otherwise.
 [[nodiscard]] BackendKind parse_backend(std::string_view name);
+
+/// Whether a GL_RENDERER string (or a device description holding it) names a software
+/// rasterizer: llvmpipe, softpipe, swrast. There GL runs on the CPU's cores, and its times,
+/// timer queries included (deformcd/gl/timer_query.h), are CPU times.
+[[nodiscard]] bool is_software_renderer(const std::string& renderer);
 
 }  // namespace deformcd

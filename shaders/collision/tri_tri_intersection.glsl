@@ -74,11 +74,13 @@ struct TriTriLineInterval {
   float t_max;
   vec3 x_min;
   vec3 x_max;
+  int edge_min;
+  int edge_max;
 };
 
 // line_interval.
 TriTriLineInterval tri_tri_line_interval(vec3 t[3], float d[3], vec3 dir, vec3 origin) {
-  TriTriLineInterval r = TriTriLineInterval(3.4e38, -3.4e38, vec3(0.0), vec3(0.0));
+  TriTriLineInterval r = TriTriLineInterval(3.4e38, -3.4e38, vec3(0.0), vec3(0.0), 0, 0);
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
     bool found = false;
@@ -95,13 +97,36 @@ TriTriLineInterval tri_tri_line_interval(vec3 t[3], float d[3], vec3 dir, vec3 o
     if (found && s < r.t_min) {
       r.t_min = s;
       r.x_min = x;
+      r.edge_min = i;
     }
     if (found && s > r.t_max) {
       r.t_max = s;
       r.x_max = x;
+      r.edge_max = i;
     }
   }
   return r;
+}
+
+// edge_axis_separates.
+bool tri_tri_edge_axis_separates(vec3 a[3], vec3 b[3], int ea, int eb, float size) {
+  const vec3 w = tri_tri_cross(a[(ea + 1) % 3] - a[ea], b[(eb + 1) % 3] - b[eb]);
+  float a_lo = 0.0;  // a[0] itself
+  float a_hi = 0.0;
+  float b_lo = 3.4e38;
+  float b_hi = -3.4e38;
+  for (int i = 0; i < 3; ++i) {
+    const float pa = tri_tri_dot(w, a[i] - a[0]);
+    const float pb = tri_tri_dot(w, b[i] - a[0]);
+    a_lo = min(a_lo, pa);
+    a_hi = max(a_hi, pa);
+    b_lo = min(b_lo, pb);
+    b_hi = max(b_hi, pb);
+  }
+  precise float margin = kTriTriTolerance * size * tri_tri_length(w);
+  precise float gap_ab = b_lo - a_hi;
+  precise float gap_ba = a_lo - b_hi;
+  return gap_ab > margin || gap_ba > margin;
 }
 
 // orient2d.
@@ -380,23 +405,28 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
   const float la2 = tri_tri_longest_edge2(a);
   const float lb2 = tri_tri_longest_edge2(b);
   const vec3 na = tri_tri_cross(a[1] - a[0], a[2] - a[0]);
-  const vec3 nb = tri_tri_cross(b[1] - b[0], b[2] - b[0]);
   const float na_len = tri_tri_length(na);
-  const float nb_len = tri_tri_length(nb);
   precise float degenerate_a = kTriTriDegenerateTolerance * la2;
-  precise float degenerate_b = kTriTriDegenerateTolerance * lb2;
-  if (!(na_len > degenerate_a) || !(nb_len > degenerate_b)) return result;
+  if (!(na_len > degenerate_a)) return result;
   precise float size = sqrt(max(la2, lb2));
   precise vec3 ua = na / na_len;
-  precise vec3 ub = nb / nb_len;
 
   // Signed distances of each triangle's vertices to the other's plane, snapped to the plane.
   precise float tol_a = (kTriTriTolerance + kTriTriRoundoff * la2 / na_len) * size;
-  precise float tol_b = (kTriTriTolerance + kTriTriRoundoff * lb2 / nb_len) * size;
   float db[3];
-  float da[3];
   for (int i = 0; i < 3; ++i) {
     db[i] = tri_tri_snap_to_zero(tri_tri_dot(ua, b[i] - a[0]), tol_a);
+  }
+  // b wholly on one side of a's plane beyond the tolerance: apart (see the C++).
+  if (tri_tri_same_strict_side(db)) return result;
+  const vec3 nb = tri_tri_cross(b[1] - b[0], b[2] - b[0]);
+  const float nb_len = tri_tri_length(nb);
+  precise float degenerate_b = kTriTriDegenerateTolerance * lb2;
+  if (!(nb_len > degenerate_b)) return result;
+  precise vec3 ub = nb / nb_len;
+  precise float tol_b = (kTriTriTolerance + kTriTriRoundoff * lb2 / nb_len) * size;
+  float da[3];
+  for (int i = 0; i < 3; ++i) {
     da[i] = tri_tri_snap_to_zero(tri_tri_dot(ub, a[i] - b[0]), tol_b);
   }
   const bool b_on_plane_a = db[0] == 0.0 && db[1] == 0.0 && db[2] == 0.0;
@@ -406,7 +436,7 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
     result.intersect = tri_tri_coplanar_overlap(a, b, na, size);
     return result;
   }
-  if (tri_tri_same_strict_side(db) || tri_tri_same_strict_side(da)) return result;
+  if (tri_tri_same_strict_side(da)) return result;
 
   // Both triangles cross the line of the planes' intersection: overlap of their intervals.
   const vec3 dir = tri_tri_cross(ua, ub);
@@ -445,6 +475,16 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
     result.segment0 = touching ? mid : x_lo;
     result.segment1 = touching ? mid : x_hi;
     return result;
+  }
+
+  // A gap between the intervals: the axis across the two edges that make its facing ends (see
+  // the C++).
+  if (gap) {
+    const bool a_first = ia.t_max < ib.t_min;
+    if (tri_tri_edge_axis_separates(a, b, a_first ? ia.edge_max : ia.edge_min,
+                                    a_first ? ib.edge_min : ib.edge_max, size)) {
+      return result;
+    }
   }
 
   // "Apart" not proven yet (see the C++): apart only when, for one of the two triangles, no

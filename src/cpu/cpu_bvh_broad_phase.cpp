@@ -4,6 +4,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "core/collision/body_pairs.h"
 #include "core/collision/broad_phase.h"
@@ -13,12 +14,15 @@ namespace deformcd::cpu {
 
 namespace {
 
-// Query faces per task: a query costs a few dozen box tests when it hits the other body and
-// one when it misses, so a task needs many of them to outweigh its scheduling.
-constexpr std::size_t kQueryGrain = 64;
+// Node pairs per thread a mesh pair's traversal is cut into before the threads take them:
+// enough to share out pieces of very different sizes, few enough that cutting them (a few box
+// tests each, on one thread) stays small. One thread takes the traversal whole.
+constexpr std::size_t kFrontierPairsPerThread = 64;
 
-// The tree traversed for a mesh pair: the one of the mesh with more faces (b on a tie), so
-// that the fewer faces of the other make the queries (log of the larger count per query).
+// The tree of a mesh pair that is rebuilt when degraded: the one of the mesh with more faces
+// (b on a tie). Both trees are descended, but the policy is the GL backend's, whose faces of the
+// smaller mesh query the larger one's tree (bvh_traverse.comp): a loose tree costs time only,
+// never a pair, since every box stays exact.
 std::uint32_t traversed_mesh(const gpu::BodyPair& pair, const std::vector<gpu::MeshInfo>& meshes) {
   return meshes[pair.a].face_count > meshes[pair.b].face_count ? pair.a : pair.b;
 }
@@ -41,8 +45,8 @@ void BvhBroadPhase::upload(const collision::CollisionData& data, collision::Vert
   queried_.assign(meshes_.size(), 0u);
 }
 
-void BvhBroadPhase::run(collision::VertexPositions positions, const std::vector<gpu::Face>& faces,
-                        const NarrowPhase& narrow, PairCollector& out) {
+void BvhBroadPhase::run(collision::VertexPositions positions, const NarrowPhase& narrow,
+                        PairCollector& out) {
   trees_.refit(positions);
   std::fill(queried_.begin(), queried_.end(), 0u);
   // Mesh level: sort and sweep over the root boxes, so that many meshes cost what their nearby
@@ -63,47 +67,40 @@ void BvhBroadPhase::run(collision::VertexPositions positions, const std::vector<
   for (const gpu::BodyPair& pair : touching_)
     queried_[traversed_mesh(pair, meshes_)] = 1u;
   // A tree nobody traverses may stay loose: its root box, all that is read of it, is exact.
-  for (std::uint32_t mesh = 0; mesh < queried_.size(); ++mesh) {
-    if (queried_[mesh] != 0u) trees_.rebuild_if_degraded(mesh, positions);
-  }
-  for (const gpu::BodyPair& pair : touching_) {
-    const std::uint32_t tree = traversed_mesh(pair, meshes_);
-    traverse(pair, tree == pair.a ? pair.b : pair.a, tree, positions, faces, narrow, out);
-  }
+  trees_.rebuild_degraded(queried_, positions);
+  for (const gpu::BodyPair& pair : touching_)
+    traverse(pair, narrow, out);
 }
 
-void BvhBroadPhase::traverse(const gpu::BodyPair& pair, std::uint32_t query_body,
-                             std::uint32_t tree_body, collision::VertexPositions positions,
-                             const std::vector<gpu::Face>& faces, const NarrowPhase& narrow,
-                             PairCollector& out) const {
-  const gpu::MeshInfo& q = meshes_[query_body];
-  const std::uint32_t root = trees_.tree(tree_body).root;
+void BvhBroadPhase::traverse(const gpu::BodyPair& pair, const NarrowPhase& narrow,
+                             PairCollector& out) {
   const gpu::BvhNode* nodes = trees_.nodes().data();
   const gpu::Box* boxes = trees_.boxes().data();
-  const bool query_is_a = query_body == pair.a;
-  // Ranges rather than parallel_for.h's single elements: the thread's result list is looked up
-  // once per range, not once per query.
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, q.face_count, kQueryGrain),
-                    [&](const tbb::blocked_range<std::uint32_t>& range) {
+  const std::uint32_t root_a = trees_.tree(pair.a).root;
+  const std::uint32_t root_b = trees_.tree(pair.b).root;
+  const bool self = pair.a == pair.b;
+  if (!collision::boxes_overlap(boxes[root_a], boxes[root_b])) return;
+  frontier_.assign(1, NodePair{root_a, root_b});
+  const auto threads = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
+  if (threads > 1) {
+    expand_frontier(nodes, boxes, self, kFrontierPairsPerThread * threads, frontier_, scratch_);
+  }
+  // The pieces differ in size by orders of magnitude (most are a few leaf pairs, some hold the
+  // whole contact): one piece per task, taken by whichever thread is free.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, frontier_.size(), 1),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
                       ThreadPairs& local = out.local();
-                      for (std::uint32_t i = range.begin(); i != range.end(); ++i) {
-                        const std::uint32_t face = q.face_offset + i;
-                        const gpu::Face& f = faces[face];
-                        gpu::Box box = collision::empty_box();
-                        glm::vec3 corners[3];
-                        collision::face_vertices(positions, f, corners);
-                        collision::grow_box(box, corners[0]);
-                        collision::grow_box(box, corners[1]);
-                        collision::grow_box(box, corners[2]);
-                        // The test is fused into the traversal: no candidate list to write and read
-                        // back.
-                        collision::query_bvh(nodes, boxes, root, box, [&](std::uint32_t other) {
-                          if (query_is_a) {
-                            narrow.test(face, other, local);
-                          } else {
-                            narrow.test(other, face, local);
-                          }
-                        });
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        // The test is fused into the traversal: no candidate list to write and
+                        // read back. Within one mesh the narrow phase takes the lower face first.
+                        traverse_node_pair(nodes, boxes, self, frontier_[i],
+                                           [&](std::uint32_t face_a, std::uint32_t face_b) {
+                                             if (self && face_b < face_a) {
+                                               narrow.test(face_b, face_a, local);
+                                             } else {
+                                               narrow.test(face_a, face_b, local);
+                                             }
+                                           });
                       }
                     });
 }

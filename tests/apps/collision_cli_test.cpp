@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -174,9 +175,53 @@ TEST_F(CollisionCli, BenchJsonHasEveryKeyAndEqualPairCounts) {
   EXPECT_EQ(csv[0],
             "scene,backend,device,method,frames,repeat,threads,total_s,simulation_s,collision_s,"
             "ms_before,ms_contact,ms_after,cd_ms_before,cd_ms_contact,cd_ms_after,pairs,"
-            "candidates,improvement,deformcd_version");
+            "candidates,improvement,deformcd_version,device_times,device_ms_before,"
+            "device_ms_contact,device_ms_after,cd_device_ms_before,cd_device_ms_contact,"
+            "cd_device_ms_after");
   EXPECT_NE(csv[1].find(",brute,12,1,"), std::string::npos) << csv[1];
+  // No device to time on the CPU: no device keys, empty device columns.
+  EXPECT_EQ(s.at("device_times"), "none");
+  EXPECT_FALSE(brute.contains("device_ms_per_frame"));
+  EXPECT_NE(csv[1].find(",none,,,,,,"), std::string::npos) << csv[1];
 }
+
+#ifdef DEFORMCD_HAS_GL
+TEST_F(CollisionCli, BenchOnGlReportsTheStagesDeviceTimesAndWhatTheyAre) {
+  const CliRun r = run_cli("bench " + scene("phase2") + " --backend gl --frames 3 --methods bvh " +
+                           "--json " + path("bench.json") + " --csv " + path("bench.csv"));
+  if (r.status != 0 && std::getenv("DEFORMCD_REQUIRE_GL") == nullptr) {
+    GTEST_SKIP() << "no OpenGL 4.3 context: " << r.output;
+  }
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("device time (GL timer queries, GL_TIME_ELAPSED)"), std::string::npos)
+      << r.output;
+  std::ifstream in(path("bench.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json& s = j.at("scenes").at(0);
+  const std::string times = s.at("device_times").get<std::string>();
+  EXPECT_TRUE(times == "gpu" || times == "cpu") << times;
+  // A software renderer is named as such, in the JSON and in the printed table.
+  if (s.at("device").get<std::string>().find("llvmpipe") != std::string::npos) {
+    EXPECT_EQ(times, "cpu");
+    EXPECT_NE(r.output.find("not GPU times"), std::string::npos) << r.output;
+  }
+  const nlohmann::json& bvh = s.at("methods").at("bvh");
+  for (const char* key : {"simulation_device_ms", "collision_device_ms"}) {
+    ASSERT_EQ(bvh.at("per_frame").at(key).size(), 3u) << key;
+    for (const nlohmann::json& v : bvh["per_frame"][key])
+      EXPECT_GE(v.get<double>(), 0.0) << key;
+  }
+  EXPECT_GE(bvh.at("device_collision_s").get<double>(), 0.0);
+  for (const char* stage : {"before", "contact", "after"}) {
+    EXPECT_TRUE(bvh.at("device_ms_per_frame").contains(stage)) << stage;
+    EXPECT_TRUE(bvh.at("collision_device_ms_per_frame").contains(stage)) << stage;
+  }
+  const std::vector<std::string> csv = lines_of(path("bench.csv"));
+  ASSERT_EQ(csv.size(), 2u);
+  EXPECT_NE(csv[1].find("," + times + ","), std::string::npos) << csv[1];
+  EXPECT_EQ(csv[1].find(",,"), std::string::npos) << csv[1];  // every device column filled
+}
+#endif
 
 TEST_F(CollisionCli, BenchDrawsAChartNamingItsFile) {
   if (deformcd::test::run_shell("command -v gnuplot").status != 0) {

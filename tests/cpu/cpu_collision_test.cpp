@@ -297,8 +297,9 @@ TEST(CpuCollision, BvhRebuildsADegradedTreeAndStillFindsThePairs) {
 TEST(CpuCollision, BvhLeavesATreeNobodyTraversesAsItIs) {
   CollisionFixture w = three_bodies();
   // The trees are built and fitted on the rest pose, then mesh 2 is folded in place. Mesh 2
-  // has the fewest faces: its faces query the others' trees, its own tree is only read at the
-  // root, which is exact however loose the tree below it.
+  // has the fewest faces: the rebuild policy (the GL backend's, whose faces of the smaller mesh
+  // query the larger one's tree) leaves its tree as it is; the CPU descends it all the same,
+  // and every box in it is exact however loose the tree.
   const std::unique_ptr<CpuCollision> cpu = backend(w);
   fold_quarters(w, 2);
   cpu->detect(BroadPhase::kBvh);

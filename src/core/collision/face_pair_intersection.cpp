@@ -75,6 +75,10 @@ TriTriResult face_pair_intersect(const gpu::Face& fa, const gpu::Face& fb,
   glm::vec3 q[3];
   face_vertices(positions, fa, p);
   face_vertices(positions, fb, q);
+  // Faces of two meshes share no node (indices are local to a mesh): straight to the triangle
+  // test, which starts with the same exact box test. (The GLSL mirror keeps one call site of
+  // tri_tri_intersect for llvmpipe's sake and finds no shared node instead: the same answer.)
+  if (fa.body != fb.body) return tri_tri_intersect(p, q);
   // Most pairs a broad phase hands on (all of them for brute force) have boxes apart: that
   // exact test first, as tri_tri_intersect would, before looking for shared nodes (faces that
   // share one have touching boxes, so no answer changes).

@@ -30,18 +30,21 @@ namespace {
 using namespace detail;
 
 // The part of triangle t on the other triangle's plane, as an interval of the parameter
-// dot(dir, x - origin) along the planes' intersection line, with the points at its ends. The
-// points are its vertices on the plane (d == 0) and its edges' crossings of the plane.
+// dot(dir, x - origin) along the planes' intersection line, with the points at its ends and the
+// edges they were found on (edge i runs from vertex i to i + 1). The points are its vertices on
+// the plane (d == 0, counted on the edge leaving them) and its edges' crossings of the plane.
 struct LineInterval {
   float t_min;
   float t_max;
   glm::vec3 x_min;
   glm::vec3 x_max;
+  int edge_min;
+  int edge_max;
 };
 
 LineInterval line_interval(const glm::vec3 t[3], const float d[3], const glm::vec3& dir,
                            const glm::vec3& origin) {
-  LineInterval r{3.4e38f, -3.4e38f, glm::vec3(0.0f), glm::vec3(0.0f)};
+  LineInterval r{3.4e38f, -3.4e38f, glm::vec3(0.0f), glm::vec3(0.0f), 0, 0};
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
     bool found = false;
@@ -57,13 +60,39 @@ LineInterval line_interval(const glm::vec3 t[3], const float d[3], const glm::ve
     if (found && s < r.t_min) {
       r.t_min = s;
       r.x_min = x;
+      r.edge_min = i;
     }
     if (found && s > r.t_max) {
       r.t_max = s;
       r.x_max = x;
+      r.edge_max = i;
     }
   }
   return r;
+}
+
+// Whether the axis w = cross(edge ea of a, edge eb of b) separates the triangles by more than
+// kTriTriTolerance x size (as a distance along the unit axis): then they are apart on the exact
+// coordinates. Any axis that separates proves it, so w's own rounding does not matter; the
+// projections, relative to a[0], are each off by at most about 4 ulps of |w| |x - a0| (dot of one
+// rounded difference), and |x - a0| <= 2 sqrt(3) size since the pair's boxes touch: below
+// 2e-6 |w| size for the two ends, a fifth of the margin.
+bool edge_axis_separates(const glm::vec3 a[3], const glm::vec3 b[3], int ea, int eb, float size) {
+  const glm::vec3 w = glm::cross(a[(ea + 1) % 3] - a[ea], b[(eb + 1) % 3] - b[eb]);
+  float a_lo = 0.0f;  // a[0] itself
+  float a_hi = 0.0f;
+  float b_lo = 3.4e38f;
+  float b_hi = -3.4e38f;
+  for (int i = 0; i < 3; ++i) {
+    const float pa = glm::dot(w, a[i] - a[0]);
+    const float pb = glm::dot(w, b[i] - a[0]);
+    a_lo = std::min(a_lo, pa);
+    a_hi = std::max(a_hi, pa);
+    b_lo = std::min(b_lo, pb);
+    b_hi = std::max(b_hi, pb);
+  }
+  const float margin = kTriTriTolerance * size * glm::length(w);
+  return b_lo - a_hi > margin || a_lo - b_hi > margin;
 }
 
 // Coplanar triangles: project onto the coordinate plane where the normal n is largest, then
@@ -239,25 +268,30 @@ TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]) {
   const float la2 = longest_edge2(a);
   const float lb2 = longest_edge2(b);
   const glm::vec3 na = glm::cross(a[1] - a[0], a[2] - a[0]);
-  const glm::vec3 nb = glm::cross(b[1] - b[0], b[2] - b[0]);
   const float na_len = glm::length(na);
-  const float nb_len = glm::length(nb);
-  if (!(na_len > kTriTriDegenerateTolerance * la2) || !(nb_len > kTriTriDegenerateTolerance * lb2))
-    return result;
+  if (!(na_len > kTriTriDegenerateTolerance * la2)) return result;
   const float size = std::sqrt(std::max(la2, lb2));
   const glm::vec3 ua = na / na_len;
-  const glm::vec3 ub = nb / nb_len;
 
   // Signed distances of each triangle's vertices to the other's plane, snapped to the plane
   // within the tolerance above (divided by |n|, since the normals here are unit).
   const float tol_a = (kTriTriTolerance + kTriTriRoundoff * la2 / na_len) * size;
-  const float tol_b = (kTriTriTolerance + kTriTriRoundoff * lb2 / nb_len) * size;
   float db[3];
-  float da[3];
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 3; ++i)
     db[i] = snap_to_zero(glm::dot(ua, b[i] - a[0]), tol_a);
+  // b wholly on one side of a's plane, every vertex beyond the tolerance: apart on the exact
+  // coordinates too (the tolerance holds the rounding of the distances), whatever b's plane.
+  // Decided before b's plane is computed: the most common answer on the candidates of a broad
+  // phase (42 % of the tests on bench_peers' contact frames).
+  if (same_strict_side(db)) return result;
+  const glm::vec3 nb = glm::cross(b[1] - b[0], b[2] - b[0]);
+  const float nb_len = glm::length(nb);
+  if (!(nb_len > kTriTriDegenerateTolerance * lb2)) return result;
+  const glm::vec3 ub = nb / nb_len;
+  const float tol_b = (kTriTriTolerance + kTriTriRoundoff * lb2 / nb_len) * size;
+  float da[3];
+  for (int i = 0; i < 3; ++i)
     da[i] = snap_to_zero(glm::dot(ub, a[i] - b[0]), tol_b);
-  }
   const bool b_on_plane_a = db[0] == 0.0f && db[1] == 0.0f && db[2] == 0.0f;
   const bool a_on_plane_b = da[0] == 0.0f && da[1] == 0.0f && da[2] == 0.0f;
   if (b_on_plane_a || a_on_plane_b) {
@@ -265,7 +299,7 @@ TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]) {
     result.intersect = coplanar_overlap(a, b, na, size);
     return result;
   }
-  if (same_strict_side(db) || same_strict_side(da)) return result;
+  if (same_strict_side(da)) return result;
 
   // Both triangles cross the line of the planes' intersection: overlap of their intervals.
   const glm::vec3 dir = glm::cross(ua, ub);
@@ -294,6 +328,17 @@ TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]) {
     result.segment[0] = touching ? 0.5f * (x_lo + x_hi) : x_lo;
     result.segment[1] = touching ? 0.5f * (x_lo + x_hi) : x_hi;
     return result;
+  }
+
+  // A gap between the intervals: the ends facing each other lie on an edge of each triangle, and
+  // the axis across those two edges separates the pair in most such cases (measured: all but 3 of
+  // 57,553 on the contact frames of bench_peers). It is a cheap proof of "apart", constructed from
+  // no crossing of the planes; where it fails, the slab test below decides.
+  if (gap) {
+    const bool a_first = ia.t_max < ib.t_min;
+    if (edge_axis_separates(a, b, a_first ? ia.edge_max : ia.edge_min,
+                            a_first ? ib.edge_min : ib.edge_max, size))
+      return result;
   }
 
   // "Apart" not proven yet: a gap between the intervals or a miss in the plane is computed from

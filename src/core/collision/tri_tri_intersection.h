@@ -31,7 +31,8 @@ inline constexpr float kTriTriDegenerateTolerance = 1e-4f;
 
 /// Result of tri_tri_intersect. segment is set only when intersect && !coplanar (both ends
 /// equal when the triangles touch at a point); otherwise it is zero. coplanar is only
-/// determined for triangles whose bounding boxes touch (others are rejected first).
+/// determined for pairs not rejected first: bounding boxes apart, or one triangle (the second in
+/// the pair's canonical order) wholly on one side of the other's plane beyond the tolerance.
 struct TriTriResult {
   bool intersect = false;
   bool coplanar = false;
