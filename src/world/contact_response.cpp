@@ -97,6 +97,11 @@ std::vector<glm::vec4> ContactResponse::body_motion() {
     float stray = 0.0f;
     for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i)
       stray = std::max(stray, glm::length(glm::vec3(v[i]) + carry_[b] - drift));
+    if (!std::isfinite(stray) || !std::isfinite(drift.x + drift.y + drift.z)) {
+      throw SimulationError("the simulation became unstable: body " + std::to_string(b) +
+                            " has a non-finite velocity. Use a smaller dt, more substeps or "
+                            "softer springs");
+    }
     // Capped at half a mean edge: a faster frame searches again when a node gets that far,
     // rather than inflating every box (the search's cost grows with the reach squared).
     const float travel = 2.0f * stray * dt + glm::length(step_.gravity) * dt * dt;

@@ -203,3 +203,69 @@ TEST(ShippedScenes, AllReadAndTheirModelsExist) {
 
 }  // namespace
 }  // namespace deformcd
+
+namespace deformcd {
+namespace {
+
+const char* const kResponseScene = R"({
+  "response": RESPONSE,
+  "bodies": [{"model": "models/cube"}]
+})";
+
+std::string with_response(const std::string& response) {
+  std::string text = kResponseScene;
+  text.replace(text.find("RESPONSE"), 8, response);
+  return text;
+}
+
+TEST_F(SceneReaderTest, ResponseIsOffWithoutItAndEveryDefaultWithAnEmptyObject) {
+  EXPECT_FALSE(read_scene(write(R"({"bodies": [{"model": "models/cube"}]})")).response);
+  const Scene s = read_scene(write(with_response("{}")));
+  ASSERT_TRUE(s.response.has_value());
+  const ResponseSettings defaults;
+  EXPECT_FALSE(s.response->thickness.has_value());
+  EXPECT_EQ(s.response->relative_thickness, defaults.relative_thickness);
+  EXPECT_EQ(s.response->friction_static, defaults.friction_static);
+  EXPECT_EQ(s.response->restitution, defaults.restitution);
+}
+
+TEST_F(SceneReaderTest, ResponseReadsEveryKey) {
+  const Scene s = read_scene(write(with_response(
+      R"({"thickness": 0.01, "relative_thickness": 0.3, "friction_static": 0.7,
+          "friction_dynamic": 0.5, "restitution": 0.25, "untangle_step": 0.05})")));
+  ASSERT_TRUE(s.response.has_value());
+  EXPECT_FLOAT_EQ(*s.response->thickness, 0.01f);
+  EXPECT_FLOAT_EQ(s.response->relative_thickness, 0.3f);
+  EXPECT_FLOAT_EQ(s.response->friction_static, 0.7f);
+  EXPECT_FLOAT_EQ(s.response->friction_dynamic, 0.5f);
+  EXPECT_FLOAT_EQ(s.response->restitution, 0.25f);
+  EXPECT_FLOAT_EQ(s.response->untangle_step, 0.05f);
+}
+
+// Each bad value is named by its JSON pointer.
+TEST_F(SceneReaderTest, BadResponseValuesNameTheirKey) {
+  const struct {
+    const char* response;
+    const char* pointer;
+    const char* says;
+  } cases[] = {
+      {R"({"thickness": -0.01})", "/response/thickness", "positive"},
+      {R"({"thickness": 0})", "/response/thickness", "positive"},
+      {R"({"friction_static": -1})", "/response/friction_static", "negative"},
+      {R"({"friction_dynamic": -0.1})", "/response/friction_dynamic", "negative"},
+      {R"({"friction_static": 0.2, "friction_dynamic": 0.5})", "/response/friction_dynamic",
+       "friction_static"},
+      {R"({"restitution": 1.5})", "/response/restitution", "between 0 and 1"},
+      {R"({"untangle_step": 0})", "/response/untangle_step", "positive"},
+      {R"({"thickness": "thin"})", "/response/thickness", ""},
+      {R"({"stiffness": 1})", "/response/stiffness", "unknown"},
+  };
+  for (const auto& c : cases) {
+    const std::string message = error_of(with_response(c.response));
+    EXPECT_NE(message.find(c.pointer), std::string::npos) << c.response << ": " << message;
+    EXPECT_NE(message.find(c.says), std::string::npos) << c.response << ": " << message;
+  }
+}
+
+}  // namespace
+}  // namespace deformcd

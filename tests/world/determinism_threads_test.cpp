@@ -68,6 +68,7 @@ std::vector<Frame> run_scene(const Scene& scene, int frame_count, int threads) {
   options.cpu_threads = threads;
   options.broadphase = parse_broadphase(scene.collision.broadphase);
   options.self_collision = scene.collision.self;
+  options.response = scene.response;  // the response scenes' projections and searches too
   // The shipped scenes use TetGen models; a surface model would need deformcd::tetgen, which
   // this test does not link (read_tetgen then fails naming the file).
   World world(make_scene_bodies(scene, read_tetgen, frame_count), step_settings(scene.settings),

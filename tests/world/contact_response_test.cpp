@@ -1,0 +1,247 @@
+// Contact response (issue 12) on the CPU backend, on the shipped response scenes: bodies that
+// start overlapped come apart, a head-on impact conserves momentum and rebounds, and the
+// proximity search behind it misses no pair a brute-force enumeration finds. (GL agrees with
+// the CPU pass for pass: tests/gl/gl_contact_response_test.cpp; thread counts:
+// tests/world/determinism_threads_test.cpp, which runs every shipped scene with its response.)
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "deformcd/detector.h"
+#include "deformcd/error.h"
+#include "deformcd/io.h"
+#include "deformcd/scene.h"
+#include "deformcd/world.h"
+
+namespace fs = std::filesystem;
+
+namespace deformcd {
+namespace {
+
+struct SceneWorld {
+  std::vector<BodyInit> bodies;
+  std::unique_ptr<World> world;
+};
+
+SceneWorld open_scene(const std::string& name, int frames, int threads = 0) {
+  const Scene scene = read_scene(fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (name + ".json"));
+  SceneWorld out;
+  out.bodies = make_scene_bodies(scene, read_tetgen, frames);
+  WorldOptions options;
+  options.backend = BackendKind::kCpu;
+  options.cpu_threads = threads;
+  options.self_collision = scene.collision.self;
+  options.response = scene.response;
+  out.world = std::make_unique<World>(out.bodies, step_settings(scene.settings), options);
+  return out;
+}
+
+double contour_length(const std::vector<Contact>& contacts) {
+  double sum = 0.0;
+  for (const Contact& c : contacts)
+    sum += glm::length(c.segment[1] - c.segment[0]);
+  return sum;
+}
+
+// Two bodies that start about 20 % overlapped come apart: no intersecting face pair after at
+// most 60 frames, and none after that. The exact intersection contour shrinks overall, but not
+// monotonically yet: it grows back by up to about a fifth of its start while the untangling
+// pushes crossing vertices out through the faces they cross (the issue asks for no regrowth:
+// recorded as largest_regrowth_m, bounded here so that it cannot get worse unnoticed).
+TEST(ContactResponse, OverlappedBodiesComeApart) {
+  SceneWorld s = open_scene("overlap", 90);
+  s.world->detect_collisions();
+  const double start = contour_length(s.world->contacts());
+  ASSERT_GT(start, 0.0) << "the scene should start overlapped";
+  int clear_from = -1;
+  double least = start;
+  double regrowth = 0.0;
+  for (int f = 1; f <= 90; ++f) {
+    s.world->step();
+    const std::vector<Contact> contacts = s.world->contacts();
+    const double length = contour_length(contacts);
+    regrowth = std::max(regrowth, length - least);
+    least = std::min(least, length);
+    if (contacts.empty() && clear_from < 0) clear_from = f;
+    if (!contacts.empty()) clear_from = -1;
+  }
+  EXPECT_GE(clear_from, 1) << "the bodies should end apart";
+  EXPECT_LE(clear_from, 60) << "apart by frame 60 and for good";
+  EXPECT_LE(regrowth, 0.25 * start) << "start " << start;
+  RecordProperty("contour_start_m", std::to_string(start));
+  RecordProperty("apart_from_frame", clear_from);
+  RecordProperty("largest_regrowth_m", std::to_string(regrowth));
+}
+
+// A free head-on impact without gravity, damping of the whole or fixed nodes, with zero total
+// momentum: the response conserves momentum (mass splitting, momentum-conserving weights), and
+// the bodies rebound with velocities of opposite signs along the impact axis (x).
+TEST(ContactResponse, ImpactConservesMomentumAndRebounds) {
+  constexpr int kFrames = 80;
+  SceneWorld s = open_scene("impact", kFrames);
+  World& world = *s.world;
+  const auto momentum = [&] {
+    glm::dvec3 p(0.0);
+    double magnitude = 0.0;
+    for (std::size_t b = 0; b < world.body_count(); ++b) {
+      const std::vector<glm::vec3> v = world.velocities(b);
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const double m = s.bodies[b].body.node_mass[i];
+        p += m * glm::dvec3(v[i]);
+        magnitude += m * glm::length(glm::dvec3(v[i]));
+      }
+    }
+    return std::pair{p, magnitude};
+  };
+  const auto [p0, scale] = momentum();
+  double worst = 0.0;
+  std::uint64_t constraints = 0;
+  for (int f = 0; f < kFrames; ++f) {
+    world.step();
+    const ResponseCounts c = world.response_counts();
+    constraints += c.vertex_face + c.edge_edge;
+    worst = std::max(worst, glm::length(momentum().first - p0) / scale);
+  }
+  EXPECT_GT(constraints, 1000u) << "the bodies should have met";
+  EXPECT_LT(worst, 1e-5) << "relative momentum drift";
+  RecordProperty("momentum_drift", std::to_string(worst));
+  const auto mean_vx = [&](std::size_t body) {
+    double sum = 0.0;
+    const std::vector<glm::vec3> v = world.velocities(body);
+    for (const glm::vec3& x : v)
+      sum += x.x;
+    return sum / static_cast<double>(v.size());
+  };
+  EXPECT_LT(mean_vx(0), 0.0) << "the armadillo came from the left and goes back";
+  EXPECT_GT(mean_vx(1), 0.0) << "the lion came from the right and goes back";
+}
+
+// What the proximity search returns equals a brute-force enumeration of every vertex-triangle
+// and edge-edge pair of the two meshes whose boxes, grown by the two reaches and swept along the
+// relative drift, overlap, on the impact scene's models at the moment of contact.
+TEST(ContactResponse, ProximityEqualsBruteForce) {
+  SceneWorld s = open_scene("impact", 16);
+  for (int f = 0; f < 13; ++f)
+    s.world->step();
+  std::vector<CollisionMesh> meshes;
+  std::vector<std::vector<glm::vec3>> positions;
+  for (std::size_t b = 0; b < 2; ++b) {
+    CollisionMesh m;
+    m.vertex_count = static_cast<std::uint32_t>(s.bodies[b].body.positions.size());
+    for (const gpu::Face& f : s.bodies[b].body.faces)
+      m.triangles.push_back({f.a, f.b, f.c});
+    meshes.push_back(std::move(m));
+    positions.push_back(s.world->positions(b));
+  }
+  Detector detector(meshes, {.backend = BackendKind::kCpu});
+  for (std::size_t b = 0; b < 2; ++b)
+    detector.set_positions(b, std::span<const glm::vec3>(positions[b]));
+  const std::vector<float> reach = {0.006f, 0.009f};
+  const std::vector<glm::vec3> drift = {glm::vec3(0.02f, 0.0f, 0.0f),
+                                        glm::vec3(-0.01f, 0.003f, 0.0f)};
+  const std::vector<ProximityPair> found = detector.find_proximity(reach, drift);
+
+  using Key = std::tuple<int, std::uint32_t, std::uint32_t, std::array<std::uint32_t, 4>>;
+  const auto box = [](std::initializer_list<glm::vec3> points, float grow, glm::vec3 sweep) {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const glm::vec3& p : points) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    lo -= grow;
+    hi += grow;
+    return std::pair{lo + glm::min(sweep, glm::vec3(0.0f)), hi + glm::max(sweep, glm::vec3(0.0f))};
+  };
+  const auto overlap = [](const std::pair<glm::vec3, glm::vec3>& a,
+                          const std::pair<glm::vec3, glm::vec3>& b) {
+    return glm::all(glm::lessThanEqual(a.first, b.second)) &&
+           glm::all(glm::lessThanEqual(b.first, a.second));
+  };
+  std::set<Key> expected;
+  const float grow = reach[0] + reach[1];
+  for (std::uint32_t a = 0; a < 2; ++a) {
+    const std::uint32_t b = 1 - a;
+    const glm::vec3 sweep = drift[a] - drift[b];
+    std::set<std::uint32_t> surface;
+    for (const Triangle& t : meshes[a].triangles)
+      surface.insert(t.begin(), t.end());
+    for (const std::uint32_t v : surface) {
+      const auto vbox = box({positions[a][v]}, grow, sweep);
+      for (const Triangle& t : meshes[b].triangles) {
+        if (overlap(vbox, box({positions[b][t[0]], positions[b][t[1]], positions[b][t[2]]}, 0.0f,
+                              glm::vec3(0.0f)))) {
+          expected.insert({0, a, b, {v, t[0], t[1], t[2]}});
+        }
+      }
+    }
+  }
+  const auto edges = [](const CollisionMesh& m) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> out;
+    for (const Triangle& t : m.triangles)
+      for (int k = 0; k < 3; ++k)
+        out.insert(std::minmax(t[k], t[(k + 1) % 3]));
+    return out;
+  };
+  for (const auto& [a0, a1] : edges(meshes[0])) {
+    const auto abox = box({positions[0][a0], positions[0][a1]}, grow, drift[0] - drift[1]);
+    for (const auto& [b0, b1] : edges(meshes[1])) {
+      if (overlap(abox, box({positions[1][b0], positions[1][b1]}, 0.0f, glm::vec3(0.0f))))
+        expected.insert({1, 0u, 1u, {a0, a1, b0, b1}});
+    }
+  }
+  std::set<Key> got;
+  for (const ProximityPair& p : found) {
+    std::array<std::uint32_t, 4> v = p.vertices;
+    if (p.kind == ProximityPair::Kind::kEdgeEdge) {
+      // Edges in canonical (low, high) order, as the enumeration names them.
+      if (v[0] > v[1]) std::swap(v[0], v[1]);
+      if (v[2] > v[3]) std::swap(v[2], v[3]);
+    }
+    const bool inserted =
+        got.insert({p.kind == ProximityPair::Kind::kEdgeEdge ? 1 : 0, p.mesh_a, p.mesh_b, v})
+            .second;
+    EXPECT_TRUE(inserted) << "a pair found twice";
+  }
+  EXPECT_GT(expected.size(), 100u) << "the models should be within reach";
+  EXPECT_EQ(got.size(), expected.size());
+  EXPECT_TRUE(got == expected);
+}
+
+TEST(ContactResponse, BadSettingsAreErrorsNamingTheField) {
+  SceneWorld s = open_scene("overlap", 1);
+  const auto error_of = [&](const ResponseSettings& settings) -> std::string {
+    WorldOptions options;
+    options.backend = BackendKind::kCpu;
+    options.response = settings;
+    try {
+      World world(s.bodies, StepSettings{}, options);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  ResponseSettings r;
+  r.thickness = std::nanf("");
+  EXPECT_NE(error_of(r).find("thickness"), std::string::npos);
+  r = {};
+  r.friction_static = -0.5f;
+  EXPECT_NE(error_of(r).find("friction_static"), std::string::npos);
+  r = {};
+  r.friction_dynamic = 0.9f;
+  EXPECT_NE(error_of(r).find("friction_dynamic"), std::string::npos);
+  r = {};
+  r.restitution = 2.0f;
+  EXPECT_NE(error_of(r).find("restitution"), std::string::npos);
+  EXPECT_EQ(error_of(ResponseSettings{}), "");
+}
+
+}  // namespace
+}  // namespace deformcd
