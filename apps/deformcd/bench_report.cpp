@@ -119,6 +119,20 @@ void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results
             << std::setw(34) << all.str() << std::setw(37) << cd.str() << '\n';
       }
     }
+    if (!b.runs.empty() && !b.runs.front().proximity_s.empty()) {
+      out << "contact response (in the simulation time above), ms/frame:\n";
+      for (const MethodRun& r : b.runs) {
+        const double frames = static_cast<double>(r.proximity_s.size());
+        const double simulation =
+            r.total_simulation_s() - r.total_proximity_s() - r.total_response_s();
+        out << std::left << std::setw(16) << broadphase_name(r.method) << std::right << std::fixed
+            << std::setprecision(2) << "simulation " << 1e3 * simulation / frames << ", proximity "
+            << 1e3 * r.total_proximity_s() / frames << ", response "
+            << 1e3 * r.total_response_s() / frames << " (proximity + response = "
+            << (r.total_proximity_s() + r.total_response_s()) / simulation << " x the simulation)\n"
+            << std::defaultfloat;
+      }
+    }
     for (const std::string& m : b.disagreements) {
       out << "WARNING: " << m << " found different contacts from "
           << broadphase_name(b.runs.front().method) << " on some frame\n";
@@ -144,6 +158,10 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
                                   {"collision_ms", milliseconds(r.collision_s)},
                                   {"contacts", r.contacts},
                                   {"candidates", r.candidates}};
+      if (!r.proximity_s.empty()) {
+        per_frame["proximity_ms"] = milliseconds(r.proximity_s);
+        per_frame["response_ms"] = milliseconds(r.response_s);
+      }
       methods[name] = {{"total_s", r.total_s()},
                        {"simulation_s", r.total_simulation_s()},
                        {"collision_s", r.total_collision_s()},
@@ -153,6 +171,10 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
                        {"pairs", r.pairs()},
                        {"candidates", candidates(r)},
                        {"per_frame", per_frame}};
+      if (!r.proximity_s.empty()) {
+        methods[name]["proximity_s"] = r.total_proximity_s();
+        methods[name]["response_s"] = r.total_response_s();
+      }
       if (t.device_times) {
         nlohmann::json& m = methods[name];
         m["device_simulation_s"] = r.total_simulation_device_s();

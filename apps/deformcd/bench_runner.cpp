@@ -32,7 +32,9 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
     return std::chrono::duration<double>(Clock::now() - start).count();
   };
   world_options.broadphase = method;
-  world_options.measure_stage_times = false;
+  // With contact response, step() times its proximity and response stages (waiting for the
+  // backend around each projection); without, nothing inside step() waits.
+  world_options.measure_stage_times = world_options.response.has_value();
   World world(bodies, settings, world_options);
   device = world.device();
   StageDeviceTimer timer(world.backend_name() == "gl");
@@ -46,6 +48,10 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
     timer.end(BenchStage::kSimulation);
     world.finish();
     run.simulation_s.push_back(seconds_since(start));
+    if (world.responds()) {
+      run.proximity_s.push_back(world.last_frame_times().proximity_s);
+      run.response_s.push_back(world.last_frame_times().response_s);
+    }
 
     world.set_broadphase(method);
     start = Clock::now();
@@ -79,6 +85,14 @@ std::vector<Stage> stages_from(const std::vector<std::uint64_t>& contacts) {
 }
 
 }  // namespace
+
+double MethodRun::total_proximity_s() const {
+  return std::accumulate(proximity_s.begin(), proximity_s.end(), 0.0);
+}
+
+double MethodRun::total_response_s() const {
+  return std::accumulate(response_s.begin(), response_s.end(), 0.0);
+}
 
 double MethodRun::total_simulation_s() const {
   return std::accumulate(simulation_s.begin(), simulation_s.end(), 0.0);

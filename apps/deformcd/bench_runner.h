@@ -32,11 +32,17 @@ struct MethodRun {
   /// Empty on the CPU.
   std::vector<double> simulation_device_s;
   std::vector<double> collision_device_s;
+  /// Per frame 1..N with contact response (a scene's `response`): the proximity searches and
+  /// the projections, included in simulation_s (the stage step() runs). Empty without.
+  std::vector<double> proximity_s;
+  std::vector<double> response_s;
 
   [[nodiscard]] double total_simulation_s() const;
   [[nodiscard]] double total_collision_s() const;
   [[nodiscard]] double total_simulation_device_s() const;
   [[nodiscard]] double total_collision_device_s() const;
+  [[nodiscard]] double total_proximity_s() const;
+  [[nodiscard]] double total_response_s() const;
   /// The paper's V: the run's total time, simulation and collision detection.
   [[nodiscard]] double total_s() const { return total_simulation_s() + total_collision_s(); }
   [[nodiscard]] std::uint64_t pairs() const;
