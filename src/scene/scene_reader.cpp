@@ -95,11 +95,10 @@ ResponseSettings read_response(JsonFields f) {
   r.relative_thickness =
       static_cast<float>(positive(f, "relative_thickness", r.relative_thickness));
   r.friction_static = static_cast<float>(non_negative(f, "friction_static", r.friction_static));
-  r.friction_dynamic =
-      static_cast<float>(non_negative(f, "friction_dynamic", r.friction_dynamic));
+  r.friction_dynamic = static_cast<float>(non_negative(f, "friction_dynamic", r.friction_dynamic));
   if (r.friction_dynamic > r.friction_static) {
-    f.fail("friction_dynamic", "must not exceed friction_static (" +
-                                   std::to_string(r.friction_static) + ")");
+    f.fail("friction_dynamic",
+           "must not exceed friction_static (" + std::to_string(r.friction_static) + ")");
   }
   r.restitution = static_cast<float>(non_negative(f, "restitution", r.restitution));
   if (r.restitution > 1.0f) f.fail("restitution", "must be between 0 and 1");
