@@ -41,16 +41,16 @@ SharedNodes shared_nodes(Face a, Face b) {
 // segment_triangle_meet.
 bool segment_triangle_meet(vec3 s0, vec3 s1, vec3 t[3]) {
   const float l2 = tri_tri_longest_edge2(t);
-  const vec3 n = tri_tri_cross(t[1] - t[0], t[2] - t[0]);
+  const vec3 n = exact_cross(t[1] - t[0], t[2] - t[0]);
   const float n_len = tri_tri_length(n);
   precise float degenerate = kTriTriDegenerateTolerance * l2;
   if (!(n_len > degenerate)) return false;
   precise vec3 e = s1 - s0;
-  precise float size = sqrt(max(l2, tri_tri_dot(e, e)));
+  precise float size = sqrt(max(l2, exact_dot(e, e)));
   precise vec3 u = n / n_len;
   precise float tol = (kTriTriTolerance + kTriTriRoundoff * l2 / n_len) * size;
-  const float d0 = tri_tri_snap_to_zero(tri_tri_dot(u, s0 - t[0]), tol);
-  const float d1 = tri_tri_snap_to_zero(tri_tri_dot(u, s1 - t[0]), tol);
+  const float d0 = tri_tri_snap_to_zero(exact_dot(u, s0 - t[0]), tol);
+  const float d1 = tri_tri_snap_to_zero(exact_dot(u, s1 - t[0]), tol);
   if (tri_tri_same_strict_sign(d0, d1)) return false;
 
   // On the plane: both ends (crossing an edge, or wholly inside), else the one point on it, an

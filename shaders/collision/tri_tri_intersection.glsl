@@ -5,8 +5,10 @@
 //
 // Every float that feeds a decision is `precise`: without it the driver may fuse a * b + c into
 // one fma (one rounding instead of two) or reorder sums, and the answers near the uncertain zone
-// would no longer match the C++ ones. dot, cross and length are written out for the same reason
-// (and to fix glm's order of the sums: (x + y) + z).
+// would no longer match the C++ ones. dot and cross (common/exact_math.glsl) and length are
+// written out for the same reason (and to fix glm's order of the sums: (x + y) + z).
+
+#include "common/exact_math.glsl"
 
 // kTriTriTolerance, kTriTriRoundoff, kTriTriDegenerateTolerance (tri_tri_intersection.h).
 const float kTriTriTolerance = 1e-5;
@@ -21,22 +23,10 @@ struct TriTriResult {
   vec3 segment1;
 };
 
-// glm::dot: the products, then (x + y) + z.
-float tri_tri_dot(vec3 a, vec3 b) {
-  precise vec3 t = a * b;
-  precise float r = (t.x + t.y) + t.z;
-  return r;
-}
-
-// glm::cross.
-vec3 tri_tri_cross(vec3 x, vec3 y) {
-  precise vec3 r = vec3(x.y * y.z - y.y * x.z, x.z * y.x - y.z * x.x, x.x * y.y - y.x * x.y);
-  return r;
-}
 
 // glm::length.
 float tri_tri_length(vec3 v) {
-  precise float r = sqrt(tri_tri_dot(v, v));
+  precise float r = sqrt(exact_dot(v, v));
   return r;
 }
 
@@ -45,7 +35,7 @@ float tri_tri_longest_edge2(vec3 t[3]) {
   precise vec3 e0 = t[1] - t[0];
   precise vec3 e1 = t[2] - t[1];
   precise vec3 e2 = t[0] - t[2];
-  return max(tri_tri_dot(e0, e0), max(tri_tri_dot(e1, e1), tri_tri_dot(e2, e2)));
+  return max(exact_dot(e0, e0), max(exact_dot(e1, e1), exact_dot(e2, e2)));
 }
 
 // snap_to_zero.
@@ -93,7 +83,7 @@ TriTriLineInterval tri_tri_line_interval(vec3 t[3], float d[3], vec3 dir, vec3 o
       x = t[i] + (t[j] - t[i]) * f;
       found = true;
     }
-    const float s = tri_tri_dot(dir, x - origin);
+    const float s = exact_dot(dir, x - origin);
     if (found && s < r.t_min) {
       r.t_min = s;
       r.x_min = x;
@@ -110,14 +100,14 @@ TriTriLineInterval tri_tri_line_interval(vec3 t[3], float d[3], vec3 dir, vec3 o
 
 // edge_axis_separates.
 bool tri_tri_edge_axis_separates(vec3 a[3], vec3 b[3], int ea, int eb, float size) {
-  const vec3 w = tri_tri_cross(a[(ea + 1) % 3] - a[ea], b[(eb + 1) % 3] - b[eb]);
+  const vec3 w = exact_cross(a[(ea + 1) % 3] - a[ea], b[(eb + 1) % 3] - b[eb]);
   float a_lo = 0.0;  // a[0] itself
   float a_hi = 0.0;
   float b_lo = 3.4e38;
   float b_hi = -3.4e38;
   for (int i = 0; i < 3; ++i) {
-    const float pa = tri_tri_dot(w, a[i] - a[0]);
-    const float pb = tri_tri_dot(w, b[i] - a[0]);
+    const float pa = exact_dot(w, a[i] - a[0]);
+    const float pb = exact_dot(w, b[i] - a[0]);
     a_lo = min(a_lo, pa);
     a_hi = max(a_hi, pa);
     b_lo = min(b_lo, pb);
@@ -268,7 +258,7 @@ bool tri_tri_slab_part_meets_triangle(vec3 s[3], vec3 t[3], vec3 n, vec3 u, floa
   int count = 3;
   for (int i = 0; i < 3; ++i) {
     poly[i] = s[i];
-    dist[i] = tri_tri_dot(u, s[i] - t[0]);
+    dist[i] = exact_dot(u, s[i] - t[0]);
   }
   for (int side = 0; side < 2; ++side) {  // clip by dist <= tol, then by -dist <= tol
     const float side_sign = side == 0 ? 1.0 : -1.0;
@@ -404,7 +394,7 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
   // Degenerate triangles have no plane: no intersection.
   const float la2 = tri_tri_longest_edge2(a);
   const float lb2 = tri_tri_longest_edge2(b);
-  const vec3 na = tri_tri_cross(a[1] - a[0], a[2] - a[0]);
+  const vec3 na = exact_cross(a[1] - a[0], a[2] - a[0]);
   const float na_len = tri_tri_length(na);
   precise float degenerate_a = kTriTriDegenerateTolerance * la2;
   if (!(na_len > degenerate_a)) return result;
@@ -415,11 +405,11 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
   precise float tol_a = (kTriTriTolerance + kTriTriRoundoff * la2 / na_len) * size;
   float db[3];
   for (int i = 0; i < 3; ++i) {
-    db[i] = tri_tri_snap_to_zero(tri_tri_dot(ua, b[i] - a[0]), tol_a);
+    db[i] = tri_tri_snap_to_zero(exact_dot(ua, b[i] - a[0]), tol_a);
   }
   // b wholly on one side of a's plane beyond the tolerance: apart (see the C++).
   if (tri_tri_same_strict_side(db)) return result;
-  const vec3 nb = tri_tri_cross(b[1] - b[0], b[2] - b[0]);
+  const vec3 nb = exact_cross(b[1] - b[0], b[2] - b[0]);
   const float nb_len = tri_tri_length(nb);
   precise float degenerate_b = kTriTriDegenerateTolerance * lb2;
   if (!(nb_len > degenerate_b)) return result;
@@ -427,7 +417,7 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
   precise float tol_b = (kTriTriTolerance + kTriTriRoundoff * lb2 / nb_len) * size;
   float da[3];
   for (int i = 0; i < 3; ++i) {
-    da[i] = tri_tri_snap_to_zero(tri_tri_dot(ub, a[i] - b[0]), tol_b);
+    da[i] = tri_tri_snap_to_zero(exact_dot(ub, a[i] - b[0]), tol_b);
   }
   const bool b_on_plane_a = db[0] == 0.0 && db[1] == 0.0 && db[2] == 0.0;
   const bool a_on_plane_b = da[0] == 0.0 && da[1] == 0.0 && da[2] == 0.0;
@@ -439,7 +429,7 @@ TriTriResult tri_tri_intersect(vec3 p[3], vec3 q[3]) {
   if (tri_tri_same_strict_side(da)) return result;
 
   // Both triangles cross the line of the planes' intersection: overlap of their intervals.
-  const vec3 dir = tri_tri_cross(ua, ub);
+  const vec3 dir = exact_cross(ua, ub);
   const TriTriLineInterval ia = tri_tri_line_interval(a, da, dir, a[0]);
   const TriTriLineInterval ib = tri_tri_line_interval(b, db, dir, a[0]);
   const bool lo_from_a = ia.t_min >= ib.t_min;

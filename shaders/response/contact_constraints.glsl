@@ -14,6 +14,7 @@
 // glm are written out for the same reason (glm::dot sums (x + y) + z; glm::max(a, b) is
 // a < b ? b : a, which differs from GLSL's max only for NaN and signed zeros, but the mirror
 // should not differ at all).
+#include "common/exact_math.glsl"
 #include "common/layout.glsl"
 
 // Per-substep constants (response::ContactConstants).
@@ -26,18 +27,6 @@ struct ContactConstants {
   float elapsed;            // s: from the frame's start to the end of this substep
 };
 
-// glm::dot: the products, then (x + y) + z.
-float contact_dot(vec3 a, vec3 b) {
-  precise vec3 t = a * b;
-  precise float r = (t.x + t.y) + t.z;
-  return r;
-}
-
-// glm::cross.
-vec3 contact_cross(vec3 x, vec3 y) {
-  precise vec3 r = vec3(x.y * y.z - y.y * x.z, x.z * y.x - y.z * x.x, x.x * y.y - y.x * x.y);
-  return r;
-}
 
 // glm::max and glm::min on floats, and glm::clamp(x, lo, hi) = min(max(x, lo), hi).
 float contact_max(float a, float b) { return a < b ? b : a; }
@@ -52,8 +41,8 @@ float contact_clamp(float x, float lo, float hi) {
 bool plane_barycentric(vec3 p, vec3 a, vec3 b, vec3 c, out vec3 uvw) {
   uvw = vec3(0.0);
   precise vec3 ab = b - a, ac = c - a, ap = p - a;
-  precise float d00 = contact_dot(ab, ab), d01 = contact_dot(ab, ac), d11 = contact_dot(ac, ac);
-  precise float d20 = contact_dot(ap, ab), d21 = contact_dot(ap, ac);
+  precise float d00 = exact_dot(ab, ab), d01 = exact_dot(ab, ac), d11 = exact_dot(ac, ac);
+  precise float d20 = exact_dot(ap, ab), d21 = exact_dot(ap, ac);
   precise float denominator = d00 * d11 - d01 * d01;
   precise float threshold = 1e-12 * d00 * d11;
   if (!(denominator > threshold)) return false;
@@ -70,8 +59,8 @@ bool segment_closest_parameters(vec3 a0, vec3 a1, vec3 b0, vec3 b1, out float s,
   s = 0.0;
   t = 0.0;
   precise vec3 da = a1 - a0, db = b1 - b0, r = a0 - b0;
-  precise float aa = contact_dot(da, da), bb = contact_dot(db, db), ab = contact_dot(da, db);
-  precise float ar = contact_dot(da, r), br = contact_dot(db, r);
+  precise float aa = exact_dot(da, da), bb = exact_dot(db, db), ab = exact_dot(da, db);
+  precise float ar = exact_dot(da, r), br = exact_dot(db, r);
   if (!(aa > 0.0) || !(bb > 0.0)) return false;
   precise float denominator = aa * bb - ab * ab;
   precise float threshold = 1e-12 * aa * bb;
@@ -107,7 +96,7 @@ bool contact_geometry(ContactPair pair, vec3 x[4], out vec3 n, out float b[4], o
     float s = 0.0, t = 0.0;
     if (!segment_closest_parameters(x[0], x[1], x[2], x[3], s, t)) return false;
     precise vec3 d = (x[0] + s * (x[1] - x[0])) - (x[2] + t * (x[3] - x[2]));
-    precise float distance = sqrt(contact_dot(d, d));
+    precise float distance = sqrt(exact_dot(d, d));
     precise float crossing = 1e-7 * pair.thickness;
     if (!(distance > crossing)) return false;  // crossing: no direction
     precise vec3 unit = d / distance;
@@ -123,13 +112,13 @@ bool contact_geometry(ContactPair pair, vec3 x[4], out vec3 n, out float b[4], o
     return true;
   }
   // Vertex x[0] against face (x[1], x[2], x[3]), along the face's outward normal.
-  precise vec3 normal = contact_cross(x[2] - x[1], x[3] - x[1]);
-  precise float area2 = sqrt(contact_dot(normal, normal));
+  precise vec3 normal = exact_cross(x[2] - x[1], x[3] - x[1]);
+  precise float area2 = sqrt(exact_dot(normal, normal));
   vec3 uvw = vec3(0.0);
   if (!(area2 > 0.0) || !plane_barycentric(x[0], x[1], x[2], x[3], uvw)) return false;
   precise vec3 unit = normal / area2;
   n = unit;
-  precise float height = contact_dot(x[0] - x[1], unit);
+  precise float height = exact_dot(x[0] - x[1], unit);
   if (pair.kind == CONTACT_VERTEX_FACE) {
     // Only where the vertex lies over the face, and not deeper behind it than the thickness.
     if (uvw.x < 0.0 || uvw.y < 0.0 || uvw.z < 0.0) return false;
@@ -181,12 +170,12 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
     relative_velocity += b[i] * velocity[i].xyz;
   }
   if (!(weight > 0.0)) return;  // every node fixed
-  precise float approach = contact_max(-contact_dot(relative_velocity, n), 0.0);
+  precise float approach = contact_max(-exact_dot(relative_velocity, n), 0.0);
   precise float normal_speed = (1.0 + k.restitution) * approach;
   precise float push = contact_max(-c - approach * k.h, 0.0);
   if (pair.kind == CONTACT_UNTANGLE) push = contact_min(push, k.max_untangle_step);
-  precise vec3 tangential = relative_velocity - contact_dot(relative_velocity, n) * n;
-  precise float slip = sqrt(contact_dot(tangential, tangential));
+  precise vec3 tangential = relative_velocity - exact_dot(relative_velocity, n) * n;
+  precise float slip = sqrt(exact_dot(tangential, tangential));
   precise float keep = 0.0;  // the share of the tangential velocity friction leaves
   precise float static_limit = k.friction_static * normal_speed;
   if (slip > static_limit) {
@@ -216,5 +205,5 @@ bool apply_correction(inout vec4 position, inout vec4 velocity, vec3 dx, vec3 dv
   precise vec3 centre = frame_start.xyz + body_motion.xyz * elapsed;
   precise vec3 moved = p - centre;
   precise float reach_squared = frame_start.w * frame_start.w;
-  return contact_dot(moved, moved) > reach_squared;
+  return exact_dot(moved, moved) > reach_squared;
 }

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "buffer_from.h"
+#include "buffer_limit.h"
 #include "core/collision/broad_phase.h"
 #include "deformcd/error.h"
 #include "device_summary.h"
@@ -54,10 +55,6 @@ std::uint32_t largest_row_count(const std::vector<glm::uvec2>& box_rows) {
   return most;
 }
 
-std::uint64_t device_limit(const DeviceInfo& device, std::uint64_t option) {
-  return option > 0 ? std::min(option, device.max_ssbo_block_bytes) : device.max_ssbo_block_bytes;
-}
-
 }  // namespace
 
 GlCollision::GlCollision(Context& context, const GlCollisionOptions& options)
@@ -65,9 +62,8 @@ GlCollision::GlCollision(Context& context, const GlCollisionOptions& options)
 
 GlCollision::GlCollision(const DeviceInfo& device, const GlCollisionOptions& options)
     : device_(device_summary(device)),
-      max_buffer_bytes_(device_limit(device, options.max_buffer_bytes)),
-      limit_is_device_(options.max_buffer_bytes == 0 ||
-                       options.max_buffer_bytes >= device.max_ssbo_block_bytes),
+      max_buffer_bytes_(buffer_limit(device, options.max_buffer_bytes)),
+      limit_is_device_(limit_is_device(device, options.max_buffer_bytes)),
       max_work_groups_(device.max_work_group_count),
       mask_slots_(checked_mask_slots(options.mask_slots, device.max_work_group_count[2])),
       initial_pair_capacity_(options.initial_pair_capacity),

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "buffer_from.h"
+#include "buffer_limit.h"
 #include "contact_upload_checks.h"
 #include "deformcd/error.h"
 
@@ -54,11 +55,8 @@ GlContactResponse::GlContactResponse(Context& context, GlSimulation& simulation,
 GlContactResponse::GlContactResponse(const DeviceInfo& device, GlSimulation& simulation,
                                      const GlContactResponseOptions& options)
     : simulation_(simulation),
-      max_buffer_bytes_(options.max_buffer_bytes > 0
-                            ? std::min(options.max_buffer_bytes, device.max_ssbo_block_bytes)
-                            : device.max_ssbo_block_bytes),
-      limit_is_device_(options.max_buffer_bytes == 0 ||
-                       options.max_buffer_bytes >= device.max_ssbo_block_bytes),
+      max_buffer_bytes_(buffer_limit(device, options.max_buffer_bytes)),
+      limit_is_device_(limit_is_device(device, options.max_buffer_bytes)),
       max_work_groups_x_(device.max_work_group_count[0]),
       frame_start_("response/contact_frame_start.comp"),
       activity_("response/contact_activity.comp"),

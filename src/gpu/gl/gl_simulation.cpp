@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "buffer_from.h"
+#include "buffer_limit.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/device_info.h"
 #include "device_summary.h"
@@ -35,11 +36,8 @@ GlSimulation::GlSimulation(Context& context, const GlSimulationOptions& options)
 
 GlSimulation::GlSimulation(const DeviceInfo& device, const GlSimulationOptions& options)
     : device_(device_summary(device)),
-      max_buffer_bytes_(options.max_buffer_bytes > 0
-                            ? std::min(options.max_buffer_bytes, device.max_ssbo_block_bytes)
-                            : device.max_ssbo_block_bytes),
-      limit_is_device_(options.max_buffer_bytes == 0 ||
-                       options.max_buffer_bytes >= device.max_ssbo_block_bytes),
+      max_buffer_bytes_(buffer_limit(device, options.max_buffer_bytes)),
+      limit_is_device_(limit_is_device(device, options.max_buffer_bytes)),
       max_work_groups_x_(device.max_work_group_count[0]),
       spring_update_("sim/spring_update.comp"),
       tet_update_("sim/tet_update.comp"),
