@@ -29,21 +29,16 @@ bool CpuContactResponse::project(const response::ContactConstants& k) {
   const std::vector<gpu::ContactPair>& pairs = constraints_.pairs;
   const std::uint32_t* offset = constraints_.node_offset.data();
   const std::uint32_t* list = constraints_.node_list.data();
-  const auto gather = [&](const gpu::ContactPair& pair, glm::vec4 x[4], glm::vec4 v[4]) {
-    for (std::uint32_t i = 0; i < 4u; ++i) {
-      x[i] = state_.positions[pair.nodes[i]];
-      v[i] = state_.velocities[pair.nodes[i]];
-    }
-  };
   executor_->run([&] {
     // Activity pass, count pass, solve pass, node pass: each writes only its own element's
     // slots, and each node reads its own list in order.
     parallel_for(
         pairs.size(),
         [&](std::size_t p) {
-          glm::vec4 x[4], v[4];
-          gather(pairs[p], x, v);
-          active_[p] = response::contact_active(pairs[p], x) ? 1u : 0u;
+          const gpu::ContactPair& pair = pairs[p];
+          const glm::vec4 x[4] = {state_.positions[pair.nodes[0]], state_.positions[pair.nodes[1]],
+                                  state_.positions[pair.nodes[2]], state_.positions[pair.nodes[3]]};
+          active_[p] = response::contact_active(pair, x) ? 1u : 0u;
         },
         256);
     parallel_for(state_.positions.size(), [&](std::size_t i) {
@@ -54,7 +49,10 @@ bool CpuContactResponse::project(const response::ContactConstants& k) {
         [&](std::size_t p) {
           const gpu::ContactPair& pair = pairs[p];
           glm::vec4 x[4], v[4];
-          gather(pair, x, v);
+          for (std::uint32_t i = 0; i < 4u; ++i) {
+            x[i] = state_.positions[pair.nodes[i]];
+            v[i] = state_.velocities[pair.nodes[i]];
+          }
           const std::uint32_t count[4] = {counts_[pair.nodes[0]], counts_[pair.nodes[1]],
                                           counts_[pair.nodes[2]], counts_[pair.nodes[3]]};
           response::solve_contact(pair, x, v, count, k, &corrections_[8u * p]);

@@ -174,7 +174,7 @@ void ContactResponse::search() {
   backend_->begin_frame(c);
 }
 
-void ContactResponse::project(float h) {
+void ContactResponse::project(float h, bool more_substeps) {
   elapsed_ += h;
   response::ContactConstants k{};
   k.h = h;
@@ -183,7 +183,7 @@ void ContactResponse::project(float h) {
   k.friction_dynamic = settings_.friction_dynamic;
   k.restitution = settings_.restitution;
   k.max_untangle_step = max_untangle_step_;
-  if (backend_->project(k)) search();
+  if (backend_->project(k) && more_substeps) search();
 }
 
 }  // namespace deformcd

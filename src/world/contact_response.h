@@ -31,9 +31,11 @@ class ContactResponse {
   /// pair of `intersections` (the last exact pass) its vertices against the other face.
   /// `detector` must outlive the frame.
   void begin_frame(Detector& detector, std::vector<Contact> intersections);
-  /// One projection after a substep of length h. When a node has strayed beyond its reach, the
-  /// search runs again on the positions now (a new window), so no pair is missed.
-  void project(float h);
+  /// One projection after a substep of length h. When a node has strayed beyond its reach and
+  /// `more_substeps` follow in the frame, the search runs again on the positions now (a new
+  /// window), so no pair is missed; after the frame's last substep, the next begin_frame()
+  /// searches anyway.
+  void project(float h, bool more_substeps);
 
   /// m: body b's contact thickness.
   [[nodiscard]] float thickness(std::size_t body) const { return thickness_[body]; }

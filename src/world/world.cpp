@@ -124,7 +124,7 @@ void World::step() {
     if (!response_) continue;
     if (measure_stage_times_) backend_->finish();
     const auto begin = Clock::now();
-    response_->project(h);
+    response_->project(h, s + 1 < settings_.substeps);
     if (measure_stage_times_) {
       backend_->finish();
       response_s += Seconds(Clock::now() - begin).count();
