@@ -111,6 +111,7 @@ struct ProximityPair {
   /// `triangle`; kEdgeEdge: an edge of mesh_a (two vertices), then an edge of mesh_b.
   std::array<std::uint32_t, 4> vertices = {};
   std::uint32_t triangle = 0;  ///< kVertexTriangle: the triangle's index in mesh_b; else 0
+  float distance = 0.0f;       ///< m, between the two primitives on the current positions
 
   friend bool operator==(const ProximityPair&, const ProximityPair&) = default;
 };
@@ -165,16 +166,21 @@ class Detector {
   /// order, nodes = its vertex indices); the same on every backend and broad phase.
   [[nodiscard]] std::vector<Contact> contacts() const;
   /// The vertex-triangle and edge-edge pairs that may come closer than reach[mesh_a] +
-  /// reach[mesh_b] over a period in which each mesh drifts by drift[mesh] (m; empty: none) and
-  /// each vertex strays at most its mesh's reach from its drifted path: the pairs whose boxes,
-  /// swept along the relative drift, come within the sum of the reaches on the current
-  /// positions (a superset of those closer than that). Over the mesh pairs detect() tests;
-  /// within one mesh, primitives of triangles sharing a vertex are neighbours and left out.
-  /// Each pair once, sorted by (mesh_a, mesh_b, kind, vertices). For a contact response that
-  /// keeps bodies `thickness` apart: reach = thickness / 2 + the most a vertex strays. Throws
-  /// InputError for lists of the wrong length, a negative or non-finite reach or drift.
+  /// reach[mesh_b] over a period in which each vertex moves by its `motion` (m; one per vertex
+  /// of every mesh, mesh 0's first, in vertex order; empty: none) and strays at most its mesh's
+  /// reach from that straight path: the pairs whose boxes, swept along the motion, come within
+  /// the sum of the reaches on the current positions, and whose distance now, less the most
+  /// their vertices' relative motion can close of it, is within that sum too (a superset of
+  /// the pairs that come closer than the sum).
+  /// Over the mesh pairs detect() tests; within one mesh, primitives of triangles sharing a
+  /// vertex are neighbours and left out. Each pair once, in a fixed order (mesh pair by
+  /// mesh pair, then by the triangle of the pair's first mesh whose search found it, in the
+  /// search's traversal order), the same on every backend and thread count. For a contact response
+  /// that keeps bodies `thickness` apart: reach = thickness / 2 + the most a vertex strays from its
+  /// path. Throws InputError for lists of the wrong length, a negative or non-finite reach or a
+  /// non-finite motion.
   [[nodiscard]] std::vector<ProximityPair> find_proximity(std::span<const float> reach,
-                                                          std::span<const glm::vec3> drift = {});
+                                                          std::span<const glm::vec3> motion = {});
   /// Counts of the last pass (all 0 before the first).
   [[nodiscard]] CollisionCounts counts() const;
   /// One flag per triangle of every mesh (mesh m's from face_offset(m)): 1 when the triangle is

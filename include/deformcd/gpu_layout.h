@@ -54,7 +54,8 @@ enum Binding : std::uint32_t {
   kNodeContactList = 32,    ///< uint per (node, constraint corner): the slot 4 p + k, sorted
   kNodeContactCount = 33,   ///< uint per node: its active constraints this substep
   kFrameStart = 34,         ///< glm::vec4 per node: position at the frame's start, w = reach
-  kBodyMotion = 35,         ///< glm::vec4 per body: drift velocity (xyz, m/s), reach (w, m)
+  kNodeMotion = 35,         ///< glm::vec4 per node: path velocity (xyz, m/s), reach (w, m)
+  kNodeDeviation = 36,      ///< float per node: its distance from its straight path (m)
 };
 
 /// BvhNode::face of an internal node.
@@ -219,8 +220,12 @@ struct ContactPair {
   std::uint32_t nodes[4];
   std::uint32_t kind;
   float thickness;  ///< m: the distance the constraint keeps
-  float pad0;
-  float pad1;
+  /// m: the primitives' distance less the thickness where the search window starts (-inf for
+  /// kContactUntangle: always awake).
+  float gap;
+  /// m/s: the most the nodes' straight paths (their velocities where the window starts) can
+  /// close of the distance per second (collision::closing_speed).
+  float closing_speed;
 };
 static_assert(sizeof(ContactPair) == 32);
 static_assert(offsetof(ContactPair, kind) == 16);

@@ -43,7 +43,8 @@
 #define BINDING_NODE_CONTACT_LIST 32    // uint per (node, constraint corner): slot 4 p + k
 #define BINDING_NODE_CONTACT_COUNT 33   // uint per node: active constraints this substep
 #define BINDING_FRAME_START 34          // vec4 per node: frame-start position, w = reach
-#define BINDING_BODY_MOTION 35          // vec4 per body: drift velocity (xyz, m/s), reach (w, m)
+#define BINDING_NODE_MOTION 35          // vec4 per node: path velocity (xyz, m/s), reach (w, m)
+#define BINDING_NODE_DEVIATION 36       // float per node: its distance from its straight path (m)
 
 // Leaf boxes per body: a 3-level octree, 4 x 4 x 4 leaves (gpu::kLeafBoxesPerBody).
 #define LEAF_BOXES_PER_BODY 64u
@@ -125,9 +126,9 @@ struct ObjectInfo {
 struct ContactPair {
   uvec4 nodes;
   uint kind;
-  float thickness;  // m: the distance the constraint keeps
-  float pad0;
-  float pad1;
+  float thickness;      // m: the distance the constraint keeps
+  float gap;            // m: distance less thickness at the window's start (-inf: untangle)
+  float closing_speed;  // m/s: how fast the nodes' straight paths can close the distance
 };
 
 // 32 bytes. Per-body parameters of the mass-spring step.

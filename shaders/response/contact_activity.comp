@@ -1,8 +1,9 @@
 #version 430
 // The contact response's activity pass: one invocation per constraint p says whether it acts
-// now (contact_active in src/core/response/contact_constraints.h), in the w of its first
-// correction slot (8 p), which the count pass reads before the solve pass overwrites it. No two
-// invocations write the same slot.
+// now (contact_awake, then contact_active, in src/core/response/contact_constraints.h: only an
+// awake constraint looks at its geometry), in the w of its first correction slot (8 p), which
+// the count pass reads before the solve pass overwrites it. No two invocations write the same
+// slot.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
 
@@ -17,14 +18,24 @@ layout(std430, binding = BINDING_CONTACT_PAIR) readonly buffer ContactPairs {
 layout(std430, binding = BINDING_CONTACT_CORRECTION) writeonly buffer ContactCorrections {
   vec4 corrections[];
 };
+layout(std430, binding = BINDING_NODE_DEVIATION) readonly buffer NodeDeviation {
+  float node_deviation[];
+};
 
 uniform uint u_pair_count;
+uniform float u_elapsed;
 
 void main() {
   const uint p = gl_GlobalInvocationID.x;
   if (p >= u_pair_count) return;  // the last work group reaches past the end
   const ContactPair pair = pairs[p];
-  vec4 x[4];
-  for (uint i = 0u; i < 4u; ++i) x[i] = positions[pair.nodes[i]];
-  corrections[8u * p] = vec4(0.0, 0.0, 0.0, contact_active(pair, x) ? 1.0 : 0.0);
+  float deviation[4];
+  for (uint i = 0u; i < 4u; ++i) deviation[i] = node_deviation[pair.nodes[i]];
+  bool acting = contact_awake(pair, deviation, u_elapsed);
+  if (acting) {
+    vec4 x[4];
+    for (uint i = 0u; i < 4u; ++i) x[i] = positions[pair.nodes[i]];
+    acting = contact_active(pair, x);
+  }
+  corrections[8u * p] = vec4(0.0, 0.0, 0.0, acting ? 1.0 : 0.0);
 }

@@ -31,11 +31,8 @@ layout(std430, binding = BINDING_NODE_CONTACT_COUNT) buffer NodeContactCounts {
 layout(std430, binding = BINDING_FRAME_START) readonly buffer FrameStarts {
   vec4 frame_start[];
 };
-layout(std430, binding = BINDING_NODE_BODY) readonly buffer NodeBody {
-  uint node_body[];
-};
-layout(std430, binding = BINDING_BODY_MOTION) readonly buffer BodyMotion {
-  vec4 body_motion[];
+layout(std430, binding = BINDING_NODE_MOTION) readonly buffer NodeMotion {
+  vec4 node_motion[];
 };
 
 uniform uint u_node_count;
@@ -57,7 +54,7 @@ void main() {
   vec4 position = positions[i];
   vec4 velocity = velocities[i];
   // Every writer writes the same 1, so the flag is the same whatever the order.
-  if (apply_correction(position, velocity, dx, dv, frame_start[i], body_motion[node_body[i]],
+  if (apply_correction(position, velocity, dx, dv, frame_start[i], node_motion[i],
                        u_elapsed)) {
     node_contact_count[u_node_count] = 1u;
   }

@@ -140,6 +140,33 @@ bool contact_geometry(ContactPair pair, vec3 x[4], out vec3 n, out float b[4], o
   return true;
 }
 
+// path_deviation, line for line: how far a node is from where the window's start carried along
+// its path velocity puts it after `elapsed` seconds.
+float path_deviation(vec3 position, vec4 frame_start, vec4 node_motion, float elapsed) {
+  precise vec3 centre = frame_start.xyz + node_motion.xyz * elapsed;
+  precise vec3 moved = position - centre;
+  precise float deviation = sqrt(exact_dot(moved, moved));
+  return deviation;
+}
+
+// contact_awake, line for line: whether the constraint may act `elapsed` seconds into its
+// window, its nodes deviation[k] from their straight paths (a margin of 1e-4 of the thickness
+// for rounding).
+bool contact_awake(ContactPair pair, float deviation[4], float elapsed) {
+  const uint first_b = pair.kind == CONTACT_EDGE_EDGE ? 2u : 1u;
+  precise float side_a = 0.0, side_b = 0.0;
+  for (uint k = 0u; k < 4u; ++k) {
+    if (k < first_b) {
+      side_a = contact_max(side_a, deviation[k]);
+    } else {
+      side_b = contact_max(side_b, deviation[k]);
+    }
+  }
+  precise float closest = pair.gap - pair.closing_speed * elapsed;
+  precise float margin = (side_a + side_b) + 1e-4 * pair.thickness;
+  return !(closest > margin);
+}
+
 // contact_active: whether the constraint acts now (its distance along n below its thickness).
 bool contact_active(ContactPair pair, vec4 position[4]) {
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
@@ -194,16 +221,13 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
 
 // apply_correction, line for line: the corrections move the position and the velocity; returns
 // whether a free node strayed beyond `reach` (frame_start.w) from its window-start position
-// carried along by its body's drift (body_motion.xyz x elapsed). Fixed nodes are left alone.
+// carried along its straight path (node_motion.xyz x elapsed). Fixed nodes are left alone.
 bool apply_correction(inout vec4 position, inout vec4 velocity, vec3 dx, vec3 dv,
-                      vec4 frame_start, vec4 body_motion, float elapsed) {
+                      vec4 frame_start, vec4 node_motion, float elapsed) {
   if (!(position.w > 0.0)) return false;
   precise vec3 p = position.xyz + dx;
   precise vec3 v = velocity.xyz + dv;
   velocity = vec4(v, 0.0);
   position = vec4(p, position.w);
-  precise vec3 centre = frame_start.xyz + body_motion.xyz * elapsed;
-  precise vec3 moved = p - centre;
-  precise float reach_squared = frame_start.w * frame_start.w;
-  return exact_dot(moved, moved) > reach_squared;
+  return path_deviation(p, frame_start, node_motion, elapsed) > frame_start.w;
 }

@@ -1,7 +1,7 @@
 #version 430
 // The contact response's frame start: one invocation per node records where the node starts
-// the frame and how far it may move in it (its body's motion bound), which the node pass
-// clamps to: frame_start[i] = vec4(position.xyz, body_motion[node_body[i]].w).
+// the search window and how far it may stray from its path (its reach), which the node pass
+// watches: frame_start[i] = vec4(position.xyz, node_motion[i].w).
 #include "common/layout.glsl"
 
 layout(local_size_x = 64) in;
@@ -9,11 +9,8 @@ layout(local_size_x = 64) in;
 layout(std430, binding = BINDING_NODE_POSITION) readonly buffer NodePositions {
   vec4 positions[];
 };
-layout(std430, binding = BINDING_NODE_BODY) readonly buffer NodeBody {
-  uint node_body[];
-};
-layout(std430, binding = BINDING_BODY_MOTION) readonly buffer BodyMotion {
-  vec4 body_motion[];
+layout(std430, binding = BINDING_NODE_MOTION) readonly buffer NodeMotion {
+  vec4 node_motion[];
 };
 layout(std430, binding = BINDING_FRAME_START) writeonly buffer FrameStarts {
   vec4 frame_start[];
@@ -24,5 +21,5 @@ uniform uint u_node_count;
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= u_node_count) return;  // the last work group reaches past the end
-  frame_start[i] = vec4(positions[i].xyz, body_motion[node_body[i]].w);
+  frame_start[i] = vec4(positions[i].xyz, node_motion[i].w);
 }

@@ -117,8 +117,8 @@ void main() {
   contact_pairs[i].nodes = uvec4(probe(i, 0u), probe(i, 1u), probe(i, 2u), probe(i, 3u));
   contact_pairs[i].kind = probe(i, 4u);
   contact_pairs[i].thickness = probef(i, 5u);
-  contact_pairs[i].pad0 = probef(i, 6u);
-  contact_pairs[i].pad1 = probef(i, 7u);
+  contact_pairs[i].gap = probef(i, 6u);
+  contact_pairs[i].closing_speed = probef(i, 7u);
 
   if (i == 0u) {
     bindings[0] = BINDING_NODE_POSITION;
@@ -156,24 +156,25 @@ void main() {
     bindings[32] = BINDING_NODE_CONTACT_LIST;
     bindings[33] = BINDING_NODE_CONTACT_COUNT;
     bindings[34] = BINDING_FRAME_START;
-    bindings[35] = BINDING_BODY_MOTION;
+    bindings[35] = BINDING_NODE_MOTION;
+    bindings[36] = BINDING_NODE_DEVIATION;
     // Not gpu::Binding: the shared constants, then the GL backend's private work buffers.
-    bindings[36] = LEAF_BOXES_PER_BODY;
-    bindings[37] = BVH_INTERNAL;
-    bindings[38] = BVH_MAX_DEPTH;
-    bindings[39] = BINDING_DISPATCH_ARGS;
-    bindings[40] = BINDING_BOX_PAIR_LIST;
-    bindings[41] = BINDING_BVH_LEVELS;
-    bindings[42] = BINDING_TOUCHING_PAIRS;
-    bindings[43] = DISPATCH_ARGS_EXPAND;
-    bindings[44] = DISPATCH_ARGS_TOUCHING;
-    bindings[45] = DISPATCH_ARGS_NARROW;
-    bindings[46] = DISPATCH_ARGS_TRAVERSE;
-    bindings[47] = BINDING_BVH_LEAVES;
-    bindings[48] = BINDING_MESH_INFO;
-    bindings[49] = BINDING_NON_FINITE;
-    bindings[50] = CONTACT_VERTEX_FACE;
-    bindings[51] = CONTACT_EDGE_EDGE;
-    bindings[52] = CONTACT_UNTANGLE;
+    bindings[37] = LEAF_BOXES_PER_BODY;
+    bindings[38] = BVH_INTERNAL;
+    bindings[39] = BVH_MAX_DEPTH;
+    bindings[40] = BINDING_DISPATCH_ARGS;
+    bindings[41] = BINDING_BOX_PAIR_LIST;
+    bindings[42] = BINDING_BVH_LEVELS;
+    bindings[43] = BINDING_TOUCHING_PAIRS;
+    bindings[44] = DISPATCH_ARGS_EXPAND;
+    bindings[45] = DISPATCH_ARGS_TOUCHING;
+    bindings[46] = DISPATCH_ARGS_NARROW;
+    bindings[47] = DISPATCH_ARGS_TRAVERSE;
+    bindings[48] = BINDING_BVH_LEAVES;
+    bindings[49] = BINDING_MESH_INFO;
+    bindings[50] = BINDING_NON_FINITE;
+    bindings[51] = CONTACT_VERTEX_FACE;
+    bindings[52] = CONTACT_EDGE_EDGE;
+    bindings[53] = CONTACT_UNTANGLE;
   }
 }

@@ -6,7 +6,9 @@
 
 #include "backend_choice.h"
 #include "core/collision/contacts.h"
+#include "core/collision/primitive_distance.h"
 #include "cpu/cpu_collision.h"
+#include "cpu/parallel_for.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"  // declarations only: fine without the GL backend
 #include "detector_impl.h"
@@ -287,7 +289,7 @@ std::vector<Contact> Detector::contacts() const {
 }
 
 std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach,
-                                                    std::span<const glm::vec3> drift) {
+                                                    std::span<const glm::vec3> motion) {
   Impl& d = *impl_;
   if (reach.size() != d.meshes.size()) {
     throw InputError("find_proximity",
@@ -300,18 +302,25 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
                                                 " (find_proximity wants a finite value >= 0)");
     }
   }
-  if (!drift.empty() && drift.size() != d.meshes.size()) {
-    throw InputError("find_proximity",
-                     "takes one drift per mesh (or none): " + std::to_string(d.meshes.size()) +
-                         " expected, " + std::to_string(drift.size()) + " given");
+  std::size_t vertices = 0;
+  for (const CollisionMesh& mesh : d.meshes)
+    vertices += mesh.vertex_count;
+  if (!motion.empty() && motion.size() != vertices) {
+    throw InputError("find_proximity", "takes one motion per vertex of every mesh (or none): " +
+                                           std::to_string(vertices) + " expected, " +
+                                           std::to_string(motion.size()) + " given");
   }
-  for (std::size_t m = 0; m < drift.size(); ++m) {
-    if (!std::isfinite(drift[m].x) || !std::isfinite(drift[m].y) || !std::isfinite(drift[m].z)) {
-      throw InputError(label_of(d.data, m), "has a non-finite drift " + describe(drift[m]));
+  std::vector<collision::MeshVertices> motion_of(motion.empty() ? 0u : d.meshes.size());
+  for (std::size_t m = 0, first = 0; m < motion_of.size(); first += d.meshes[m++].vertex_count) {
+    motion_of[m] = {&motion[first].x, 3u};
+    for (std::uint32_t v = 0; v < d.meshes[m].vertex_count; ++v) {
+      const glm::vec3& mv = motion[first + v];
+      if (!std::isfinite(mv.x) || !std::isfinite(mv.y) || !std::isfinite(mv.z)) {
+        throw InputError(label_of(d.data, m), "vertex " + std::to_string(v) +
+                                                  " has a non-finite motion " + describe(mv));
+      }
     }
   }
-  const std::vector<glm::vec3> no_drift(drift.empty() ? d.meshes.size() : 0u, glm::vec3(0.0f));
-  if (drift.empty()) drift = no_drift;
   d.require_positions();
   d.complete();  // a GL pass may still read the buffers the read-back below copies
   if (d.check_positions) d.check_finite();
@@ -319,20 +328,27 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
   const std::vector<collision::MeshVertices> pose = d.host_vertices(read_back);
   if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
   const std::vector<collision::ProximityCandidate> found =
-      d.proximity->find(pose.data(), reach, drift);
-  std::vector<ProximityPair> out;
-  out.reserve(found.size());
-  for (const collision::ProximityCandidate& c : found) {
-    ProximityPair p;
-    p.kind = c.kind == gpu::kContactEdgeEdge ? ProximityPair::Kind::kEdgeEdge
-                                             : ProximityPair::Kind::kVertexTriangle;
-    p.mesh_a = c.mesh_a;
-    p.mesh_b = c.mesh_b;
-    p.vertices = c.vertices;
-    p.triangle =
-        c.kind == gpu::kContactEdgeEdge ? 0u : c.face_b - d.data.meshes[c.mesh_b].face_offset;
-    out.push_back(p);
-  }
+      d.proximity->find(pose.data(), motion_of.empty() ? nullptr : motion_of.data(), reach);
+  std::vector<ProximityPair> out(found.size());
+  d.executor->run([&] {
+    cpu::parallel_for(found.size(), [&](std::size_t i) {
+      const collision::ProximityCandidate& c = found[i];
+      ProximityPair& p = out[i];
+      p.kind = c.kind == gpu::kContactEdgeEdge ? ProximityPair::Kind::kEdgeEdge
+                                               : ProximityPair::Kind::kVertexTriangle;
+      p.mesh_a = c.mesh_a;
+      p.mesh_b = c.mesh_b;
+      p.vertices = c.vertices;
+      p.triangle =
+          c.kind == gpu::kContactEdgeEdge ? 0u : c.face_b - d.data.meshes[c.mesh_b].face_offset;
+      glm::vec3 x[4];
+      for (std::uint32_t k = 0; k < 4u; ++k) {
+        const bool side_a = k < (c.kind == gpu::kContactEdgeEdge ? 2u : 1u);
+        x[k] = collision::vertex_position(pose.data(), side_a ? c.mesh_a : c.mesh_b, c.vertices[k]);
+      }
+      p.distance = collision::primitive_distance(c.kind, x);
+    });
+  });
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "cpu_contact_response.h"
 
+#include <algorithm>
 #include <atomic>
 
 #include "parallel_for.h"
@@ -13,13 +14,14 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   constraints_ = constraints;
   const std::size_t nodes = state_.positions.size();
   frame_start_.resize(nodes);
+  deviation_.assign(nodes, 0.0f);
   counts_.assign(nodes, 0u);
   corrections_.assign(8u * constraints_.pairs.size(), glm::vec4(0.0f));
   active_.assign(constraints_.pairs.size(), 0u);
+  acting_.clear();
   executor_->run([&] {
     parallel_for(nodes, [&](std::size_t i) {
-      frame_start_[i] = glm::vec4(glm::vec3(state_.positions[i]),
-                                  constraints_.body_motion[state_.node_body[i]].w);
+      frame_start_[i] = glm::vec4(glm::vec3(state_.positions[i]), constraints_.node_motion[i].w);
     });
   });
 }
@@ -29,24 +31,44 @@ bool CpuContactResponse::project(const response::ContactConstants& k) {
   const std::vector<gpu::ContactPair>& pairs = constraints_.pairs;
   const std::uint32_t* offset = constraints_.node_offset.data();
   const std::uint32_t* list = constraints_.node_list.data();
+  const std::size_t nodes = state_.positions.size();
   executor_->run([&] {
-    // Activity pass, count pass, solve pass, node pass: each writes only its own element's
-    // slots, and each node reads its own list in order.
-    parallel_for(
-        pairs.size(),
-        [&](std::size_t p) {
-          const gpu::ContactPair& pair = pairs[p];
-          const glm::vec4 x[4] = {state_.positions[pair.nodes[0]], state_.positions[pair.nodes[1]],
-                                  state_.positions[pair.nodes[2]], state_.positions[pair.nodes[3]]};
-          active_[p] = response::contact_active(pair, x) ? 1u : 0u;
-        },
-        256);
-    parallel_for(state_.positions.size(), [&](std::size_t i) {
-      counts_[i] = response::count_active(list, offset[i], offset[i + 1], active_.data());
+    // Deviation pass, activity pass (only awake constraints look at their geometry), count,
+    // solve and node passes: each writes only its own element's slots, and each node reads its
+    // own list in order.
+    parallel_for(nodes, [&](std::size_t i) {
+      deviation_[i] = response::path_deviation(glm::vec3(state_.positions[i]), frame_start_[i],
+                                               constraints_.node_motion[i], k.elapsed);
     });
     parallel_for(
         pairs.size(),
         [&](std::size_t p) {
+          const gpu::ContactPair& pair = pairs[p];
+          const float deviation[4] = {deviation_[pair.nodes[0]], deviation_[pair.nodes[1]],
+                                      deviation_[pair.nodes[2]], deviation_[pair.nodes[3]]};
+          bool active = response::contact_awake(pair, deviation, k.elapsed);
+          if (active) {
+            const glm::vec4 x[4] = {
+                state_.positions[pair.nodes[0]], state_.positions[pair.nodes[1]],
+                state_.positions[pair.nodes[2]], state_.positions[pair.nodes[3]]};
+            active = response::contact_active(pair, x);
+          }
+          active_[p] = active ? 1u : 0u;
+        },
+        1024);
+    // The count pass, summed from the compacted list: the integer counts do not depend on the
+    // order, and equal count_active's over each node's list.
+    acting_.clear();
+    for (std::uint32_t p = 0; p < pairs.size(); ++p)
+      if (active_[p] != 0u) acting_.push_back(p);
+    std::fill(counts_.begin(), counts_.end(), 0u);
+    for (const std::uint32_t p : acting_)
+      for (const std::uint32_t n : pairs[p].nodes)
+        ++counts_[n];
+    parallel_for(
+        acting_.size(),
+        [&](std::size_t a) {
+          const std::uint32_t p = acting_[a];
           const gpu::ContactPair& pair = pairs[p];
           glm::vec4 x[4], v[4];
           for (std::uint32_t i = 0; i < 4u; ++i) {
@@ -58,12 +80,14 @@ bool CpuContactResponse::project(const response::ContactConstants& k) {
           response::solve_contact(pair, x, v, count, k, &corrections_[8u * p]);
         },
         256);
-    parallel_for(state_.positions.size(), [&](std::size_t i) {
-      glm::vec3 dx, dv;
-      response::gather_correction(list, offset[i], offset[i + 1], corrections_.data(), dx, dv);
+    parallel_for(nodes, [&](std::size_t i) {
+      glm::vec3 dx(0.0f), dv(0.0f);
+      if (counts_[i] != 0u) {
+        response::gather_correction(list, offset[i], offset[i + 1], active_.data(),
+                                    corrections_.data(), dx, dv);
+      }
       if (response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv,
-                                     frame_start_[i], constraints_.body_motion[state_.node_body[i]],
-                                     k.elapsed)) {
+                                     frame_start_[i], constraints_.node_motion[i], k.elapsed)) {
         strayed.store(true, std::memory_order_relaxed);
       }
     });

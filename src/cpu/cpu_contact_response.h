@@ -1,7 +1,9 @@
 #pragma once
-// The contact response on the CPU, in parallel with oneTBB: the same four passes as the GL
-// backend's shaders (activity, count, solve, node), over the simulation state's positions and
-// velocities in place.
+// The contact response on the CPU, in parallel with oneTBB: the same passes as the GL backend's
+// shaders (deviation, activity, count, solve, node) over the simulation state's positions and
+// velocities in place, with the same results. Only the active constraints (a few percent of the
+// window's candidates) are counted and solved: their list is compacted after the activity pass
+// in constraint order, the counts summed from it, and the node pass skips inactive slots.
 
 #include <memory>
 #include <vector>
@@ -28,6 +30,8 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::vector<glm::vec4> corrections_;  // SSBO 30
   std::vector<std::uint32_t> counts_;   // SSBO 33
   std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep
+  std::vector<std::uint32_t> acting_;   // the active constraints, ascending
+  std::vector<float> deviation_;        // SSBO 36: per node, from its straight path
 };
 
 }  // namespace deformcd::cpu

@@ -12,42 +12,66 @@ CpuProximity::CpuProximity(const collision::CollisionData& data, std::shared_ptr
       owners_(collision::primitive_owners(data.faces)),
       executor_(std::move(executor)) {}
 
-void CpuProximity::refit(collision::VertexPositions positions) {
+void CpuProximity::refit(collision::VertexPositions positions, collision::VertexPositions motion) {
   if (!built_) {
     collision::build_hierarchies(data_, positions);
     upkeep_.reset(data_, positions);
     boxes_.assign(upkeep_.nodes().size(), gpu::Box{});
     built_ = true;
   }
+  // The upkeep rule judges the tree on the period's start; a swept box is the union of the
+  // boxes at both ends (a box union is exact), so the end's refit is merged in afterwards.
   for (std::uint32_t m = 0; m < data_.mesh_count(); ++m) {
     const gpu::BodyBvh& tree = upkeep_.tree(m);
     collision::refit_bvh(upkeep_.nodes(), tree.root, tree.node_count, positions, data_.faces,
                          boxes_);
     if (upkeep_.degraded(m, upkeep_.area_ratio(m, boxes_))) upkeep_.rebuild(m, positions, boxes_);
   }
+  if (motion == nullptr) return;
+  ends_.resize(data_.mesh_count());
+  std::vector<collision::MeshVertices> end(data_.mesh_count());
+  for (std::uint32_t m = 0; m < data_.mesh_count(); ++m) {
+    const std::uint32_t vertices = data_.meshes[m].vertex_count;
+    ends_[m].resize(vertices);
+    parallel_for(vertices, [&](std::size_t v) {
+      const auto i = static_cast<std::uint32_t>(v);
+      ends_[m][v] =
+          collision::vertex_position(positions, m, i) + collision::vertex_position(motion, m, i);
+    });
+    end[m] = {&ends_[m][0].x, 3u};
+  }
+  end_boxes_.resize(boxes_.size());
+  for (std::uint32_t m = 0; m < data_.mesh_count(); ++m) {
+    const gpu::BodyBvh& tree = upkeep_.tree(m);
+    collision::refit_bvh(upkeep_.nodes(), tree.root, tree.node_count, end.data(), data_.faces,
+                         end_boxes_);
+  }
+  parallel_for(boxes_.size(), [&](std::size_t i) {
+    boxes_[i].min = glm::min(boxes_[i].min, end_boxes_[i].min);
+    boxes_[i].max = glm::max(boxes_[i].max, end_boxes_[i].max);
+  });
 }
 
 std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexPositions positions,
-                                                              std::span<const float> reach,
-                                                              std::span<const glm::vec3> drift) {
+                                                              collision::VertexPositions motion,
+                                                              std::span<const float> reach) {
   std::vector<collision::ProximityCandidate> all;
   executor_->run([&] {
-    refit(positions);
+    refit(positions, motion);
     for (const gpu::BodyPair& pair : data_.mesh_pairs) {
       const gpu::MeshInfo& mesh_a = data_.meshes[pair.a];
       const gpu::BodyBvh& tree_b = upkeep_.tree(pair.b);
       const float grow = reach[pair.a] + reach[pair.b];
       const bool self = pair.a == pair.b;
-      const glm::vec3 sweep = drift[pair.a] - drift[pair.b];
       std::vector<std::vector<collision::ProximityCandidate>> per_face(mesh_a.face_count);
       parallel_for(
           mesh_a.face_count,
           [&](std::size_t i) {
             const std::uint32_t index_a = mesh_a.face_offset + static_cast<std::uint32_t>(i);
             const gpu::Face& fa = data_.faces[index_a];
-            glm::vec3 xa[3];
-            collision::face_vertices(positions, fa, xa);
-            const gpu::Box query = collision::sweep_box(collision::reach_box(xa, 3u, grow), sweep);
+            glm::vec3 xa[6];
+            collision::swept_face_vertices(positions, motion, fa, xa);
+            const gpu::Box query = collision::reach_box(xa, 6u, grow);
             auto& out = per_face[i];
             collision::query_bvh(
                 upkeep_.nodes().data(), boxes_.data(), tree_b.root, query,
@@ -55,8 +79,9 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
                   const gpu::Face& fb = data_.faces[index_b];
                   if (self && (index_b <= index_a || collision::faces_share_vertex(fa, fb))) return;
                   collision::emit_face_pair_candidates(
-                      positions, fa, index_a, owners_[index_a], fb, index_b, owners_[index_b], grow,
-                      sweep, [&](const collision::ProximityCandidate& c) { out.push_back(c); });
+                      positions, motion, fa, index_a, owners_[index_a], fb, index_b,
+                      owners_[index_b], grow,
+                      [&](const collision::ProximityCandidate& c) { out.push_back(c); });
                 });
           },
           64);
@@ -68,7 +93,6 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
         all.insert(all.end(), list.begin(), list.end());
     }
   });
-  std::sort(all.begin(), all.end());
   return all;
 }
 

@@ -1,10 +1,10 @@
 #pragma once
 // Proximity candidates on the CPU (issue 12): for each mesh pair a detector tests, the
-// vertex-face and edge-edge pairs whose boxes come within the two meshes' reaches, found
-// through a BVH per mesh of its own (built on the first search, refitted on every one, rebuilt
-// by the shared upkeep rule when deformation has loosened it). Faces run in parallel, each into
-// its own list; the lists are joined in face order and sorted, so the result does not depend on
-// the thread count.
+// vertex-face and edge-edge pairs whose swept boxes come within the two meshes' reaches, found
+// through a BVH per mesh of its own (built on the first search, refitted on every one to the
+// faces' swept boxes, rebuilt by the shared upkeep rule when deformation has loosened it). Faces
+// run in parallel, each into its own list in its traversal order; the lists are joined in face
+// order, so the result does not depend on the thread count (and is the GL search's order).
 
 #include <memory>
 #include <span>
@@ -22,19 +22,22 @@ class CpuProximity {
   /// Over the meshes and mesh pairs of `data` (its hierarchies are not needed).
   CpuProximity(const collision::CollisionData& data, std::shared_ptr<Executor> executor);
 
-  /// The candidates on `positions` whose boxes, swept along drift[mesh_a] - drift[mesh_b], come
-  /// within reach[mesh_a] + reach[mesh_b] (one reach, >= 0, and one drift per mesh), sorted.
+  /// The candidates whose boxes, swept from `positions` along each vertex's `motion` (null: no
+  /// motion), come within reach[mesh_a] + reach[mesh_b] (one reach, >= 0, per mesh), mesh pair
+  /// by mesh pair, then by the querying face of the pair's first mesh.
   [[nodiscard]] std::vector<collision::ProximityCandidate> find(
-      collision::VertexPositions positions, std::span<const float> reach,
-      std::span<const glm::vec3> drift);
+      collision::VertexPositions positions, collision::VertexPositions motion,
+      std::span<const float> reach);
 
  private:
-  void refit(collision::VertexPositions positions);
+  void refit(collision::VertexPositions positions, collision::VertexPositions motion);
 
   collision::CollisionData data_;
   std::vector<std::uint32_t> owners_;
   collision::BvhUpkeep upkeep_;
-  std::vector<gpu::Box> boxes_;
+  std::vector<gpu::Box> boxes_;               // per node: swept over the period
+  std::vector<gpu::Box> end_boxes_;           // per node: where the motion ends
+  std::vector<std::vector<glm::vec3>> ends_;  // per mesh: positions + motion
   bool built_ = false;
   std::shared_ptr<Executor> executor_;
 };

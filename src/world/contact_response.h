@@ -42,7 +42,7 @@ class ContactResponse {
   [[nodiscard]] const ResponseCounts& counts() const { return counts_; }
 
  private:
-  [[nodiscard]] std::vector<glm::vec4> body_motion();
+  [[nodiscard]] std::vector<glm::vec4> node_motion();
   void search();
 
   ResponseSettings settings_;
@@ -52,8 +52,9 @@ class ContactResponse {
   std::vector<gpu::ObjectInfo> objects_;
   std::vector<std::uint32_t> node_body_;
   std::vector<glm::vec3> carry_;
-  std::vector<float> thickness_;  // per body
-  std::vector<float> mean_edge_;  // per body, surface
+  std::vector<std::uint8_t> on_surface_;  // per node: a vertex of its body's collision surface
+  std::vector<float> thickness_;          // per body
+  std::vector<float> mean_edge_;          // per body, surface
   std::vector<glm::vec4> velocities_;
   float max_untangle_step_ = 0.0f;
   Detector* detector_ = nullptr;        // of the frame

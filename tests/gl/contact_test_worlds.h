@@ -20,6 +20,16 @@
 
 namespace deformcd::test {
 
+/// Each node's motion (FrameConstraints::node_motion) from its body's, `per_body`.
+inline std::vector<glm::vec4> node_motion_of_bodies(const std::vector<glm::vec4>& per_body,
+                                                    const std::vector<std::uint32_t>& node_body) {
+  std::vector<glm::vec4> out;
+  out.reserve(node_body.size());
+  for (const std::uint32_t b : node_body)
+    out.push_back(per_body[b]);
+  return out;
+}
+
 /// A world of unconnected nodes (xyz, w = inverse mass) in `body_count` bodies.
 inline SimulationState free_nodes(std::vector<glm::vec4> positions,
                                   std::vector<glm::vec4> velocities,
@@ -171,8 +181,9 @@ inline HandMadeContacts hand_made_contacts() {
       true, 1);
 
   out.world = free_nodes(std::move(x), std::move(v), std::move(body), 2);
-  out.constraints.body_motion = {glm::vec4(0.0f, 0.0f, 0.0f, 0.5f),
-                                 glm::vec4(0.0f, 0.0f, 0.0f, 0.002f)};
+  out.constraints.node_motion = node_motion_of_bodies(
+      {glm::vec4(0.0f, 0.0f, 0.0f, 0.5f), glm::vec4(0.0f, 0.0f, 0.0f, 0.002f)},
+      out.world.node_body);
   response::index_constraints_by_node(static_cast<std::uint32_t>(out.world.node_count()),
                                       out.constraints);
   return out;
@@ -214,10 +225,11 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes,
     pair.thickness = 0.005f + 0.03f * unit(rng);
     out.constraints.pairs.push_back(pair);
   }
-  // Drifts as well as reaches: the clamp's centre moves along them.
-  out.constraints.body_motion = {glm::vec4(0.5f, 0.0f, -0.25f, 0.2f),
-                                 glm::vec4(0.0f, 0.0f, 0.0f, 0.01f),
-                                 glm::vec4(-1.0f, 2.0f, 0.5f, 0.003f)};
+  // Paths as well as reaches: the watched centre moves along them.
+  out.constraints.node_motion = node_motion_of_bodies(
+      {glm::vec4(0.5f, 0.0f, -0.25f, 0.2f), glm::vec4(0.0f, 0.0f, 0.0f, 0.01f),
+       glm::vec4(-1.0f, 2.0f, 0.5f, 0.003f)},
+      out.world.node_body);
   response::index_constraints_by_node(nodes, out.constraints);
   return out;
 }

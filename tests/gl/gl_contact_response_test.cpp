@@ -137,7 +137,8 @@ TEST_F(GlContactResponseTest, InsideASimulationLoopEqualsTheCpuEverySubstep) {
   // Random constraints between A's and B's nodes, of every kind.
   FrameConstraints c =
       test::random_contacts(5, static_cast<std::uint32_t>(world.node_count()), 800).constraints;
-  c.body_motion = {glm::vec4(0.1f, 0.0f, 0.0f, 0.01f), glm::vec4(-0.1f, 0.0f, 0.0f, 0.004f)};
+  c.node_motion = test::node_motion_of_bodies(
+      {glm::vec4(0.1f, 0.0f, 0.0f, 0.01f), glm::vec4(-0.1f, 0.0f, 0.0f, 0.004f)}, world.node_body);
 
   SideBySide both(context(), world);
   const sim::SubstepConstants substep = test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f});
@@ -172,7 +173,8 @@ TEST_F(GlContactResponseTest, AnEmptyFrameOnlyWatchesTheReach) {
   world.body_params[1].carry_velocity = {0.0f, -1.0f, 0.0f, 0.0f};
   FrameConstraints empty;
   // Body 0 drifts with its carry and stays within its reach; body 1 does not.
-  empty.body_motion = {glm::vec4(0.5f, 0.0f, 0.0f, 0.02f), glm::vec4(0.0f, 0.0f, 0.0f, 0.004f)};
+  empty.node_motion = test::node_motion_of_bodies(
+      {glm::vec4(0.5f, 0.0f, 0.0f, 0.02f), glm::vec4(0.0f, 0.0f, 0.0f, 0.004f)}, world.node_body);
   response::index_constraints_by_node(static_cast<std::uint32_t>(world.node_count()), empty);
 
   GlSimulation simulation(context());
@@ -182,7 +184,7 @@ TEST_F(GlContactResponseTest, AnEmptyFrameOnlyWatchesTheReach) {
   const std::vector<glm::vec4> start = gl.download_frame_start();
   ASSERT_EQ(start.size(), world.node_count());
   for (std::size_t i = 0; i < start.size(); ++i) {
-    EXPECT_EQ(start[i], glm::vec4(glm::vec3(world.positions[i]), empty.body_motion[body[i]].w))
+    EXPECT_EQ(start[i], glm::vec4(glm::vec3(world.positions[i]), empty.node_motion[i].w))
         << "frame start of node " << i;
   }
 
@@ -204,7 +206,7 @@ TEST_F(GlContactResponseTest, AnEmptyFrameOnlyWatchesTheReach) {
     for (std::size_t i = 0; i < before_x.size(); ++i) {
       glm::vec4 xi = before_x[i], vi = before_v[i];
       expected = response::apply_correction(xi, vi, glm::vec3(0.0f), glm::vec3(0.0f), start[i],
-                                            empty.body_motion[body[i]], k.elapsed) ||
+                                            empty.node_motion[i], k.elapsed) ||
                  expected;
       if (body[i] == 0 && world.positions[i].w > 0.0f) {
         const glm::vec3 centre = glm::vec3(start[i]) + 0.5f * k.elapsed * glm::vec3(1, 0, 0);
@@ -241,7 +243,7 @@ TEST_F(GlContactResponseTest, ResultsDoNotDependOnTheScheduleOrOnEarlierFrames) 
   GlContactResponse reused(context(), simulation);
   FrameConstraints few = test::random_contacts(8, 400, 10).constraints;
   FrameConstraints none;
-  none.body_motion = set.constraints.body_motion;
+  none.node_motion = set.constraints.node_motion;
   response::index_constraints_by_node(400, none);
   for (const FrameConstraints* frame :
        std::initializer_list<const FrameConstraints*>{&few, &set.constraints, &none}) {
@@ -279,7 +281,7 @@ TEST_F(GlContactResponseTest, RefusedConstraintsKeepThePreviousFrame) {
   FrameConstraints bad_node = test::random_contacts(9, 60, 200).constraints;
   bad_node.pairs[150].nodes[2] = 60;
   FrameConstraints bad_motion = test::random_contacts(9, 60, 200).constraints;
-  bad_motion.body_motion.resize(2);
+  bad_motion.node_motion.resize(2);
   std::vector<glm::vec4> results[2];
   for (int refused = 0; refused < 2; ++refused) {
     GlSimulation simulation(context());
@@ -319,36 +321,37 @@ TEST_F(GlContactResponseTest, BuffersBeyondTheLimitAreRefusedByName) {
 // The host-side checks, without GL.
 TEST(ContactUploadChecks, AcceptIndexedConstraintsAndNameWhatDoesNotFit) {
   const test::RandomContacts set = test::random_contacts(2, 30, 20);
-  EXPECT_NO_THROW(check_constraints_fit(set.constraints, 30, 3));
-  const auto message = [&](FrameConstraints c, std::uint32_t nodes, std::uint32_t bodies) {
+  EXPECT_NO_THROW(check_constraints_fit(set.constraints, 30));
+  const auto message = [&](FrameConstraints c, std::uint32_t nodes) {
     try {
-      check_constraints_fit(c, nodes, bodies);
+      check_constraints_fit(c, nodes);
     } catch (const Error& e) {
       return std::string(e.what());
     }
     return std::string("accepted");
   };
-  EXPECT_NE(message(set.constraints, 31, 3).find("node_offset has 31 entries for 31 nodes"),
+  EXPECT_NE(message(set.constraints, 31).find("node_offset has 31 entries for 31 nodes"),
             std::string::npos);
-  EXPECT_NE(message(set.constraints, 30, 4).find("body_motion has 3 entries for 4 bodies"),
+  FrameConstraints short_motion = set.constraints;
+  short_motion.node_motion.pop_back();
+  EXPECT_NE(message(short_motion, 30).find("node_motion has 29 entries for 30 nodes"),
             std::string::npos);
   FrameConstraints c = set.constraints;
   c.pairs[7].kind = 3;
-  EXPECT_NE(message(c, 30, 3).find("constraint 7 has kind 3"), std::string::npos);
+  EXPECT_NE(message(c, 30).find("constraint 7 has kind 3"), std::string::npos);
   c = set.constraints;
   c.pairs[5].nodes[1] = 30;
-  EXPECT_NE(message(c, 30, 3).find("constraint 5 has node 30, but there are 30 nodes"),
+  EXPECT_NE(message(c, 30).find("constraint 5 has node 30, but there are 30 nodes"),
             std::string::npos);
   c = set.constraints;
   c.node_list[4] = 80;
-  EXPECT_NE(message(c, 30, 3).find("node_list[4] = 80 names no constraint corner"),
-            std::string::npos);
+  EXPECT_NE(message(c, 30).find("node_list[4] = 80 names no constraint corner"), std::string::npos);
   c = set.constraints;
   c.node_list.pop_back();
-  EXPECT_NE(message(c, 30, 3).find("node_list has 79 entries"), std::string::npos);
+  EXPECT_NE(message(c, 30).find("node_list has 79 entries"), std::string::npos);
   c = set.constraints;
   std::swap(c.node_offset[3], c.node_offset[20]);
-  EXPECT_NE(message(c, 30, 3).find("node_offset decreases"), std::string::npos);
+  EXPECT_NE(message(c, 30).find("node_offset decreases"), std::string::npos);
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ struct ProbeOutput {
   std::vector<std::uint32_t> bindings;
 };
 
-constexpr std::uint32_t kBindingCount = gpu::kBodyMotion + 1;
+constexpr std::uint32_t kBindingCount = gpu::kNodeDeviation + 1;
 constexpr std::uint32_t kConstantCount = 17;
 
 // Runs shaders/test/layout_probe.comp over `count` elements of each struct.
@@ -184,8 +184,8 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
       EXPECT_EQ(cp.nodes[k], probe(i, k)) << "ContactPair node " << k;
     EXPECT_EQ(cp.kind, probe(i, 4));
     EXPECT_EQ(cp.thickness, probef(i, 5));
-    EXPECT_EQ(cp.pad0, probef(i, 6));
-    EXPECT_EQ(cp.pad1, probef(i, 7));
+    EXPECT_EQ(cp.gap, probef(i, 6));
+    EXPECT_EQ(cp.closing_speed, probef(i, 7));
   }
 }
 
@@ -202,7 +202,8 @@ TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
       gpu::kBoxRows,           gpu::kBvhNode,           gpu::kBvhBox,
       gpu::kBodyBvh,           gpu::kCandidatePair,     gpu::kContactPair,
       gpu::kContactCorrection, gpu::kNodeContactOffset, gpu::kNodeContactList,
-      gpu::kNodeContactCount,  gpu::kFrameStart,        gpu::kBodyMotion};
+      gpu::kNodeContactCount,  gpu::kFrameStart,        gpu::kNodeMotion,
+      gpu::kNodeDeviation};
   ASSERT_EQ(expected.size(), kBindingCount);
   std::vector<std::uint32_t> bindings = run_layout_probe(1).bindings;
   ASSERT_EQ(bindings.size(), kBindingCount + kConstantCount);

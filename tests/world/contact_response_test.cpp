@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -15,6 +16,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "core/collision/primitive_distance.h"
 #include "deformcd/detector.h"
 #include "deformcd/error.h"
 #include "deformcd/io.h"
@@ -125,8 +127,9 @@ TEST(ContactResponse, ImpactConservesMomentumAndRebounds) {
 }
 
 // What the proximity search returns equals a brute-force enumeration of every vertex-triangle
-// and edge-edge pair of the two meshes whose boxes, grown by the two reaches and swept along the
-// relative drift, overlap, on the impact scene's models at the moment of contact.
+// and edge-edge pair of the two meshes whose boxes, swept along each vertex's own motion, overlap
+// once one is grown by the two reaches, and whose distance less what the motions can close of
+// it is within the reaches, on the impact scene's models at the moment of contact.
 TEST(ContactResponse, ProximityEqualsBruteForce) {
   SceneWorld s = open_scene("impact", 40);
   // Up to the frame the response first finds many pairs: the bodies pressed together.
@@ -149,39 +152,62 @@ TEST(ContactResponse, ProximityEqualsBruteForce) {
   for (std::size_t b = 0; b < 2; ++b)
     detector.set_positions(b, std::span<const glm::vec3>(positions[b]));
   const std::vector<float> reach = {0.006f, 0.009f};
-  const std::vector<glm::vec3> drift = {glm::vec3(0.02f, 0.0f, 0.0f),
-                                        glm::vec3(-0.01f, 0.003f, 0.0f)};
-  const std::vector<ProximityPair> found = detector.find_proximity(reach, drift);
+  // Every vertex moves: the bodies toward each other, and each vertex by its own wobble.
+  std::vector<glm::vec3> motion;
+  std::vector<std::vector<glm::vec3>> ends = positions;
+  for (std::size_t b = 0; b < 2; ++b) {
+    for (std::size_t v = 0; v < positions[b].size(); ++v) {
+      const float wobble = 0.004f * std::sin(0.7f * static_cast<float>(v));
+      const glm::vec3 m =
+          (b == 0 ? glm::vec3(0.02f, 0.0f, 0.0f) : glm::vec3(-0.01f, 0.003f, 0.0f)) +
+          glm::vec3(wobble, -wobble, 0.5f * wobble);
+      motion.push_back(m);
+      ends[b][v] += m;
+    }
+  }
+  const std::vector<ProximityPair> found = detector.find_proximity(reach, motion);
 
   using Key = std::tuple<int, std::uint32_t, std::uint32_t, std::array<std::uint32_t, 4>>;
-  const auto box = [](std::initializer_list<glm::vec3> points, float grow, glm::vec3 sweep) {
+  // The box of vertices `v` of body b at both ends of their motion, grown by `grow`.
+  const auto box = [&](std::uint32_t b, std::initializer_list<std::uint32_t> v, float grow) {
     glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const glm::vec3& p : points) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
+    for (const std::uint32_t i : v) {
+      for (const glm::vec3& p : {positions[b][i], ends[b][i]}) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+      }
     }
-    lo -= grow;
-    hi += grow;
-    return std::pair{lo + glm::min(sweep, glm::vec3(0.0f)), hi + glm::max(sweep, glm::vec3(0.0f))};
+    return std::pair{lo - grow, hi + grow};
   };
   const auto overlap = [](const std::pair<glm::vec3, glm::vec3>& a,
                           const std::pair<glm::vec3, glm::vec3>& b) {
     return glm::all(glm::lessThanEqual(a.first, b.second)) &&
            glm::all(glm::lessThanEqual(b.first, a.second));
   };
+  // The distance filter (primitive_distance.h, tested against CGAL in test_primitive_distance).
+  const auto within = [&](std::uint32_t kind, std::array<std::uint32_t, 2> body,
+                          std::array<std::uint32_t, 4> v, float grow) {
+    const std::uint32_t first_b = kind == gpu::kContactEdgeEdge ? 2u : 1u;
+    glm::vec3 x[4], m[4];
+    for (std::uint32_t k = 0; k < 4u; ++k) {
+      const std::uint32_t b = body[k < first_b ? 0 : 1];
+      x[k] = positions[b][v[k]];
+      m[k] = ends[b][v[k]] - x[k];
+    }
+    return collision::primitives_within(kind, x, collision::closing_speed(kind, m), grow);
+  };
   std::set<Key> expected;
   const float grow = reach[0] + reach[1];
   for (std::uint32_t a = 0; a < 2; ++a) {
     const std::uint32_t b = 1 - a;
-    const glm::vec3 sweep = drift[a] - drift[b];
     std::set<std::uint32_t> surface;
     for (const Triangle& t : meshes[a].triangles)
       surface.insert(t.begin(), t.end());
     for (const std::uint32_t v : surface) {
-      const auto vbox = box({positions[a][v]}, grow, sweep);
+      const auto vbox = box(a, {v}, grow);
       for (const Triangle& t : meshes[b].triangles) {
-        if (overlap(vbox, box({positions[b][t[0]], positions[b][t[1]], positions[b][t[2]]}, 0.0f,
-                              glm::vec3(0.0f)))) {
+        if (overlap(vbox, box(b, {t[0], t[1], t[2]}, 0.0f)) &&
+            within(gpu::kContactVertexFace, {a, b}, {v, t[0], t[1], t[2]}, grow)) {
           expected.insert({0, a, b, {v, t[0], t[1], t[2]}});
         }
       }
@@ -195,9 +221,10 @@ TEST(ContactResponse, ProximityEqualsBruteForce) {
     return out;
   };
   for (const auto& [a0, a1] : edges(meshes[0])) {
-    const auto abox = box({positions[0][a0], positions[0][a1]}, grow, drift[0] - drift[1]);
+    const auto abox = box(0, {a0, a1}, grow);
     for (const auto& [b0, b1] : edges(meshes[1])) {
-      if (overlap(abox, box({positions[1][b0], positions[1][b1]}, 0.0f, glm::vec3(0.0f))))
+      if (overlap(abox, box(1, {b0, b1}, 0.0f)) &&
+          within(gpu::kContactEdgeEdge, {0u, 1u}, {a0, a1, b0, b1}, grow))
         expected.insert({1, 0u, 1u, {a0, a1, b0, b1}});
     }
   }

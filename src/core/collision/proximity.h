@@ -1,6 +1,7 @@
 #pragma once
-// Proximity candidates (issue 12): the vertex-face and edge-edge pairs whose bounding boxes come
-// within a reach of each other, found from face pairs of inflated boxes. The per-face-pair step
+// Proximity candidates (issue 12): the vertex-face and edge-edge pairs whose bounding boxes,
+// swept along their vertices' motion over a period, come within a reach of each other, found
+// from face pairs of swept and inflated boxes. The per-face-pair step
 // is a pure function here, which the CPU backend (src/cpu/cpu_proximity.cpp) calls and which a
 // GLSL version must mirror.
 //
@@ -19,6 +20,7 @@
 
 #include "broad_phase.h"
 #include "deformcd/gpu_layout.h"
+#include "primitive_distance.h"
 #include "vertex_positions.h"
 
 namespace deformcd::collision {
@@ -49,7 +51,7 @@ inline constexpr std::uint32_t kOwnsEdge0 = 8u;
 /// Face::body the mesh and indices local to it.
 [[nodiscard]] std::vector<std::uint32_t> primitive_owners(const std::vector<gpu::Face>& faces);
 
-/// The box of a point, or of a segment, or of a triangle, grown by `reach` on every side.
+/// The box of `count` points, grown by `reach` on every side.
 [[nodiscard]] inline gpu::Box reach_box(const glm::vec3* points, std::uint32_t count, float reach) {
   glm::vec3 lo = points[0], hi = points[0];
   for (std::uint32_t i = 1; i < count; ++i) {
@@ -59,10 +61,29 @@ inline constexpr std::uint32_t kOwnsEdge0 = 8u;
   return {glm::vec4(lo - reach, 0.0f), glm::vec4(hi + reach, 0.0f)};
 }
 
-/// `box` swept along `d`: the union of the box and the box moved by d.
-[[nodiscard]] inline gpu::Box sweep_box(const gpu::Box& box, const glm::vec3& d) {
-  return {glm::vec4(glm::vec3(box.min) + glm::min(d, glm::vec3(0.0f)), 0.0f),
-          glm::vec4(glm::vec3(box.max) + glm::max(d, glm::vec3(0.0f)), 0.0f)};
+/// Vertex `vertex` of mesh `mesh`'s motion over the search's period (m); zero without one.
+[[nodiscard]] inline glm::vec3 vertex_motion(VertexPositions motion, std::uint32_t mesh,
+                                             std::uint32_t vertex) {
+  return motion == nullptr ? glm::vec3(0.0f) : vertex_position(motion, mesh, vertex);
+}
+
+/// Face f's corners where the period starts (out[0..2], in the order a, b, c) and where their
+/// motion takes them (out[3..5]): every primitive of the face is swept between the two.
+inline void swept_face_vertices(VertexPositions positions, VertexPositions motion,
+                                const gpu::Face& f, glm::vec3 out[6]) {
+  face_vertices(positions, f, out);
+  for (std::uint32_t k = 0; k < 3u; ++k)
+    out[3u + k] = out[k] + vertex_motion(motion, f.body, face_corner(f, k));
+}
+
+/// Emits candidate c, its primitives' vertices at x where the period starts and at `end` where
+/// their motion ends (in primitive_distance's order), unless the primitives' distance at the
+/// start, less what the motions can close of it over the period, exceeds `reach`.
+template <class Emit>
+void emit_if_within_reach(const ProximityCandidate& c, const glm::vec3 x[4], const glm::vec3 end[4],
+                          float reach, const Emit& emit) {
+  const glm::vec3 motion[4] = {end[0] - x[0], end[1] - x[1], end[2] - x[2], end[3] - x[3]};
+  if (primitives_within(c.kind, x, closing_speed(c.kind, motion), reach)) emit(c);
 }
 
 /// Whether two faces of one mesh share a corner: their primitives are neighbours on the surface
@@ -75,55 +96,66 @@ inline constexpr std::uint32_t kOwnsEdge0 = 8u;
   return false;
 }
 
-/// The candidates of one face pair (fa of mesh a, fb of mesh b, whose boxes grown by `reach`
-/// overlap; for one mesh, fa < fb and the faces share no corner) in a fixed order: fa's owned
-/// vertices against fb, fb's owned vertices against fa, then fa's owned edges against fb's.
-/// `reach` is the sum of the two meshes' reaches and `sweep` mesh a's drift minus mesh b's over
-/// the period: a primitive of fa (of fb) is grown by the reach and swept along sweep (along
-/// -sweep), and tested against the other's plain box. Primitives moving apart from each
-/// other along their meshes' drifts by less than their reaches are then always found.
+/// The candidates of one face pair (fa of mesh a, fb of mesh b, whose swept boxes grown by
+/// `reach` overlap; for one mesh, fa < fb and the faces share no corner) in a fixed order: fa's
+/// owned vertices against fb, fb's owned vertices against fa, then fa's owned edges against
+/// fb's. Each vertex moves linearly by its motion over the period and may stray from that path
+/// by its mesh's reach: a primitive's box spans both ends of its path (swept) and, grown by
+/// `reach` (the sum of the two meshes' reaches), is tested against the other's swept box; a
+/// pair that passes is kept unless its distance where the period starts, less what the
+/// motions can close of it (closing_speed), exceeds the reach. A pair that comes within the
+/// reach at some moment of the period is always emitted.
 template <class Emit>
-void emit_face_pair_candidates(VertexPositions positions, const gpu::Face& fa,
-                               std::uint32_t index_a, std::uint32_t owners_a, const gpu::Face& fb,
-                               std::uint32_t index_b, std::uint32_t owners_b, float reach,
-                               const glm::vec3& sweep, const Emit& emit) {
-  glm::vec3 xa[3], xb[3];
-  face_vertices(positions, fa, xa);
-  face_vertices(positions, fb, xb);
-  const gpu::Box box_a = reach_box(xa, 3u, 0.0f);
-  const gpu::Box box_b = reach_box(xb, 3u, 0.0f);
+void emit_face_pair_candidates(VertexPositions positions, VertexPositions motion,
+                               const gpu::Face& fa, std::uint32_t index_a, std::uint32_t owners_a,
+                               const gpu::Face& fb, std::uint32_t index_b, std::uint32_t owners_b,
+                               float reach, const Emit& emit) {
+  glm::vec3 xa[6], xb[6];
+  swept_face_vertices(positions, motion, fa, xa);
+  swept_face_vertices(positions, motion, fb, xb);
+  const gpu::Box box_a = reach_box(xa, 6u, 0.0f);
+  const gpu::Box box_b = reach_box(xb, 6u, 0.0f);
   for (std::uint32_t k = 0; k < 3u; ++k) {
-    if ((owners_a & (kOwnsVertex0 << k)) != 0u &&
-        boxes_overlap(sweep_box(reach_box(&xa[k], 1u, reach), sweep), box_b))
-      emit(ProximityCandidate{gpu::kContactVertexFace,
-                              fa.body,
-                              fb.body,
-                              index_b,
-                              {face_corner(fa, k), fb.a, fb.b, fb.c}});
+    const glm::vec3 path[2] = {xa[k], xa[3u + k]};
+    if ((owners_a & (kOwnsVertex0 << k)) != 0u && boxes_overlap(reach_box(path, 2u, reach), box_b))
+      emit_if_within_reach(ProximityCandidate{gpu::kContactVertexFace,
+                                              fa.body,
+                                              fb.body,
+                                              index_b,
+                                              {face_corner(fa, k), fb.a, fb.b, fb.c}},
+                           std::array{xa[k], xb[0], xb[1], xb[2]}.data(),
+                           std::array{xa[3u + k], xb[3], xb[4], xb[5]}.data(), reach, emit);
   }
   for (std::uint32_t k = 0; k < 3u; ++k) {
-    if ((owners_b & (kOwnsVertex0 << k)) != 0u &&
-        boxes_overlap(sweep_box(reach_box(&xb[k], 1u, reach), -sweep), box_a))
-      emit(ProximityCandidate{gpu::kContactVertexFace,
-                              fb.body,
-                              fa.body,
-                              index_a,
-                              {face_corner(fb, k), fa.a, fa.b, fa.c}});
+    const glm::vec3 path[2] = {xb[k], xb[3u + k]};
+    if ((owners_b & (kOwnsVertex0 << k)) != 0u && boxes_overlap(reach_box(path, 2u, reach), box_a))
+      emit_if_within_reach(ProximityCandidate{gpu::kContactVertexFace,
+                                              fb.body,
+                                              fa.body,
+                                              index_a,
+                                              {face_corner(fb, k), fa.a, fa.b, fa.c}},
+                           std::array{xb[k], xa[0], xa[1], xa[2]}.data(),
+                           std::array{xb[3u + k], xa[3], xa[4], xa[5]}.data(), reach, emit);
   }
   for (std::uint32_t i = 0; i < 3u; ++i) {
     if ((owners_a & (kOwnsEdge0 << i)) == 0u) continue;
-    const glm::vec3 edge_a[2] = {xa[i], xa[(i + 1u) % 3u]};
-    const gpu::Box grown = sweep_box(reach_box(edge_a, 2u, reach), sweep);
+    const std::uint32_t i1 = (i + 1u) % 3u;
+    const glm::vec3 edge_a[4] = {xa[i], xa[i1], xa[3u + i], xa[3u + i1]};
+    const gpu::Box grown = reach_box(edge_a, 4u, reach);
     for (std::uint32_t j = 0; j < 3u; ++j) {
       if ((owners_b & (kOwnsEdge0 << j)) == 0u) continue;
-      const glm::vec3 edge_b[2] = {xb[j], xb[(j + 1u) % 3u]};
-      if (boxes_overlap(grown, reach_box(edge_b, 2u, 0.0f)))
-        emit(ProximityCandidate{gpu::kContactEdgeEdge,
-                                fa.body,
-                                fb.body,
-                                0u,
-                                {face_corner(fa, i), face_corner(fa, (i + 1u) % 3u),
-                                 face_corner(fb, j), face_corner(fb, (j + 1u) % 3u)}});
+      const std::uint32_t j1 = (j + 1u) % 3u;
+      const glm::vec3 edge_b[4] = {xb[j], xb[j1], xb[3u + j], xb[3u + j1]};
+      if (boxes_overlap(grown, reach_box(edge_b, 4u, 0.0f)))
+        emit_if_within_reach(
+            ProximityCandidate{
+                gpu::kContactEdgeEdge,
+                fa.body,
+                fb.body,
+                0u,
+                {face_corner(fa, i), face_corner(fa, i1), face_corner(fb, j), face_corner(fb, j1)}},
+            std::array{xa[i], xa[i1], xb[j], xb[j1]}.data(),
+            std::array{xa[3u + i], xa[3u + i1], xb[3u + j], xb[3u + j1]}.data(), reach, emit);
     }
   }
 }

@@ -21,6 +21,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "core/collision/primitive_distance.h"
 #include "deformcd/gpu_layout.h"
 
 namespace deformcd::response {
@@ -50,30 +51,6 @@ inline bool plane_barycentric(const glm::vec3& p, const glm::vec3& a, const glm:
   return true;
 }
 
-/// Parameters (s, t) of the closest points a0 + s (a1 - a0) and b0 + t (b1 - b0) of two
-/// segments, each in [0, 1]; false when either segment is degenerate.
-inline bool segment_closest_parameters(const glm::vec3& a0, const glm::vec3& a1,
-                                       const glm::vec3& b0, const glm::vec3& b1, float& s,
-                                       float& t) {
-  const glm::vec3 da = a1 - a0, db = b1 - b0, r = a0 - b0;
-  const float aa = glm::dot(da, da), bb = glm::dot(db, db), ab = glm::dot(da, db);
-  const float ar = glm::dot(da, r), br = glm::dot(db, r);
-  if (!(aa > 0.0f) || !(bb > 0.0f)) return false;
-  const float denominator = aa * bb - ab * ab;
-  // Parallel segments: any s works; take the one of a0 and let t and then s clamp.
-  s = denominator > 1e-12f * aa * bb ? glm::clamp((ab * br - bb * ar) / denominator, 0.0f, 1.0f)
-                                     : 0.0f;
-  t = (ab * s + br) / bb;
-  if (t < 0.0f) {
-    t = 0.0f;
-    s = glm::clamp(-ar / aa, 0.0f, 1.0f);
-  } else if (t > 1.0f) {
-    t = 1.0f;
-    s = glm::clamp((ab - ar) / aa, 0.0f, 1.0f);
-  }
-  return true;
-}
-
 /// The geometry of one constraint on the current positions: normal n, weights b (sum 0), and
 /// C, the distance along n minus the thickness (the constraint wants C >= 0). False when the
 /// constraint does not apply now (vertex beside the face, beyond its band, degenerate).
@@ -81,7 +58,7 @@ inline bool contact_geometry(const gpu::ContactPair& pair, const glm::vec3 x[4],
                              float b[4], float& c) {
   if (pair.kind == gpu::kContactEdgeEdge) {
     float s = 0.0f, t = 0.0f;
-    if (!segment_closest_parameters(x[0], x[1], x[2], x[3], s, t)) return false;
+    if (!collision::segment_closest_parameters<float>(x[0], x[1], x[2], x[3], s, t)) return false;
     const glm::vec3 d = (x[0] + s * (x[1] - x[0])) - (x[2] + t * (x[3] - x[2]));
     const float distance = std::sqrt(glm::dot(d, d));
     if (!(distance > 1e-7f * pair.thickness)) return false;  // crossing: no direction
@@ -117,6 +94,36 @@ inline bool contact_geometry(const gpu::ContactPair& pair, const glm::vec3 x[4],
   b[3] = -uvw.z;
   c = height - pair.thickness;
   return true;
+}
+
+/// How far a node is from its straight path: its position against where the search window's
+/// start (frame_start.xyz) carried along its path velocity (node_motion.xyz) puts it after
+/// `elapsed` seconds.
+inline float path_deviation(const glm::vec3& position, const glm::vec4& frame_start,
+                            const glm::vec4& node_motion, float elapsed) {
+  const glm::vec3 centre = glm::vec3(frame_start) + glm::vec3(node_motion) * elapsed;
+  const glm::vec3 moved = position - centre;
+  return std::sqrt(glm::dot(moved, moved));
+}
+
+/// Whether a constraint may act `elapsed` seconds into its search window, its nodes
+/// deviation[k] from their straight paths: along the paths its distance shrinks by at most
+/// closing_speed x elapsed, and each side's deviation takes at most that side's largest off it.
+/// A constraint that is not awake is inactive (its distance is still above its thickness), so
+/// the activity pass need not look at its geometry. Untangling constraints (gap -inf) are
+/// always awake. The comparison keeps a margin of 1e-4 of the thickness for rounding.
+inline bool contact_awake(const gpu::ContactPair& pair, const float deviation[4], float elapsed) {
+  const std::uint32_t first_b = pair.kind == gpu::kContactEdgeEdge ? 2u : 1u;
+  float side_a = 0.0f, side_b = 0.0f;
+  for (std::uint32_t k = 0; k < 4u; ++k) {
+    if (k < first_b) {
+      side_a = glm::max(side_a, deviation[k]);
+    } else {
+      side_b = glm::max(side_b, deviation[k]);
+    }
+  }
+  const float closest = pair.gap - pair.closing_speed * elapsed;
+  return !(closest > (side_a + side_b) + 1e-4f * pair.thickness);
 }
 
 /// The activity pass: whether the constraint acts now (its distance along n is below its
@@ -188,13 +195,17 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
 }
 
 /// The node pass: one node's summed position and velocity corrections over its list, in list
-/// order (an inactive constraint's are zero).
+/// order, of its active constraints (`active`: one flag per constraint). The CPU solves only
+/// the active constraints and skips the others' slots here; the GL solve pass writes zeros into
+/// an inactive constraint's slots and the GL node pass adds them: the same sums.
 inline void gather_correction(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
-                              const glm::vec4* corrections, glm::vec3& dx, glm::vec3& dv) {
+                              const std::uint32_t* active, const glm::vec4* corrections,
+                              glm::vec3& dx, glm::vec3& dv) {
   dx = glm::vec3(0.0f);
   dv = glm::vec3(0.0f);
   for (std::uint32_t e = begin; e < end; ++e) {
     const std::uint32_t slot = list[e];
+    if (active[slot / 4u] == 0u) continue;
     dx += glm::vec3(corrections[2u * slot]);
     dv += glm::vec3(corrections[2u * slot + 1u]);
   }
@@ -202,19 +213,17 @@ inline void gather_correction(const std::uint32_t* list, std::uint32_t begin, st
 
 /// Applies a node's corrections to its position and velocity, and says whether a free node
 /// has strayed beyond `reach` (frame_start.w) from where it started the search window
-/// (frame_start.xyz) carried along by its body's drift (body_motion.xyz x elapsed): beyond the
+/// (frame_start.xyz) carried along its straight path (node_motion.xyz x elapsed): beyond the
 /// motion the window's proximity search assumed, so that the search must run again. Fixed
 /// nodes (inverse mass 0) are left alone and never stray (their motion is prescribed).
 inline bool apply_correction(glm::vec4& position, glm::vec4& velocity, const glm::vec3& dx,
                              const glm::vec3& dv, const glm::vec4& frame_start,
-                             const glm::vec4& body_motion, float elapsed) {
+                             const glm::vec4& node_motion, float elapsed) {
   if (!(position.w > 0.0f)) return false;
   const glm::vec3 p = glm::vec3(position) + dx;
   velocity = glm::vec4(glm::vec3(velocity) + dv, 0.0f);
   position = glm::vec4(p, position.w);
-  const glm::vec3 centre = glm::vec3(frame_start) + glm::vec3(body_motion) * elapsed;
-  const glm::vec3 moved = p - centre;
-  return glm::dot(moved, moved) > frame_start.w * frame_start.w;
+  return path_deviation(p, frame_start, node_motion, elapsed) > frame_start.w;
 }
 
 }  // namespace deformcd::response

@@ -14,15 +14,16 @@
 namespace deformcd::response {
 
 struct FrameConstraints {
-  std::vector<gpu::ContactPair> pairs;  ///< SSBO 29, sorted
+  std::vector<gpu::ContactPair> pairs;  ///< SSBO 29, in the proximity search's order
   /// SSBO 31: node n's corners are node_list[node_offset[n] .. node_offset[n + 1]).
   std::vector<std::uint32_t> node_offset;
   /// SSBO 32: slots 4 p + k (pair p's node k), ascending within each node.
   std::vector<std::uint32_t> node_list;
-  /// SSBO 35, per body: its drift velocity (xyz, m/s: the mean velocity of its nodes at the
-  /// frame's start) and its reach (w, m): a free node stays within the reach of its
-  /// frame-start position carried along by the drift; the proximity search assumed no more.
-  std::vector<glm::vec4> body_motion;
+  /// SSBO 35, per node: the velocity of its straight path over the search window (xyz, m/s:
+  /// its velocity where the window starts) and its reach (w, m; infinite for a node on no
+  /// collision surface): a free node stays within the reach of its window-start position
+  /// carried along that path; the proximity search assumed no more.
+  std::vector<glm::vec4> node_motion;
 };
 
 /// Fills node_offset and node_list for `node_count` nodes from `pairs` (count, scan, emit in

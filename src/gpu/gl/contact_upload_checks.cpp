@@ -61,13 +61,12 @@ void check_node_lists(const response::FrameConstraints& c, std::uint32_t node_co
 
 }  // namespace
 
-void check_constraints_fit(const response::FrameConstraints& c, std::uint32_t node_count,
-                           std::uint32_t body_count) {
+void check_constraints_fit(const response::FrameConstraints& c, std::uint32_t node_count) {
   check_pairs(c, node_count);
   check_node_lists(c, node_count);
-  if (c.body_motion.size() < body_count) {
-    misfit("body_motion has " + std::to_string(c.body_motion.size()) + " entries for " +
-           std::to_string(body_count) + " bodies");
+  if (c.node_motion.size() != node_count) {
+    misfit("node_motion has " + std::to_string(c.node_motion.size()) + " entries for " +
+           std::to_string(node_count) + " nodes");
   }
 }
 
@@ -82,7 +81,8 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
       {"Node Contact List", gpu::kNodeContactList, c.node_list.size(), sizeof(std::uint32_t)},
       {"Node Contact Count", gpu::kNodeContactCount, nodes + 1u, sizeof(std::uint32_t)},
       {"Frame Start", gpu::kFrameStart, nodes, sizeof(glm::vec4)},
-      {"Body Motion", gpu::kBodyMotion, c.body_motion.size(), sizeof(glm::vec4)},
+      {"Node Motion", gpu::kNodeMotion, nodes, sizeof(glm::vec4)},
+      {"Node Deviation", gpu::kNodeDeviation, nodes, sizeof(float)},
   };
 }
 

@@ -59,6 +59,7 @@ GlContactResponse::GlContactResponse(const DeviceInfo& device, GlSimulation& sim
       limit_is_device_(limit_is_device(device, options.max_buffer_bytes)),
       max_work_groups_x_(device.max_work_group_count[0]),
       frame_start_("response/contact_frame_start.comp"),
+      deviation_("response/contact_deviation.comp"),
       activity_("response/contact_activity.comp"),
       pairs_("response/contact_pairs.comp"),
       count_("response/contact_count.comp"),
@@ -68,14 +69,14 @@ void GlContactResponse::begin_frame(const response::FrameConstraints& constraint
   // Everything is checked, and every buffer that must grow allocated, before the first change:
   // a failure keeps the previous frame's constraints.
   const SimulationBuffers& sim = simulation_.state_buffers();
-  check_constraints_fit(constraints, sim.node_count, sim.body_count);
+  check_constraints_fit(constraints, sim.node_count);
   const std::vector<BufferSize> sizes = contact_buffer_sizes(constraints, sim.node_count);
   check_buffer_sizes(sizes, max_buffer_bytes_,
                      limit_is_device_ ? "the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE"
                                       : "GlContactResponseOptions::max_buffer_bytes",
                      kOwner);
   check_fits_one_dispatch(pairs_, constraints.pairs.size(), max_work_groups_x_);
-  for (const ComputeProgram* per_node : {&frame_start_, &count_, &apply_})
+  for (const ComputeProgram* per_node : {&frame_start_, &deviation_, &count_, &apply_})
     check_fits_one_dispatch(*per_node, sim.node_count, max_work_groups_x_);
 
   const std::uint64_t nodes = sim.node_count;
@@ -89,7 +90,8 @@ void GlContactResponse::begin_frame(const response::FrameConstraints& constraint
   auto new_list = grow(buffers_.node_list, constraints.node_list.size(), gpu::kNodeContactList);
   auto new_count = grow(buffers_.node_count, nodes + 1u, gpu::kNodeContactCount);
   auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
-  auto new_motion = grow(buffers_.body_motion, constraints.body_motion.size(), gpu::kBodyMotion);
+  auto new_motion = grow(buffers_.node_motion, nodes, gpu::kNodeMotion);
+  auto new_deviation = grow(buffers_.node_deviation, nodes, gpu::kNodeDeviation);
 
   frame_ready_ = false;  // until the upload below has completed
   adopt(buffers_.pairs, new_pairs);
@@ -98,12 +100,13 @@ void GlContactResponse::begin_frame(const response::FrameConstraints& constraint
   adopt(buffers_.node_list, new_list);
   adopt(buffers_.node_count, new_count);
   adopt(buffers_.frame_start, new_start);
-  adopt(buffers_.body_motion, new_motion);
+  adopt(buffers_.node_motion, new_motion);
+  adopt(buffers_.node_deviation, new_deviation);
   // Corrections and counts need no initial values: each projection writes all it reads.
   buffers_.pairs->upload(std::span<const gpu::ContactPair>(constraints.pairs));
   buffers_.node_offset->upload(std::span<const std::uint32_t>(constraints.node_offset));
   buffers_.node_list->upload(std::span<const std::uint32_t>(constraints.node_list));
-  buffers_.body_motion->upload(std::span<const glm::vec4>(constraints.body_motion));
+  buffers_.node_motion->upload(std::span<const glm::vec4>(constraints.node_motion));
 
   pair_count_ = static_cast<std::uint32_t>(pairs);
   node_count_ = sim.node_count;
@@ -113,10 +116,10 @@ void GlContactResponse::begin_frame(const response::FrameConstraints& constraint
   count_.set_uniform("u_node_count", node_count_);
   apply_.set_uniform("u_node_count", node_count_);
   frame_start_.set_uniform("u_node_count", node_count_);
+  deviation_.set_uniform("u_node_count", node_count_);
 
   sim.positions.bind(gpu::kNodePosition);
-  sim.node_body.bind(gpu::kNodeBody);
-  buffers_.body_motion->bind(gpu::kBodyMotion);
+  buffers_.node_motion->bind(gpu::kNodeMotion);
   buffers_.frame_start->bind(gpu::kFrameStart);
   frame_start_.dispatch_covering(node_count_);
   // The node passes read the frame starts; the next substep overwrites the positions read here.
@@ -144,13 +147,17 @@ bool GlContactResponse::project(const response::ContactConstants& k) {
   buffers_.node_list->bind(gpu::kNodeContactList);
   buffers_.node_count->bind(gpu::kNodeContactCount);
   buffers_.frame_start->bind(gpu::kFrameStart);
-  buffers_.body_motion->bind(gpu::kBodyMotion);
-  sim.node_body.bind(gpu::kNodeBody);
+  buffers_.node_motion->bind(gpu::kNodeMotion);
+  buffers_.node_deviation->bind(gpu::kNodeDeviation);
 
-  // Activity, count, solve, node pass (contact_constraints.h), each reading what the one
-  // before wrote. With no constraints the node passes still run: the node pass watches every
-  // free node's reach, as the CPU backend does.
+  // Deviation, activity, count, solve, node pass (contact_constraints.h), each reading what the
+  // one before wrote. With no constraints the node passes still run: the node pass watches
+  // every free node's reach, as the CPU backend does.
   if (pair_count_ > 0) {
+    deviation_.set_uniform("u_elapsed", k.elapsed);
+    deviation_.dispatch_covering(node_count_);
+    storage_barrier();  // the activity pass reads the deviations
+    activity_.set_uniform("u_elapsed", k.elapsed);
     activity_.dispatch_covering(pair_count_);
     storage_barrier();  // the count pass reads the activity flags
   }

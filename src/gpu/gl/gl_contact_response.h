@@ -3,18 +3,22 @@
 // (src/cpu/cpu_contact_response.h), as compute shaders over the GL simulation's own node
 // buffers, corrected in place between its substeps.
 //
-// Thread-to-data mapping: response/contact_frame_start.comp runs once per frame, one invocation
-// per node, recording its position and its body's motion bound (SSBO 34). Each projection then
-// runs response/contact_pairs.comp, one invocation per constraint, writing its four corner slots
-// (SSBO 30); response/contact_count.comp, one per node, counting its active corners over its CSR
-// list (SSBOs 31, 32) into SSBO 33; response/contact_apply.comp, one per node, gathering its
+// Thread-to-data mapping: response/contact_frame_start.comp runs once per search window, one
+// invocation per node, recording its position and its reach (SSBO 34). Each projection then runs
+// response/contact_deviation.comp, one invocation per node, writing its distance from its
+// straight path (SSBO 36); response/contact_activity.comp, one per constraint, flagging whether
+// it acts (only constraints the deviations can have woken look at their geometry);
+// response/contact_count.comp, one per node, counting its active corners over its CSR list
+// (SSBOs 31, 32) into SSBO 33; response/contact_pairs.comp, one per constraint, writing its
+// four corner slots (SSBO 30); response/contact_apply.comp, one per node, gathering its
 // corrections over the same list in list order and writing only its own position and velocity.
 // Gathers instead of scattering with atomics: GL 4.3 has no float atomics, and a fixed
 // summation order makes the result independent of the schedule and equal to the CPU's bit for
 // bit (shaders/response/contact_constraints.glsl mirrors src/core/response/contact_constraints.h).
 //
-// A frame's constraints are uploaded once, in begin_frame; a projection issues three dispatches
-// and no readback or wait, so that the substep loop never stalls on the GPU.
+// A frame's constraints are uploaded once, in begin_frame; a projection issues its dispatches
+// and reads back one uint (whether a node strayed beyond its reach, so that a new search is
+// due).
 
 #include <cstdint>
 #include <optional>
@@ -48,7 +52,8 @@ struct ContactBuffers {
   std::optional<Ssbo<std::uint32_t>> node_list;    // SSBO 32
   std::optional<Ssbo<std::uint32_t>> node_count;   // SSBO 33: per node, + 1: the stray flag
   std::optional<Ssbo<glm::vec4>> frame_start;      // SSBO 34: per node
-  std::optional<Ssbo<glm::vec4>> body_motion;      // SSBO 35: per body
+  std::optional<Ssbo<glm::vec4>> node_motion;      // SSBO 35: per node
+  std::optional<Ssbo<float>> node_deviation;       // SSBO 36: per node
 };
 
 class GlContactResponse final : public response::ResponseBackend {
@@ -84,6 +89,7 @@ class GlContactResponse final : public response::ResponseBackend {
   bool limit_is_device_ = true;  // whether max_buffer_bytes_ is the device's, for messages
   std::uint32_t max_work_groups_x_ = 0;
   ComputeProgram frame_start_;
+  ComputeProgram deviation_;
   ComputeProgram activity_;
   ComputeProgram pairs_;
   ComputeProgram count_;

@@ -127,9 +127,7 @@ std::vector<collision::ProximityCandidate> GlProximity::find_bound(
   candidates_->bind(kProximityCandidatesBinding);
   storage_barrier();  // the emit pass reads the offsets
   emit_.dispatch_covering(item_count_);
-  std::vector<collision::ProximityCandidate> out = candidates_->download(0, total);
-  std::sort(out.begin(), out.end());
-  return out;
+  return candidates_->download(0, total);
 }
 
 }  // namespace deformcd::gl

@@ -8,9 +8,9 @@
 // the two reaches (shaders/collision/bvh.glsl) and counts the candidates of every face pair it
 // finds, into its own slot; proximity_scan.comp (one work group) turns the counts into offsets
 // and the total; after a read-back of the total (the output is sized by it),
-// proximity_emit.comp reruns each item's query and writes its candidates from its offset. The
-// list is then read back and sorted on the host: the order CpuProximity::find returns, which no
-// GPU schedule can change.
+// proximity_emit.comp reruns each item's query and writes its candidates from its offset: in
+// work-item order, each item's in its traversal order, the order CpuProximity::find returns,
+// which no GPU schedule can change.
 
 #include <cstdint>
 #include <optional>
@@ -56,7 +56,7 @@ class GlProximity {
 
   // The candidates on the positions `sources` hold, whose boxes swept along
   // drift[mesh_a] - drift[mesh_b] come within reach[mesh_a] + reach[mesh_b] (one reach and one
-  // drift per mesh), sorted: CpuProximity::find's list.
+  // drift per mesh), in CpuProximity::find's order.
   // Waits for the GPU (two read-backs). Throws Error for a reach list of the wrong length,
   // GlError naming the candidate buffer when it would exceed the device's buffer limit or the
   // driver refuses the memory.
