@@ -165,20 +165,21 @@ class Detector {
   /// b.face), a.body <= b.body (body = mesh index, face = triangle index in the caller's
   /// order, nodes = its vertex indices); the same on every backend and broad phase.
   [[nodiscard]] std::vector<Contact> contacts() const;
-  /// The vertex-triangle and edge-edge pairs that may come closer than reach[mesh_a] +
-  /// reach[mesh_b] over a period in which each vertex moves by its `motion` (m; one per vertex
-  /// of every mesh, mesh 0's first, in vertex order; empty: none) and strays at most its mesh's
-  /// reach from that straight path: the pairs whose boxes, swept along the motion, come within
-  /// the sum of the reaches on the current positions, and whose distance now, less the most
-  /// their vertices' relative motion can close of it, is within that sum too (a superset of
-  /// the pairs that come closer than the sum).
-  /// Over the mesh pairs detect() tests; within one mesh, primitives of triangles sharing a
-  /// vertex are neighbours and left out. Each pair once, in a fixed order (mesh pair by
-  /// mesh pair, then by the triangle of the pair's first mesh whose search found it, in the
-  /// search's traversal order), the same on every backend and thread count. For a contact response
-  /// that keeps bodies `thickness` apart: reach = thickness / 2 + the most a vertex strays from its
-  /// path. Throws InputError for lists of the wrong length, a negative or non-finite reach or a
-  /// non-finite motion.
+  /// The vertex-triangle and edge-edge pairs that may come closer than the sum of their
+  /// reaches over a period in which each vertex moves by its `motion` (m; one per vertex of
+  /// every mesh, mesh 0's first, in vertex order; empty: none) and strays at most its reach from
+  /// that straight path. `reach` (m, >= 0) is one per mesh, or one per vertex of every mesh
+  /// (in the motion's order); a primitive's reach is the largest of its vertices'. The pairs
+  /// are those whose boxes, swept along the motion and grown by their reaches, overlap on the
+  /// current positions, and whose distance now, less the most their vertices' relative motion
+  /// can close of it, is within the sum of the reaches (a superset of the pairs that come
+  /// closer than the sum). Over the mesh pairs detect() tests; within one mesh, primitives of
+  /// triangles sharing a vertex are neighbours and left out. Each pair once, in a fixed order
+  /// (mesh pair by mesh pair, then by the triangle of the pair's first mesh whose search found
+  /// it, in the search's traversal order), the same on every backend and thread count. For a
+  /// contact response that keeps bodies `thickness` apart: reach = thickness / 2 + the most a
+  /// vertex strays from its path. Throws InputError for lists of the wrong length, a negative
+  /// or non-finite reach or a non-finite motion.
   [[nodiscard]] std::vector<ProximityPair> find_proximity(std::span<const float> reach,
                                                           std::span<const glm::vec3> motion = {});
   /// Counts of the last pass (all 0 before the first).

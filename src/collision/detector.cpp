@@ -291,20 +291,37 @@ std::vector<Contact> Detector::contacts() const {
 std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach,
                                                     std::span<const glm::vec3> motion) {
   Impl& d = *impl_;
-  if (reach.size() != d.meshes.size()) {
-    throw InputError("find_proximity",
-                     "takes one reach per mesh: " + std::to_string(d.meshes.size()) +
-                         " expected, " + std::to_string(reach.size()) + " given");
-  }
-  for (std::size_t m = 0; m < reach.size(); ++m) {
-    if (!(reach[m] >= 0.0f) || !std::isfinite(reach[m])) {
-      throw InputError(label_of(d.data, m), "has a reach of " + std::to_string(reach[m]) +
-                                                " (find_proximity wants a finite value >= 0)");
-    }
-  }
   std::size_t vertices = 0;
   for (const CollisionMesh& mesh : d.meshes)
     vertices += mesh.vertex_count;
+  // One reach per mesh, or one per vertex: per vertex from here on.
+  if (reach.size() != d.meshes.size() && reach.size() != vertices) {
+    throw InputError("find_proximity",
+                     "takes one reach per mesh (" + std::to_string(d.meshes.size()) +
+                         ") or per vertex of every mesh (" + std::to_string(vertices) + "), not " +
+                         std::to_string(reach.size()));
+  }
+  const bool per_mesh = reach.size() == d.meshes.size() && reach.size() != vertices;
+  std::vector<float> vertex_reach;
+  std::vector<const float*> reach_of(d.meshes.size());
+  if (per_mesh) {
+    vertex_reach.reserve(vertices);
+    for (std::size_t m = 0; m < d.meshes.size(); ++m)
+      vertex_reach.insert(vertex_reach.end(), d.meshes[m].vertex_count, reach[m]);
+    reach = vertex_reach;
+  }
+  for (std::size_t m = 0, first = 0; m < d.meshes.size(); first += d.meshes[m++].vertex_count) {
+    reach_of[m] = reach.data() + first;
+    for (std::uint32_t v = 0; v < d.meshes[m].vertex_count; ++v) {
+      const float r = reach[first + v];
+      if (!(r >= 0.0f) || !std::isfinite(r)) {
+        throw InputError(label_of(d.data, m),
+                         (per_mesh ? std::string() : "vertex " + std::to_string(v) + " ") +
+                             "has a reach of " + std::to_string(r) +
+                             " (find_proximity wants a finite value >= 0)");
+      }
+    }
+  }
   if (!motion.empty() && motion.size() != vertices) {
     throw InputError("find_proximity", "takes one motion per vertex of every mesh (or none): " +
                                            std::to_string(vertices) + " expected, " +
@@ -327,8 +344,8 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
   std::vector<std::vector<glm::vec3>> read_back;
   const std::vector<collision::MeshVertices> pose = d.host_vertices(read_back);
   if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
-  const std::vector<collision::ProximityCandidate> found =
-      d.proximity->find(pose.data(), motion_of.empty() ? nullptr : motion_of.data(), reach);
+  const std::vector<collision::ProximityCandidate> found = d.proximity->find(
+      pose.data(), motion_of.empty() ? nullptr : motion_of.data(), reach_of.data());
   std::vector<ProximityPair> out(found.size());
   d.executor->run([&] {
     cpu::parallel_for(found.size(), [&](std::size_t i) {

@@ -23,21 +23,21 @@ class CpuProximity {
   CpuProximity(const collision::CollisionData& data, std::shared_ptr<Executor> executor);
 
   /// The candidates whose boxes, swept from `positions` along each vertex's `motion` (null: no
-  /// motion), come within reach[mesh_a] + reach[mesh_b] (one reach, >= 0, per mesh), mesh pair
-  /// by mesh pair, then by the querying face of the pair's first mesh.
+  /// motion) and grown by each vertex's reach (>= 0), overlap and whose primitives' distance is
+  /// within the two reaches (emit_face_pair_candidates), mesh pair by mesh pair, then by the
+  /// querying face of the pair's first mesh.
   [[nodiscard]] std::vector<collision::ProximityCandidate> find(
       collision::VertexPositions positions, collision::VertexPositions motion,
-      std::span<const float> reach);
+      collision::VertexReach reach);
 
  private:
-  void refit(collision::VertexPositions positions, collision::VertexPositions motion);
+  void refit(collision::VertexPositions positions, collision::VertexPositions motion,
+             collision::VertexReach reach);
 
   collision::CollisionData data_;
   std::vector<std::uint32_t> owners_;
   collision::BvhUpkeep upkeep_;
-  std::vector<gpu::Box> boxes_;               // per node: swept over the period
-  std::vector<gpu::Box> end_boxes_;           // per node: where the motion ends
-  std::vector<std::vector<glm::vec3>> ends_;  // per mesh: positions + motion
+  std::vector<gpu::Box> boxes_;  // per node: swept over the period, grown by the reaches
   bool built_ = false;
   std::shared_ptr<Executor> executor_;
 };

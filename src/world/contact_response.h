@@ -52,10 +52,11 @@ class ContactResponse {
   std::vector<gpu::ObjectInfo> objects_;
   std::vector<std::uint32_t> node_body_;
   std::vector<glm::vec3> carry_;
-  std::vector<std::uint8_t> on_surface_;  // per node: a vertex of its body's collision surface
-  std::vector<float> thickness_;          // per body
-  std::vector<float> mean_edge_;          // per body, surface
-  std::vector<glm::vec4> velocities_;
+  std::vector<std::uint8_t> on_surface_;    // per node: a vertex of its body's collision surface
+  std::vector<float> thickness_;            // per body
+  std::vector<float> mean_edge_;            // per body, surface
+  std::vector<glm::vec4> velocities_;       // read back from a GL simulation
+  std::vector<glm::vec4> last_velocities_;  // per node, at the last search
   float max_untangle_step_ = 0.0f;
   Detector* detector_ = nullptr;        // of the frame
   std::vector<Contact> intersections_;  // of the frame

@@ -235,7 +235,8 @@ TEST_F(ProximityAgreement, GlEqualsCpuThroughPhase1) {
     for (const std::vector<float>& reach :
          {std::vector<float>{0.002f, 0.003f}, std::vector<float>{0.02f, 0.01f}}) {
       const std::vector<collision::ProximityCandidate> expected =
-          cpu.find(replay.fixture.vertices(), nullptr, reach);
+          cpu.find(replay.fixture.vertices(), nullptr,
+                   test::reach_per_vertex(replay.fixture.data, reach).get());
       const std::vector<collision::ProximityCandidate> found =
           test::within_reach(gl.find_bound(reach, drift), replay.fixture.vertices(), reach);
       EXPECT_EQ(found.size(), expected.size()) << "frame " << f << ", reach " << reach[0];

@@ -80,7 +80,7 @@ class GlProximityTest : public test_support::GlTest {
     for (const std::vector<float>& reach : reaches) {
       const std::vector<glm::vec3> drift(reach.size(), glm::vec3(0.0f));
       const std::vector<collision::ProximityCandidate> expected =
-          cpu.find(f.vertices(), nullptr, reach);
+          cpu.find(f.vertices(), nullptr, test::reach_per_vertex(f.data, reach).get());
       const std::vector<collision::ProximityCandidate> boxed = gl.find(gpu.sources(), reach, drift);
       const std::vector<collision::ProximityCandidate> found =
           test::within_reach(boxed, f.vertices(), reach);
@@ -153,7 +153,7 @@ TEST_F(GlProximityTest, OverAGlCollisionsRefittedTreesGivesTheCpuCandidates) {
     const std::vector<collision::ProximityCandidate> found =
         test::within_reach(gl.find_bound(reach, drift), f.vertices(), reach);
     const std::vector<collision::ProximityCandidate> expected =
-        cpu.find(f.vertices(), nullptr, reach);
+        cpu.find(f.vertices(), nullptr, test::reach_per_vertex(f.data, reach).get());
     EXPECT_GT(expected.size(), 0u);
     EXPECT_EQ(found.size(), expected.size()) << "step " << step;
     EXPECT_TRUE(found == expected) << "step " << step;

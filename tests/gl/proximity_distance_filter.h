@@ -8,10 +8,28 @@
 #include <span>
 #include <vector>
 
+#include "core/collision/collision_data.h"
 #include "core/collision/primitive_distance.h"
 #include "core/collision/proximity.h"
 
 namespace deformcd::test {
+
+/// One reach per mesh spread over its vertices, as CpuProximity::find takes them.
+struct ReachPerVertex {
+  std::vector<std::vector<float>> values;
+  std::vector<const float*> meshes;
+  [[nodiscard]] collision::VertexReach get() const { return meshes.data(); }
+};
+
+inline ReachPerVertex reach_per_vertex(const collision::CollisionData& data,
+                                       std::span<const float> reach) {
+  ReachPerVertex out;
+  for (std::uint32_t m = 0; m < data.mesh_count(); ++m)
+    out.values.emplace_back(data.meshes[m].vertex_count, reach[m]);
+  for (const std::vector<float>& v : out.values)
+    out.meshes.push_back(v.data());
+  return out;
+}
 
 inline std::vector<collision::ProximityCandidate> within_reach(
     std::vector<collision::ProximityCandidate> found, collision::VertexPositions positions,

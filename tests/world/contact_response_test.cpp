@@ -127,9 +127,11 @@ TEST(ContactResponse, ImpactConservesMomentumAndRebounds) {
 }
 
 // What the proximity search returns equals a brute-force enumeration of every vertex-triangle
-// and edge-edge pair of the two meshes whose boxes, swept along each vertex's own motion, overlap
-// once one is grown by the two reaches, and whose distance less what the motions can close of
-// it is within the reaches, on the impact scene's models at the moment of contact.
+// and edge-edge pair of the two meshes whose boxes, swept along each vertex's own motion and
+// grown by their reaches (one per vertex; a primitive's is its vertices' largest), overlap, and
+// whose distance less what the motions can close of it is within the sum of the reaches, on the
+// impact scene's models at the moment of contact. One reach per mesh is the same as that reach
+// on every vertex.
 TEST(ContactResponse, ProximityEqualsBruteForce) {
   SceneWorld s = open_scene("impact", 40);
   // Up to the frame the response first finds many pairs: the bodies pressed together.
@@ -151,7 +153,21 @@ TEST(ContactResponse, ProximityEqualsBruteForce) {
   Detector detector(meshes, {.backend = BackendKind::kCpu});
   for (std::size_t b = 0; b < 2; ++b)
     detector.set_positions(b, std::span<const glm::vec3>(positions[b]));
-  const std::vector<float> reach = {0.006f, 0.009f};
+  // A reach per vertex, around 6 mm on the armadillo and 9 mm on the lion.
+  const float base[2] = {0.006f, 0.009f};
+  std::vector<std::vector<float>> reach_of(2);
+  std::vector<float> reach;
+  for (std::size_t b = 0; b < 2; ++b) {
+    for (std::size_t v = 0; v < positions[b].size(); ++v)
+      reach_of[b].push_back(base[b] * (1.0f + 0.5f * std::sin(1.3f * static_cast<float>(v))));
+    reach.insert(reach.end(), reach_of[b].begin(), reach_of[b].end());
+  }
+  const auto reach_most = [&](std::uint32_t b, std::initializer_list<std::uint32_t> v) {
+    float most = 0.0f;
+    for (const std::uint32_t i : v)
+      most = std::max(most, reach_of[b][i]);
+    return most;
+  };
   // Every vertex moves: the bodies toward each other, and each vertex by its own wobble.
   std::vector<glm::vec3> motion;
   std::vector<std::vector<glm::vec3>> ends = positions;
@@ -197,17 +213,18 @@ TEST(ContactResponse, ProximityEqualsBruteForce) {
     return collision::primitives_within(kind, x, collision::closing_speed(kind, m), grow);
   };
   std::set<Key> expected;
-  const float grow = reach[0] + reach[1];
   for (std::uint32_t a = 0; a < 2; ++a) {
     const std::uint32_t b = 1 - a;
     std::set<std::uint32_t> surface;
     for (const Triangle& t : meshes[a].triangles)
       surface.insert(t.begin(), t.end());
     for (const std::uint32_t v : surface) {
-      const auto vbox = box(a, {v}, grow);
+      const auto vbox = box(a, {v}, reach_of[a][v]);
       for (const Triangle& t : meshes[b].triangles) {
-        if (overlap(vbox, box(b, {t[0], t[1], t[2]}, 0.0f)) &&
-            within(gpu::kContactVertexFace, {a, b}, {v, t[0], t[1], t[2]}, grow)) {
+        const float reach_t = reach_most(b, {t[0], t[1], t[2]});
+        if (overlap(vbox, box(b, {t[0], t[1], t[2]}, reach_t)) &&
+            within(gpu::kContactVertexFace, {a, b}, {v, t[0], t[1], t[2]},
+                   reach_of[a][v] + reach_t)) {
           expected.insert({0, a, b, {v, t[0], t[1], t[2]}});
         }
       }
@@ -221,10 +238,12 @@ TEST(ContactResponse, ProximityEqualsBruteForce) {
     return out;
   };
   for (const auto& [a0, a1] : edges(meshes[0])) {
-    const auto abox = box(0, {a0, a1}, grow);
+    const float reach_a = reach_most(0, {a0, a1});
+    const auto abox = box(0, {a0, a1}, reach_a);
     for (const auto& [b0, b1] : edges(meshes[1])) {
-      if (overlap(abox, box(1, {b0, b1}, 0.0f)) &&
-          within(gpu::kContactEdgeEdge, {0u, 1u}, {a0, a1, b0, b1}, grow))
+      const float reach_b = reach_most(1, {b0, b1});
+      if (overlap(abox, box(1, {b0, b1}, reach_b)) &&
+          within(gpu::kContactEdgeEdge, {0u, 1u}, {a0, a1, b0, b1}, reach_a + reach_b))
         expected.insert({1, 0u, 1u, {a0, a1, b0, b1}});
     }
   }
@@ -244,6 +263,20 @@ TEST(ContactResponse, ProximityEqualsBruteForce) {
   EXPECT_GT(expected.size(), 100u) << "the models should be within reach";
   EXPECT_EQ(got.size(), expected.size());
   EXPECT_TRUE(got == expected);
+
+  std::vector<float> spread;
+  for (std::size_t b = 0; b < 2; ++b)
+    spread.insert(spread.end(), positions[b].size(), base[b]);
+  EXPECT_TRUE(detector.find_proximity(base, motion) == detector.find_proximity(spread, motion));
+  EXPECT_THROW((void)detector.find_proximity(std::vector<float>(3, 0.01f), motion), InputError);
+  spread[7] = -1.0f;
+  try {
+    (void)detector.find_proximity(spread, motion);
+    ADD_FAILURE() << "a negative reach should be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 7 has a reach of -1"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ContactResponse, BadSettingsAreErrorsNamingTheField) {

@@ -96,66 +96,84 @@ void emit_if_within_reach(const ProximityCandidate& c, const glm::vec3 x[4], con
   return false;
 }
 
-/// The candidates of one face pair (fa of mesh a, fb of mesh b, whose swept boxes grown by
-/// `reach` overlap; for one mesh, fa < fb and the faces share no corner) in a fixed order: fa's
-/// owned vertices against fb, fb's owned vertices against fa, then fa's owned edges against
-/// fb's. Each vertex moves linearly by its motion over the period and may stray from that path
-/// by its mesh's reach: a primitive's box spans both ends of its path (swept) and, grown by
-/// `reach` (the sum of the two meshes' reaches), is tested against the other's swept box; a
-/// pair that passes is kept unless its distance where the period starts, less what the
-/// motions can close of it (closing_speed), exceeds the reach. A pair that comes within the
-/// reach at some moment of the period is always emitted.
+/// Every mesh's per-vertex reaches, indexed by mesh (Face::body): vertex i's is [mesh][i].
+using VertexReach = const float* const*;
+
+/// The reach of face f's corners (out[0..2]) and the face's (the largest, returned).
+inline float face_reaches(VertexReach reach, const gpu::Face& f, float out[3]) {
+  out[0] = reach[f.body][f.a];
+  out[1] = reach[f.body][f.b];
+  out[2] = reach[f.body][f.c];
+  return glm::max(out[0], glm::max(out[1], out[2]));
+}
+
+/// The candidates of one face pair (fa of mesh a, fb of mesh b, whose swept boxes, each grown
+/// by its face's reach, overlap; for one mesh, fa < fb and the faces share no corner) in a
+/// fixed order: fa's owned vertices against fb, fb's owned vertices against fa, then fa's owned
+/// edges against fb's. Each vertex moves linearly by its motion over the period and may stray
+/// from that path by its reach: a primitive's box spans both ends of its path (swept) and is
+/// grown by its reach (a vertex's own, the largest of an edge's or a face's vertices'); a pair
+/// whose boxes overlap is kept unless its distance where the period starts, less what the
+/// motions can close of it (closing_speed), exceeds the sum of the two reaches. A pair that
+/// comes within that sum at some moment of the period is always emitted.
 template <class Emit>
-void emit_face_pair_candidates(VertexPositions positions, VertexPositions motion,
+void emit_face_pair_candidates(VertexPositions positions, VertexPositions motion, VertexReach reach,
                                const gpu::Face& fa, std::uint32_t index_a, std::uint32_t owners_a,
                                const gpu::Face& fb, std::uint32_t index_b, std::uint32_t owners_b,
-                               float reach, const Emit& emit) {
+                               const Emit& emit) {
   glm::vec3 xa[6], xb[6];
   swept_face_vertices(positions, motion, fa, xa);
   swept_face_vertices(positions, motion, fb, xb);
-  const gpu::Box box_a = reach_box(xa, 6u, 0.0f);
-  const gpu::Box box_b = reach_box(xb, 6u, 0.0f);
+  float ra[3], rb[3];
+  const float face_a = face_reaches(reach, fa, ra);
+  const float face_b = face_reaches(reach, fb, rb);
+  const gpu::Box box_a = reach_box(xa, 6u, face_a);
+  const gpu::Box box_b = reach_box(xb, 6u, face_b);
   for (std::uint32_t k = 0; k < 3u; ++k) {
     const glm::vec3 path[2] = {xa[k], xa[3u + k]};
-    if ((owners_a & (kOwnsVertex0 << k)) != 0u && boxes_overlap(reach_box(path, 2u, reach), box_b))
+    if ((owners_a & (kOwnsVertex0 << k)) != 0u && boxes_overlap(reach_box(path, 2u, ra[k]), box_b))
       emit_if_within_reach(ProximityCandidate{gpu::kContactVertexFace,
                                               fa.body,
                                               fb.body,
                                               index_b,
                                               {face_corner(fa, k), fb.a, fb.b, fb.c}},
                            std::array{xa[k], xb[0], xb[1], xb[2]}.data(),
-                           std::array{xa[3u + k], xb[3], xb[4], xb[5]}.data(), reach, emit);
+                           std::array{xa[3u + k], xb[3], xb[4], xb[5]}.data(), ra[k] + face_b,
+                           emit);
   }
   for (std::uint32_t k = 0; k < 3u; ++k) {
     const glm::vec3 path[2] = {xb[k], xb[3u + k]};
-    if ((owners_b & (kOwnsVertex0 << k)) != 0u && boxes_overlap(reach_box(path, 2u, reach), box_a))
+    if ((owners_b & (kOwnsVertex0 << k)) != 0u && boxes_overlap(reach_box(path, 2u, rb[k]), box_a))
       emit_if_within_reach(ProximityCandidate{gpu::kContactVertexFace,
                                               fb.body,
                                               fa.body,
                                               index_a,
                                               {face_corner(fb, k), fa.a, fa.b, fa.c}},
                            std::array{xb[k], xa[0], xa[1], xa[2]}.data(),
-                           std::array{xb[3u + k], xa[3], xa[4], xa[5]}.data(), reach, emit);
+                           std::array{xb[3u + k], xa[3], xa[4], xa[5]}.data(), rb[k] + face_a,
+                           emit);
   }
   for (std::uint32_t i = 0; i < 3u; ++i) {
     if ((owners_a & (kOwnsEdge0 << i)) == 0u) continue;
     const std::uint32_t i1 = (i + 1u) % 3u;
     const glm::vec3 edge_a[4] = {xa[i], xa[i1], xa[3u + i], xa[3u + i1]};
-    const gpu::Box grown = reach_box(edge_a, 4u, reach);
+    const float reach_a = glm::max(ra[i], ra[i1]);
+    const gpu::Box grown = reach_box(edge_a, 4u, reach_a);
     for (std::uint32_t j = 0; j < 3u; ++j) {
       if ((owners_b & (kOwnsEdge0 << j)) == 0u) continue;
       const std::uint32_t j1 = (j + 1u) % 3u;
       const glm::vec3 edge_b[4] = {xb[j], xb[j1], xb[3u + j], xb[3u + j1]};
-      if (boxes_overlap(grown, reach_box(edge_b, 4u, 0.0f)))
-        emit_if_within_reach(
-            ProximityCandidate{
-                gpu::kContactEdgeEdge,
-                fa.body,
-                fb.body,
-                0u,
-                {face_corner(fa, i), face_corner(fa, i1), face_corner(fb, j), face_corner(fb, j1)}},
-            std::array{xa[i], xa[i1], xb[j], xb[j1]}.data(),
-            std::array{xa[3u + i], xa[3u + i1], xb[3u + j], xb[3u + j1]}.data(), reach, emit);
+      const float reach_b = glm::max(rb[j], rb[j1]);
+      if (boxes_overlap(grown, reach_box(edge_b, 4u, reach_b)))
+        emit_if_within_reach(ProximityCandidate{gpu::kContactEdgeEdge,
+                                                fa.body,
+                                                fb.body,
+                                                0u,
+                                                {face_corner(fa, i), face_corner(fa, i1),
+                                                 face_corner(fb, j), face_corner(fb, j1)}},
+                             std::array{xa[i], xa[i1], xb[j], xb[j1]}.data(),
+                             std::array{xa[3u + i], xa[3u + i1], xb[3u + j], xb[3u + j1]}.data(),
+                             reach_a + reach_b, emit);
     }
   }
 }
