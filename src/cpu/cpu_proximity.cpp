@@ -47,8 +47,10 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
 
 std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexPositions positions,
                                                               collision::VertexPositions motion,
-                                                              collision::VertexReach reach) {
+                                                              collision::VertexReach reach,
+                                                              std::vector<float>* distances) {
   std::vector<collision::ProximityCandidate> all;
+  if (distances != nullptr) distances->clear();
   executor_->run([&] {
     refit(positions, motion, reach);
     for (const gpu::BodyPair& pair : data_.mesh_pairs) {
@@ -56,6 +58,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
       const gpu::BodyBvh& tree_b = upkeep_.tree(pair.b);
       const bool self = pair.a == pair.b;
       std::vector<std::vector<collision::ProximityCandidate>> per_face(mesh_a.face_count);
+      std::vector<std::vector<float>> per_face_distance(mesh_a.face_count);
       parallel_for(
           mesh_a.face_count,
           [&](std::size_t i) {
@@ -67,6 +70,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
             const gpu::Box query =
                 collision::reach_box(xa, 6u, collision::face_reaches(reach, fa, corner));
             auto& out = per_face[i];
+            auto& out_distance = per_face_distance[i];
             collision::query_bvh(
                 upkeep_.nodes().data(), boxes_.data(), tree_b.root, query,
                 [&](std::uint32_t index_b) {
@@ -75,7 +79,10 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
                   collision::emit_face_pair_candidates(
                       positions, motion, reach, fa, index_a, owners_[index_a], fb, index_b,
                       owners_[index_b],
-                      [&](const collision::ProximityCandidate& c) { out.push_back(c); });
+                      [&](const collision::ProximityCandidate& c, float distance) {
+                        out.push_back(c);
+                        out_distance.push_back(distance);
+                      });
                 });
           },
           64);
@@ -85,6 +92,11 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
       all.reserve(total);
       for (const auto& list : per_face)
         all.insert(all.end(), list.begin(), list.end());
+      if (distances != nullptr) {
+        distances->reserve(total);
+        for (const auto& list : per_face_distance)
+          distances->insert(distances->end(), list.begin(), list.end());
+      }
     }
   });
   return all;

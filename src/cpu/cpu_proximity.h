@@ -25,10 +25,11 @@ class CpuProximity {
   /// The candidates whose boxes, swept from `positions` along each vertex's `motion` (null: no
   /// motion) and grown by each vertex's reach (>= 0), overlap and whose primitives' distance is
   /// within the two reaches (emit_face_pair_candidates), mesh pair by mesh pair, then by the
-  /// querying face of the pair's first mesh.
+  /// querying face of the pair's first mesh. With `distances`, each candidate's primitives'
+  /// distance on `positions` (primitive_distance) in the same order.
   [[nodiscard]] std::vector<collision::ProximityCandidate> find(
       collision::VertexPositions positions, collision::VertexPositions motion,
-      collision::VertexReach reach);
+      collision::VertexReach reach, std::vector<float>* distances = nullptr);
 
  private:
   void refit(collision::VertexPositions positions, collision::VertexPositions motion,

@@ -101,8 +101,10 @@ inline float primitive_distance(std::uint32_t kind, const glm::vec3 x[4]) {
 /// Whether a pair's primitives, at x, can come within `reach` of each other while their
 /// distance shrinks by at most `closing` (closing_speed x the period): distance - closing <=
 /// reach, compared squared in double (no square root to round differently on another backend).
-inline bool primitives_within(std::uint32_t kind, const glm::vec3 x[4], float closing,
-                              float reach) {
+/// When the exact distance was computed, it is stored in *distance (primitive_distance's
+/// value) if `distance` is not null.
+inline bool primitives_within(std::uint32_t kind, const glm::vec3 x[4], float closing, float reach,
+                              float* distance = nullptr) {
   // First a float lower bound of the distance: the triangle's plane (a vertex-face pair) or
   // the segments' bounding spheres (an edge pair). It rejects most of the pairs a box test
   // lets through; its margin (1e-5 of the lengths involved, 1e-3 of the limit) covers its
@@ -122,7 +124,9 @@ inline bool primitives_within(std::uint32_t kind, const glm::vec3 x[4], float cl
     if (area2 > 0.0f && height > area2 * (1.001f * limit_f + 1e-5f * span)) return false;
   }
   const double limit = static_cast<double>(reach) + static_cast<double>(closing);
-  return !(primitive_distance2(kind, x) > limit * limit);
+  const double distance2 = primitive_distance2(kind, x);
+  if (distance != nullptr) *distance = static_cast<float>(std::sqrt(distance2));
+  return !(distance2 > limit * limit);
 }
 
 /// How fast a pair's distance can shrink when each vertex moves at m[k] (any unit): the

@@ -78,12 +78,16 @@ inline void swept_face_vertices(VertexPositions positions, VertexPositions motio
 
 /// Emits candidate c, its primitives' vertices at x where the period starts and at `end` where
 /// their motion ends (in primitive_distance's order), unless the primitives' distance at the
-/// start, less what the motions can close of it over the period, exceeds `reach`.
+/// start, less what the motions can close of it over the period, exceeds `reach`; `emit` gets
+/// the candidate and that distance (primitive_distance). The GLSL mirror's proximity_emit takes
+/// the candidate alone.
 template <class Emit>
 void emit_if_within_reach(const ProximityCandidate& c, const glm::vec3 x[4], const glm::vec3 end[4],
                           float reach, const Emit& emit) {
   const glm::vec3 motion[4] = {end[0] - x[0], end[1] - x[1], end[2] - x[2], end[3] - x[3]};
-  if (primitives_within(c.kind, x, closing_speed(c.kind, motion), reach)) emit(c);
+  float distance = 0.0f;
+  if (primitives_within(c.kind, x, closing_speed(c.kind, motion), reach, &distance))
+    emit(c, distance);
 }
 
 /// Whether two faces of one mesh share a corner: their primitives are neighbours on the surface
