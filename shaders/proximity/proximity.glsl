@@ -1,9 +1,9 @@
 // Proximity candidates (issue 12), mirroring src/core/collision/proximity.h line for line:
-// reach_box, faces_share_vertex and emit_face_pair_candidates, with the same tests in the same
-// order, so that the GL search finds exactly the CPU's candidates (CpuProximity::find). Change
-// both files together. Only comparisons and exact min / max / +- reach happen here; the one
-// rounding operation, the sum of the two meshes' reaches, is done once in the including shader
-// as in the C++.
+// faces_share_vertex, emit_if_within_reach and emit_face_pair_candidates (the vertices' side,
+// reach_box and the swept corners, is proximity_vertices.glsl; the distances
+// common/primitive_distance.glsl), with the same tests in the same order on the same floats,
+// so that the GL search finds exactly the CPU's candidates (CpuProximity::find). Change both
+// files together.
 //
 // An including shader must define
 //   void proximity_emit(ProximityCandidate c);
@@ -11,7 +11,9 @@
 #include "collision/broad_phase.glsl"
 #include "collision/surface.glsl"
 #include "common/layout.glsl"
+#include "common/primitive_distance.glsl"
 #include "proximity/proximity_buffers.glsl"
+#include "proximity/proximity_vertices.glsl"
 
 // 32 bytes. collision::ProximityCandidate: kind (CONTACT_VERTEX_FACE or CONTACT_EDGE_EDGE),
 // the meshes, face_b (vertex-face: the face's index in the layout; else 0), the vertices
@@ -31,41 +33,6 @@ struct ProximityCandidate {
 
 void proximity_emit(ProximityCandidate c);
 
-// glm::min / glm::max per component (b < a ? b : a, a < b ? b : a).
-vec3 proximity_min(vec3 a, vec3 b) {
-  return vec3(b.x < a.x ? b.x : a.x, b.y < a.y ? b.y : a.y, b.z < a.z ? b.z : a.z);
-}
-vec3 proximity_max(vec3 a, vec3 b) {
-  return vec3(a.x < b.x ? b.x : a.x, a.y < b.y ? b.y : a.y, a.z < b.z ? b.z : a.z);
-}
-
-// reach_box of one point, of a segment, of a triangle.
-Box reach_box1(vec3 p, float reach) {
-  return Box(vec4(p - reach, 0.0), vec4(p + reach, 0.0));
-}
-Box reach_box2(vec3 p0, vec3 p1, float reach) {
-  const vec3 lo = proximity_min(p0, p1), hi = proximity_max(p0, p1);
-  return Box(vec4(lo - reach, 0.0), vec4(hi + reach, 0.0));
-}
-Box reach_box3(vec3 p[3], float reach) {
-  vec3 lo = p[0], hi = p[0];
-  for (uint i = 1u; i < 3u; ++i) {
-    lo = proximity_min(lo, p[i]);
-    hi = proximity_max(hi, p[i]);
-  }
-  return Box(vec4(lo - reach, 0.0), vec4(hi + reach, 0.0));
-}
-
-// collision::face_corner.
-uint face_corner(Face f, uint k) { return k == 0u ? f.a : (k == 1u ? f.b : f.c); }
-
-// sweep_box: the box and the box moved by d (glm::min / glm::max written out, componentwise).
-Box sweep_box(Box box, vec3 d) {
-  const vec3 lo = vec3(0.0 < d.x ? 0.0 : d.x, 0.0 < d.y ? 0.0 : d.y, 0.0 < d.z ? 0.0 : d.z);
-  const vec3 hi = vec3(d.x < 0.0 ? 0.0 : d.x, d.y < 0.0 ? 0.0 : d.y, d.z < 0.0 ? 0.0 : d.z);
-  return Box(vec4(box.min.xyz + lo, 0.0), vec4(box.max.xyz + hi, 0.0));
-}
-
 // faces_share_vertex.
 bool faces_share_vertex(Face a, Face b) {
   for (uint i = 0u; i < 3u; ++i) {
@@ -75,39 +42,68 @@ bool faces_share_vertex(Face a, Face b) {
   return false;
 }
 
+// emit_if_within_reach: emits c unless its primitives' distance at x, less what their motion
+// (x to end) can close of it, exceeds `reach`.
+void emit_if_within_reach(ProximityCandidate c, vec3 x[4], vec3 end[4], float reach) {
+  precise vec3 m0 = end[0] - x[0], m1 = end[1] - x[1], m2 = end[2] - x[2], m3 = end[3] - x[3];
+  const vec3 motion[4] = vec3[4](m0, m1, m2, m3);
+  if (primitives_within(c.kind, x, closing_speed(c.kind, motion), reach)) proximity_emit(c);
+}
+
 // emit_face_pair_candidates: fa's owned vertices against fb, fb's owned vertices against fa,
-// then fa's owned edges against fb's.
+// then fa's owned edges against fb's; each primitive's box swept along its vertices' paths and
+// grown by its reach, each pair whose boxes overlap kept when its primitives can come within
+// the sum of the two reaches.
 void emit_face_pair_candidates(Face fa, uint index_a, uint owners_a, Face fb, uint index_b,
-                               uint owners_b, float reach, vec3 sweep) {
-  vec3 xa[3], xb[3];
-  xa[0] = vertex_position(fa.body, fa.a);
-  xa[1] = vertex_position(fa.body, fa.b);
-  xa[2] = vertex_position(fa.body, fa.c);
-  xb[0] = vertex_position(fb.body, fb.a);
-  xb[1] = vertex_position(fb.body, fb.b);
-  xb[2] = vertex_position(fb.body, fb.c);
-  const Box box_a = reach_box3(xa, 0.0);
-  const Box box_b = reach_box3(xb, 0.0);
+                               uint owners_b) {
+  vec3 xa[6], xb[6];
+  swept_face_vertices(fa, xa);
+  swept_face_vertices(fb, xb);
+  float ra[3], rb[3];
+  const float face_a = face_reaches(fa, ra);
+  const float face_b = face_reaches(fb, rb);
+  const Box box_a = reach_box6(xa, face_a);
+  const Box box_b = reach_box6(xb, face_b);
   for (uint k = 0u; k < 3u; ++k) {
-    if ((owners_a & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(sweep_box(reach_box1(xa[k], reach), sweep), box_b))
-      proximity_emit(ProximityCandidate(CONTACT_VERTEX_FACE, fa.body, fb.body, index_b,
-                                        uvec4(face_corner(fa, k), fb.a, fb.b, fb.c)));
+    const vec3 path[2] = vec3[2](xa[k], xa[3u + k]);
+    if ((owners_a & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(reach_box2(path, ra[k]), box_b)) {
+      precise float reach = ra[k] + face_b;
+      emit_if_within_reach(ProximityCandidate(CONTACT_VERTEX_FACE, fa.body, fb.body, index_b,
+                                              uvec4(face_corner(fa, k), fb.a, fb.b, fb.c)),
+                           vec3[4](xa[k], xb[0], xb[1], xb[2]),
+                           vec3[4](xa[3u + k], xb[3], xb[4], xb[5]), reach);
+    }
   }
   for (uint k = 0u; k < 3u; ++k) {
-    if ((owners_b & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(sweep_box(reach_box1(xb[k], reach), -sweep), box_a))
-      proximity_emit(ProximityCandidate(CONTACT_VERTEX_FACE, fb.body, fa.body, index_a,
-                                        uvec4(face_corner(fb, k), fa.a, fa.b, fa.c)));
+    const vec3 path[2] = vec3[2](xb[k], xb[3u + k]);
+    if ((owners_b & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(reach_box2(path, rb[k]), box_a)) {
+      precise float reach = rb[k] + face_a;
+      emit_if_within_reach(ProximityCandidate(CONTACT_VERTEX_FACE, fb.body, fa.body, index_a,
+                                              uvec4(face_corner(fb, k), fa.a, fa.b, fa.c)),
+                           vec3[4](xb[k], xa[0], xa[1], xa[2]),
+                           vec3[4](xb[3u + k], xa[3], xa[4], xa[5]), reach);
+    }
   }
   for (uint i = 0u; i < 3u; ++i) {
     if ((owners_a & (OWNS_EDGE0 << i)) == 0u) continue;
-    const Box grown = sweep_box(reach_box2(xa[i], xa[(i + 1u) % 3u], reach), sweep);
+    const uint i1 = (i + 1u) % 3u;
+    const vec3 edge_a[4] = vec3[4](xa[i], xa[i1], xa[3u + i], xa[3u + i1]);
+    const float reach_a = proximity_max(ra[i], ra[i1]);
+    const Box grown = reach_box4(edge_a, reach_a);
     for (uint j = 0u; j < 3u; ++j) {
       if ((owners_b & (OWNS_EDGE0 << j)) == 0u) continue;
-      if (boxes_overlap(grown, reach_box2(xb[j], xb[(j + 1u) % 3u], 0.0)))
-        proximity_emit(ProximityCandidate(
-            CONTACT_EDGE_EDGE, fa.body, fb.body, 0u,
-            uvec4(face_corner(fa, i), face_corner(fa, (i + 1u) % 3u), face_corner(fb, j),
-                  face_corner(fb, (j + 1u) % 3u))));
+      const uint j1 = (j + 1u) % 3u;
+      const vec3 edge_b[4] = vec3[4](xb[j], xb[j1], xb[3u + j], xb[3u + j1]);
+      const float reach_b = proximity_max(rb[j], rb[j1]);
+      if (boxes_overlap(grown, reach_box4(edge_b, reach_b))) {
+        precise float reach = reach_a + reach_b;
+        emit_if_within_reach(
+            ProximityCandidate(CONTACT_EDGE_EDGE, fa.body, fb.body, 0u,
+                               uvec4(face_corner(fa, i), face_corner(fa, i1), face_corner(fb, j),
+                                     face_corner(fb, j1))),
+            vec3[4](xa[i], xa[i1], xb[j], xb[j1]),
+            vec3[4](xa[3u + i], xa[3u + i1], xb[3u + j], xb[3u + j1]), reach);
+      }
     }
   }
 }

@@ -1,7 +1,7 @@
 #version 430
 // The proximity search's emit pass: one invocation per work item reruns the count pass's query
 // (the same decisions on the same floats) and writes its candidates from its scanned offset,
-// in the C++ order; the host sorts the list (CpuProximity::find's order).
+// in the C++ order: CpuProximity::find's order.
 #include "proximity/proximity_query.glsl"
 
 layout(local_size_x = 64) in;

@@ -1,8 +1,9 @@
 // One work item of the proximity search: face i of mesh pair p's mesh a (items numbered pair by
-// pair, pair_first[p] the first of pair p's) queries mesh b's BVH with its box grown by
-// reach[a].w + reach[b].w and swept along reach[a].xyz - reach[b].xyz (the meshes' drifts), and each leaf face found gives the candidates of the face pair
-// (emit_face_pair_candidates), as CpuProximity::find does for that face: within one mesh only
-// faces of higher index sharing no corner.
+// pair, pair_first[p] the first of pair p's) queries mesh b's BVH, whose boxes are the faces'
+// swept boxes grown by their reaches (proximity_refit*.comp), with its own swept, grown box, and
+// each leaf face found gives the candidates of the face pair (emit_face_pair_candidates), as
+// CpuProximity::find does for that face: within one mesh only faces of higher index sharing no
+// corner.
 #include "collision/bvh.glsl"
 #include "collision/meshes.glsl"
 #include "collision/surface.glsl"
@@ -19,9 +20,6 @@ layout(std430, binding = BINDING_BODY_BVH) readonly buffer BodyBvhs {
 layout(std430, binding = BINDING_PROXIMITY_OWNERS) readonly buffer Owners {
   uint owners[];
 };
-layout(std430, binding = BINDING_PROXIMITY_REACH) readonly buffer Reaches {
-  vec4 reach[];
-};
 layout(std430, binding = BINDING_PROXIMITY_PAIR_FIRST) readonly buffer PairFirst {
   uint pair_first[];
 };
@@ -36,15 +34,12 @@ bool mask_says_overlap(uint mask_slot, uint box_a, uint box_b) { return false; }
 Face g_fa;
 uint g_index_a;
 uint g_owners_a;
-float g_grow;
-vec3 g_sweep;
 bool g_self;
 
 void bvh_visit(uint index_b) {
   const Face fb = faces[index_b];
   if (g_self && (index_b <= g_index_a || faces_share_vertex(g_fa, fb))) return;
-  emit_face_pair_candidates(g_fa, g_index_a, g_owners_a, fb, index_b, owners[index_b], g_grow,
-                            g_sweep);
+  emit_face_pair_candidates(g_fa, g_index_a, g_owners_a, fb, index_b, owners[index_b]);
 }
 
 // Runs work item `item` (< u_item_count).
@@ -64,12 +59,9 @@ void run_proximity_item(uint item) {
   g_index_a = mesh_a.face_offset + (item - pair_first[lo]);
   g_fa = faces[g_index_a];
   g_owners_a = owners[g_index_a];
-  g_grow = reach[pair.a].w + reach[pair.b].w;
-  g_sweep = reach[pair.a].xyz - reach[pair.b].xyz;
   g_self = pair.a == pair.b;
-  vec3 xa[3];
-  xa[0] = vertex_position(g_fa.body, g_fa.a);
-  xa[1] = vertex_position(g_fa.body, g_fa.b);
-  xa[2] = vertex_position(g_fa.body, g_fa.c);
-  query_bvh(mesh_bvhs[pair.b].root, sweep_box(reach_box3(xa, g_grow), g_sweep));
+  vec3 xa[6];
+  swept_face_vertices(g_fa, xa);
+  float corner[3];
+  query_bvh(mesh_bvhs[pair.b].root, reach_box6(xa, face_reaches(g_fa, corner)));
 }

@@ -13,9 +13,11 @@
 // and there, which a few substeps of Jacobi iteration amplify. dot, cross and the min / max of
 // glm are written out for the same reason (glm::dot sums (x + y) + z; glm::max(a, b) is
 // a < b ? b : a, which differs from GLSL's max only for NaN and signed zeros, but the mirror
-// should not differ at all).
+// should not differ at all). segment_closest_parameters, which the edge-edge geometry uses, is
+// common/primitive_distance.glsl's (the proximity search's distances use it too).
 #include "common/exact_math.glsl"
 #include "common/layout.glsl"
+#include "common/primitive_distance.glsl"
 
 // Per-substep constants (response::ContactConstants).
 struct ContactConstants {
@@ -50,38 +52,6 @@ bool plane_barycentric(vec3 p, vec3 a, vec3 b, vec3 c, out vec3 uvw) {
   precise float w = (d00 * d21 - d01 * d20) / denominator;
   precise vec3 result = vec3(1.0 - v - w, v, w);
   uvw = result;
-  return true;
-}
-
-// segment_closest_parameters: (s, t) of the closest points a0 + s (a1 - a0) and
-// b0 + t (b1 - b0) of two segments, each in [0, 1]; false when either segment is degenerate.
-bool segment_closest_parameters(vec3 a0, vec3 a1, vec3 b0, vec3 b1, out float s, out float t) {
-  s = 0.0;
-  t = 0.0;
-  precise vec3 da = a1 - a0, db = b1 - b0, r = a0 - b0;
-  precise float aa = exact_dot(da, da), bb = exact_dot(db, db), ab = exact_dot(da, db);
-  precise float ar = exact_dot(da, r), br = exact_dot(db, r);
-  if (!(aa > 0.0) || !(bb > 0.0)) return false;
-  precise float denominator = aa * bb - ab * ab;
-  precise float threshold = 1e-12 * aa * bb;
-  // Parallel segments: any s works; take the one of a0 and let t and then s clamp.
-  precise float ss = 0.0;
-  if (denominator > threshold) {
-    precise float unclamped = (ab * br - bb * ar) / denominator;
-    ss = contact_clamp(unclamped, 0.0, 1.0);
-  }
-  precise float tt = (ab * ss + br) / bb;
-  if (tt < 0.0) {
-    tt = 0.0;
-    precise float unclamped = -ar / aa;
-    ss = contact_clamp(unclamped, 0.0, 1.0);
-  } else if (tt > 1.0) {
-    tt = 1.0;
-    precise float unclamped = (ab - ar) / aa;
-    ss = contact_clamp(unclamped, 0.0, 1.0);
-  }
-  s = ss;
-  t = tt;
   return true;
 }
 

@@ -14,6 +14,7 @@
 #include "detector_impl.h"
 #ifdef DEFORMCD_HAS_GL
 #include "gpu/gl/gl_collision.h"
+#include "gpu/gl/gl_proximity.h"
 #endif
 
 namespace deformcd {
@@ -33,6 +34,14 @@ std::string describe(const glm::vec3& p) {
 }
 
 }  // namespace
+
+void Detector::Impl::GlProximityDeleter::operator()(gl::GlProximity* search) const {
+#ifdef DEFORMCD_HAS_GL
+  delete search;  // NOLINT(cppcoreguidelines-owning-memory): the unique_ptr's deleter
+#else
+  (void)search;  // never made without the GL backend
+#endif
+}
 
 std::unique_ptr<Detector::Impl> Detector::Impl::create(std::vector<CollisionMesh> meshes,
                                                        const DetectorOptions& options,
@@ -164,6 +173,7 @@ Detector::~Detector() {
     // A destructor must not throw. Deleting the GL objects in whatever context is current
     // could delete another context's objects of the same names: leave them to their context
     // (they go with it when the detector owns it), at the cost of the backend's host memory.
+    (void)impl_->gl_proximity.release();
     (void)impl_->backend.release();
   }
 }
@@ -339,13 +349,32 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
     }
   }
   d.require_positions();
-  d.complete();  // a GL pass may still read the buffers the read-back below copies
+  d.complete();  // a GL pass may still read the buffers the search and the read-back read
   if (d.check_positions) d.check_finite();
+  std::vector<collision::ProximityCandidate> found;
+  bool searched = false;
+#ifdef DEFORMCD_HAS_GL
+  if (auto* gl_collision = dynamic_cast<gl::GlCollision*>(d.backend.get())) {
+    // On the GPU over the backend's trees and positions (staged as a pass stages them).
+    if (!d.prepared) d.prepare();
+    d.make_current();
+    if (!d.gl_proximity) d.gl_proximity.reset(new gl::GlProximity(*d.context, d.data));
+    const gl::ProximityRefitOrder order = gl_collision->prepare_proximity();
+    found = d.gl_proximity->find_bound(order, reach, motion);
+    searched = true;
+  }
+#endif
+  // The distances, on the host: the positions are read back once (GL buffers), a copy of
+  // vertex_count x 12 bytes per mesh, whereas the candidates' own vertices would be 4 x 12
+  // bytes per candidate, and the candidates outnumber the vertices (80k candidates on the
+  // impact scene's 2 x 1.3k vertices at contact).
   std::vector<std::vector<glm::vec3>> read_back;
   const std::vector<collision::MeshVertices> pose = d.host_vertices(read_back);
-  if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
-  const std::vector<collision::ProximityCandidate> found = d.proximity->find(
-      pose.data(), motion_of.empty() ? nullptr : motion_of.data(), reach_of.data());
+  if (!searched) {
+    if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
+    found = d.proximity->find(pose.data(), motion_of.empty() ? nullptr : motion_of.data(),
+                              reach_of.data());
+  }
   std::vector<ProximityPair> out(found.size());
   d.executor->run([&] {
     cpu::parallel_for(found.size(), [&](std::size_t i) {

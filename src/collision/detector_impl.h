@@ -14,7 +14,16 @@
 
 namespace deformcd {
 
+namespace gl {
+class GlProximity;
+}
+
 struct Detector::Impl {
+  /// Deletes a GL proximity search (defined where its type is complete: detector.cpp).
+  struct GlProximityDeleter {
+    void operator()(gl::GlProximity* search) const;
+  };
+
   /// A detector on backend `kind` (kGl or kCpu, already chosen) running in `context` (kGl) or on
   /// `executor`'s threads (kCpu). `check_positions`: whether detect() checks that positions are
   /// finite (a World checks its own state instead).
@@ -28,8 +37,11 @@ struct Detector::Impl {
   std::unique_ptr<gl::Context> owned_context;  // before the backend: destroyed after it
   gl::Context* context = nullptr;
   std::unique_ptr<collision::CollisionBackend> backend;
-  std::shared_ptr<cpu::Executor> executor;       // the CPU threads (proximity on any backend)
-  std::unique_ptr<cpu::CpuProximity> proximity;  // made by the first find_proximity()
+  std::shared_ptr<cpu::Executor> executor;       // the CPU threads
+  std::unique_ptr<cpu::CpuProximity> proximity;  // CPU: made by the first find_proximity()
+  // GL: made by the first find_proximity(), over the GL backend's trees and positions; after
+  // the backend (destroyed before it, while the context lives).
+  std::unique_ptr<gl::GlProximity, GlProximityDeleter> gl_proximity;
   std::vector<collision::PositionSource> sources;
   BroadPhase broadphase = BroadPhase::kBvh;
   std::string notice;

@@ -23,7 +23,7 @@
 #include "gl_test_context.h"
 #include "gpu/gl/gl_collision.h"
 #include "gpu/gl/gl_proximity.h"
-#include "proximity_distance_filter.h"
+#include "proximity_vertex_lists.h"
 #include "support/collision_fixtures.h"
 
 namespace fs = std::filesystem;
@@ -216,35 +216,50 @@ TEST_F(CollisionBackendSelf, GlEqualsCpuOnTheFoldingPlate) {
 
 class ProximityAgreement : public test_support::GlTest {};
 
-// The GL proximity search (gpu/gl/gl_proximity.h) over the GL collision's BVHs, refitted by
-// prepare_proximity on the simulation's positions read in place, gives CpuProximity::find's
-// list exactly on phase 1's models (thousands of faces) before, in and after contact, for a
-// contact response's reaches (a few mm) and a longer one.
+// The GL proximity search (gpu/gl/gl_proximity.h) over the GL collision's trees, on the
+// simulation's positions read in place (prepare_proximity), gives CpuProximity::find's list
+// exactly on phase 1's models (thousands of faces) before, in and after contact, each vertex
+// moving along its velocity over a frame, with a contact response's reaches (a few mm) and
+// longer ones, varying from vertex to vertex.
 TEST_F(ProximityAgreement, GlEqualsCpuThroughPhase1) {
   constexpr int kFrames = 12;
   SceneReplay replay(context(), "phase1", kFrames);
   GlProximity gl(context(), replay.fixture.data);
   cpu::CpuProximity cpu(replay.fixture.data, std::make_shared<cpu::Executor>(2));
   std::size_t longest = 0;
-  // Without motion: the GL search still sweeps per mesh, the CPU's per vertex.
-  const std::vector<glm::vec3> drift = {glm::vec3(0.0f), glm::vec3(0.0f)};
+  std::size_t compared = 0;
   for (int f = 0; f <= kFrames; ++f) {
     if (f > 0) replay.step();
     if (f % 3 != 0) continue;
-    replay.gl_collision.prepare_proximity();
+    const ProximityRefitOrder order = replay.gl_collision.prepare_proximity();
+    // Each node's motion over the next frame: its velocity x dt.
+    std::vector<glm::vec3> motion;
+    for (const glm::vec4& v : replay.cpu_sim.state().velocities)
+      motion.push_back(glm::vec3(v) * replay.settings.dt);
     for (const std::vector<float>& reach :
          {std::vector<float>{0.002f, 0.003f}, std::vector<float>{0.02f, 0.01f}}) {
-      const std::vector<collision::ProximityCandidate> expected =
-          cpu.find(replay.fixture.vertices(), nullptr,
-                   test::reach_per_vertex(replay.fixture.data, reach).get());
-      const std::vector<collision::ProximityCandidate> found =
-          test::within_reach(gl.find_bound(reach, drift), replay.fixture.vertices(), reach);
-      EXPECT_EQ(found.size(), expected.size()) << "frame " << f << ", reach " << reach[0];
-      EXPECT_TRUE(found == expected) << "frame " << f << ", reach " << reach[0];
-      longest = std::max(longest, expected.size());
+      for (const bool moving : {false, true}) {
+        test::VertexLists lists =
+            test::vertex_lists(replay.fixture.data, reach, {}, 0.0f, static_cast<std::uint32_t>(f));
+        if (moving) {
+          lists.motion = motion;
+          test::point_views(replay.fixture.data, lists);
+        }
+        const std::vector<collision::ProximityCandidate> expected =
+            cpu.find(replay.fixture.vertices(), lists.cpu_motion(), lists.cpu_reach());
+        const std::vector<collision::ProximityCandidate> found =
+            gl.find_bound(order, lists.reach, lists.motion);
+        const std::string where = "frame " + std::to_string(f) + ", reach " +
+                                  std::to_string(reach[0]) + (moving ? ", moving" : "");
+        EXPECT_EQ(found.size(), expected.size()) << where;
+        EXPECT_TRUE(found == expected) << where;
+        longest = std::max(longest, expected.size());
+        compared += expected.size();
+      }
     }
   }
   EXPECT_GT(longest, 100u) << "the models should come within reach";
+  RecordProperty("candidates_compared", std::to_string(compared));
 }
 
 class CollisionBackendManyBodies : public test_support::GlTest {};

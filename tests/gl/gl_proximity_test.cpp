@@ -1,39 +1,48 @@
 // The GL proximity search (src/gpu/gl/gl_proximity.h) against CpuProximity::find: the same
-// candidates, in the same order, on crossing, separate and self-colliding grids, for several
-// reaches. The GL search reads BVHs uploaded here as a GlCollision holds them (built and
-// refitted on the host with the functions both backends share), positions in one vec4 buffer.
+// candidates, in the same order, on crossing, separate and self-colliding grids, for reaches
+// that vary from vertex to vertex, with and without motion (a drift per mesh plus a different
+// jitter per vertex), so that the swept boxes, the grown boxes and the distance filter
+// (closing speed, the float bound, the exact distance in double) all decide. The GL search
+// reads BVHs uploaded here as a GlCollision holds them (built on the host with the functions
+// both backends share), positions in one vec4 buffer; then a GlCollision's own.
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "collision_test_worlds.h"
-#include "core/collision/bvh.h"
 #include "core/collision/proximity.h"
 #include "cpu/cpu_proximity.h"
 #include "cpu/executor.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/ssbo.h"
 #include "gl_test_context.h"
+#include "gpu/gl/bvh_work_order.h"
 #include "gpu/gl/gl_collision.h"
 #include "gpu/gl/gl_proximity.h"
-#include "proximity_distance_filter.h"
+#include "proximity_vertex_lists.h"
 #include "support/collision_fixtures.h"
 
 namespace deformcd::gl {
 namespace {
 
-// A fixture's faces, meshes, BVHs (boxes refitted on its positions) and positions on the GPU.
+using test::vertex_lists;
+using test::VertexLists;
+
+// A fixture's faces, meshes, BVHs (with their refit order) and positions on the GPU.
 struct GpuFixture {
   explicit GpuFixture(const test::CollisionFixture& f)
-      : faces(std::span<const gpu::Face>(f.data.faces)),
+      : order(plan_bvh_work_order(f.data.bvh_nodes, f.data.mesh_bvhs, f.data.meshes,
+                                  f.data.faces.size())),
+        faces(std::span<const gpu::Face>(f.data.faces)),
         meshes(f.data.meshes.size()),
         bvh_nodes(std::span<const gpu::BvhNode>(f.data.bvh_nodes)),
-        bvh_boxes(f.data.bvh_nodes.size()),
         mesh_bvhs(std::span<const gpu::BodyBvh>(f.data.mesh_bvhs)),
+        levels(std::span<const std::uint32_t>(order.refit_order)),
         positions(1) {
     std::vector<glm::vec4> all;
     std::vector<gpu::MeshInfo> infos = f.data.meshes;
@@ -44,72 +53,93 @@ struct GpuFixture {
     }
     meshes.upload(std::span<const gpu::MeshInfo>(infos));
     positions = Ssbo<glm::vec4>(std::span<const glm::vec4>(all));
-    std::vector<gpu::Box> boxes(f.data.bvh_nodes.size());
-    for (const gpu::BodyBvh& tree : f.data.mesh_bvhs) {
-      collision::refit_bvh(f.data.bvh_nodes, tree.root, tree.node_count, f.vertices(), f.data.faces,
-                           boxes);
-    }
-    bvh_boxes.upload(std::span<const gpu::Box>(boxes));
   }
 
   [[nodiscard]] ProximitySources sources() const {
-    return {positions.name(), faces.name(),     meshes.name(),
-            bvh_nodes.name(), bvh_boxes.name(), mesh_bvhs.name()};
+    return {.positions = positions.name(),
+            .faces = faces.name(),
+            .meshes = meshes.name(),
+            .bvh_nodes = bvh_nodes.name(),
+            .mesh_bvhs = mesh_bvhs.name(),
+            .refit = {.buffer = levels.name(), .levels = order.levels}};
   }
 
+  BvhWorkOrder order;
   Ssbo<gpu::Face> faces;
   Ssbo<gpu::MeshInfo> meshes;
   Ssbo<gpu::BvhNode> bvh_nodes;
-  Ssbo<gpu::Box> bvh_boxes;
   Ssbo<gpu::BodyBvh> mesh_bvhs;
+  Ssbo<std::uint32_t> levels;
   Ssbo<glm::vec4> positions;
 };
 
 class GlProximityTest : public test_support::GlTest {
  protected:
-  // GL's list, through the CPU's distance filter (proximity_distance_filter.h), equals the
-  // CPU's for each reach list, without motion (the GL search still sweeps per mesh, the CPU's
-  // per vertex: the two agree when nothing moves); returns the list sizes.
+  // GL's list equals the CPU's for each set of vertex lists; returns the list sizes.
   std::vector<std::size_t> expect_cpu_candidates(const test::CollisionFixture& f,
-                                                 const std::vector<std::vector<float>>& reaches,
+                                                 const std::vector<VertexLists>& cases,
                                                  const std::string& where) {
     const GpuFixture gpu(f);
     GlProximity gl(context(), f.data);
     cpu::CpuProximity cpu(f.data, std::make_shared<cpu::Executor>(2));
     std::vector<std::size_t> sizes;
-    for (const std::vector<float>& reach : reaches) {
-      const std::vector<glm::vec3> drift(reach.size(), glm::vec3(0.0f));
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const VertexLists& lists = cases[i];
       const std::vector<collision::ProximityCandidate> expected =
-          cpu.find(f.vertices(), nullptr, test::reach_per_vertex(f.data, reach).get());
-      const std::vector<collision::ProximityCandidate> boxed = gl.find(gpu.sources(), reach, drift);
+          cpu.find(f.vertices(), lists.cpu_motion(), lists.cpu_reach());
       const std::vector<collision::ProximityCandidate> found =
-          test::within_reach(boxed, f.vertices(), reach);
-      EXPECT_GE(boxed.size(), found.size());
-      EXPECT_EQ(found.size(), expected.size()) << where << ", reach " << reach[0];
-      EXPECT_TRUE(found == expected) << where << ", reach " << reach[0];
+          gl.find(gpu.sources(), lists.reach, lists.motion);
+      EXPECT_EQ(found.size(), expected.size()) << where << ", case " << i;
+      EXPECT_TRUE(found == expected) << where << ", case " << i;
       sizes.push_back(expected.size());
     }
+    std::string listed;
+    for (const std::size_t n : sizes)
+      listed += (listed.empty() ? "" : ",") + std::to_string(n);
+    RecordProperty("candidates_per_case", listed);
     return sizes;
   }
 };
 
 TEST_F(GlProximityTest, CrossingGridsGiveTheCpuCandidates) {
   const test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids());
-  const std::vector<std::size_t> sizes = expect_cpu_candidates(
-      f, {{0.0f, 0.0f}, {0.002f, 0.005f}, {0.02f, 0.01f}, {0.1f, 0.1f}}, "crossing grids");
-  // With no reach only primitives that touch exactly count (the grids cross edge through face).
-  EXPECT_LE(sizes[0], sizes[1]);
-  EXPECT_GT(sizes[1], 0u);
-  EXPECT_GT(sizes[2], sizes[1]) << "a longer reach finds more";
-  EXPECT_GT(sizes[3], sizes[2]);
+  const std::vector<glm::vec3> drift = {{0.01f, 0.0f, -0.004f}, {-0.008f, 0.006f, 0.0f}};
+  std::vector<VertexLists> cases;
+  for (const std::vector<float>& reach : std::vector<std::vector<float>>{
+           {0.0f, 0.0f}, {0.002f, 0.005f}, {0.02f, 0.01f}, {0.1f, 0.1f}}) {
+    cases.push_back(vertex_lists(f.data, reach));
+    cases.push_back(vertex_lists(f.data, reach, drift, 0.004f));
+  }
+  const std::vector<std::size_t> sizes = expect_cpu_candidates(f, cases, "crossing grids");
+  // With no reach and no motion only primitives that touch exactly count (the grids cross edge
+  // through face).
+  EXPECT_LE(sizes[0], sizes[2]);
+  EXPECT_GT(sizes[2], 0u);
+  EXPECT_GT(sizes[4], sizes[2]) << "a longer reach finds more";
+  EXPECT_GT(sizes[6], sizes[4]);
+  for (std::size_t i = 0; i < sizes.size(); i += 2)
+    EXPECT_GE(sizes[i + 1], sizes[i]) << "moving vertices can come closer: a superset";
+  EXPECT_GT(sizes[1], sizes[0]) << "the motion should matter";
 }
 
-TEST_F(GlProximityTest, SeparateGridsGiveNoneUntilTheReachSpansTheGap) {
+// 1 m apart: nothing within a short reach, something within a long one or when mesh 1 moves
+// through mesh 0; and nothing when both move together, though their swept boxes overlap (no
+// closing speed: the distance filter rejects every pair the boxes let through).
+TEST_F(GlProximityTest, SeparateGridsGiveNoneUntilTheReachOrTheMotionSpansTheGap) {
   const test::CollisionFixture f = test::collision_fixture(test::two_separate_grids());
-  const std::vector<std::size_t> sizes =
-      expect_cpu_candidates(f, {{0.01f, 0.01f}, {0.4f, 0.4f}}, "separate grids");
+  const std::vector<float> short_reach = {0.01f, 0.01f};
+  const std::vector<glm::vec3> towards = {glm::vec3(0.0f), {-1.0f, 0.0f, 0.0f}};
+  const std::vector<glm::vec3> together = {{1.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}};
+  const std::vector<std::size_t> sizes = expect_cpu_candidates(
+      f,
+      {vertex_lists(f.data, short_reach), vertex_lists(f.data, std::vector<float>{0.4f, 0.4f}),
+       vertex_lists(f.data, short_reach, towards, 0.002f),
+       vertex_lists(f.data, short_reach, together)},
+      "separate grids");
   EXPECT_EQ(sizes[0], 0u);
   EXPECT_GT(sizes[1], 0u);
+  EXPECT_GT(sizes[2], 0u);
+  EXPECT_EQ(sizes[3], 0u);
 }
 
 // Self-proximity: within a mesh, faces sharing a corner are neighbours and left out, each
@@ -117,15 +147,22 @@ TEST_F(GlProximityTest, SeparateGridsGiveNoneUntilTheReachSpansTheGap) {
 TEST_F(GlProximityTest, SelfProximityGivesTheCpuCandidates) {
   const test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids(), true);
   ASSERT_EQ(f.data.mesh_pairs.size(), 3u);
-  const std::vector<std::size_t> sizes =
-      expect_cpu_candidates(f, {{0.005f, 0.005f}, {0.06f, 0.03f}}, "self");
+  const std::vector<glm::vec3> drift = {{0.0f, 0.01f, 0.0f}, {0.005f, 0.0f, 0.0f}};
+  const std::vector<std::size_t> sizes = expect_cpu_candidates(
+      f,
+      {vertex_lists(f.data, std::vector<float>{0.005f, 0.005f}),
+       vertex_lists(f.data, std::vector<float>{0.06f, 0.03f}),
+       vertex_lists(f.data, std::vector<float>{0.01f, 0.02f}, drift, 0.01f, 5u)},
+      "self");
   EXPECT_GT(sizes[1], sizes[0]);
+  EXPECT_GT(sizes[2], 0u);
 }
 
-// Plugged into a GlCollision: prepare_proximity refits its BVHs on the current positions and
-// binds them, find_bound searches them. After the grids have moved (no detect() since), the
-// list is the CPU's on the new positions, and the last pass's results are left as they were.
-TEST_F(GlProximityTest, OverAGlCollisionsRefittedTreesGivesTheCpuCandidates) {
+// Plugged into a GlCollision: prepare_proximity stages its positions and binds its trees,
+// find_bound refits its own boxes over them and searches. After the grids have moved (no
+// detect() since), the list is the CPU's on the new positions, with the vertices' motions and
+// reaches changing too, and the last pass's results and boxes are left as they were.
+TEST_F(GlProximityTest, OverAGlCollisionsTreesGivesTheCpuCandidates) {
   test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids(), true);
   GlCollision collision(context());
   collision.upload(f.data);
@@ -133,12 +170,13 @@ TEST_F(GlProximityTest, OverAGlCollisionsRefittedTreesGivesTheCpuCandidates) {
   collision.detect(BroadPhase::kBvh);
   const gpu::CollisionCounters before = collision.counters();
   ASSERT_GT(before.face_pairs, 0u);
+  std::vector<gpu::Box> boxes_before;
+  collision.download_bvh_boxes(boxes_before);
   GlProximity gl(context(), f.data);
   cpu::CpuProximity cpu(f.data, std::make_shared<cpu::Executor>(2));
-  const std::vector<float> reach = {0.01f, 0.02f};
-  for (int step = 0; step < 3; ++step) {
+  for (std::uint32_t step = 0; step < 3; ++step) {
     if (step > 0) {
-      // Mesh 1 slides and every vertex jitters: the trees must be refitted to find the pairs.
+      // Mesh 1 slides and every vertex jitters: the boxes must be refitted to find the pairs.
       for (std::size_t m = 0; m < f.positions.size(); ++m)
         for (std::size_t i = 0; i < f.positions[m].size(); ++i) {
           const auto n = static_cast<std::uint32_t>(i);
@@ -148,12 +186,15 @@ TEST_F(GlProximityTest, OverAGlCollisionsRefittedTreesGivesTheCpuCandidates) {
                                (m == 1 ? glm::vec4(-0.03f, 0.0f, 0.0f, 0.0f) : glm::vec4(0.0f));
         }
     }
-    collision.prepare_proximity();
-    const std::vector<glm::vec3> drift(reach.size(), glm::vec3(0.0f));
+    const std::vector<glm::vec3> drift = {{0.0f, 0.0f, 0.0f},
+                                          {-0.01f * static_cast<float>(step), 0.0f, 0.0f}};
+    const VertexLists lists =
+        vertex_lists(f.data, std::vector<float>{0.01f, 0.02f}, drift, 0.005f, 20u + step);
+    const ProximityRefitOrder order = collision.prepare_proximity();
     const std::vector<collision::ProximityCandidate> found =
-        test::within_reach(gl.find_bound(reach, drift), f.vertices(), reach);
+        gl.find_bound(order, lists.reach, lists.motion);
     const std::vector<collision::ProximityCandidate> expected =
-        cpu.find(f.vertices(), nullptr, test::reach_per_vertex(f.data, reach).get());
+        cpu.find(f.vertices(), lists.cpu_motion(), lists.cpu_reach());
     EXPECT_GT(expected.size(), 0u);
     EXPECT_EQ(found.size(), expected.size()) << "step " << step;
     EXPECT_TRUE(found == expected) << "step " << step;
@@ -161,15 +202,25 @@ TEST_F(GlProximityTest, OverAGlCollisionsRefittedTreesGivesTheCpuCandidates) {
   const gpu::CollisionCounters after = collision.counters();
   EXPECT_EQ(after.face_pairs, before.face_pairs);
   EXPECT_EQ(after.candidates, before.candidates);
+  std::vector<gpu::Box> boxes_after;
+  collision.download_bvh_boxes(boxes_after);
+  ASSERT_EQ(boxes_after.size(), boxes_before.size());
+  EXPECT_EQ(0, std::memcmp(boxes_after.data(), boxes_before.data(),
+                           boxes_before.size() * sizeof(gpu::Box)))
+      << "the search refits boxes of its own";
 }
 
-TEST_F(GlProximityTest, ReachListOfTheWrongLengthIsRefused) {
+TEST_F(GlProximityTest, ListsOfTheWrongLengthAreRefused) {
   const test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids());
   const GpuFixture gpu(f);
   GlProximity gl(context(), f.data);
-  const std::vector<float> one = {0.01f};
-  const std::vector<glm::vec3> one_drift = {glm::vec3(0.0f)};
-  EXPECT_THROW((void)gl.find(gpu.sources(), one, one_drift), Error);
+  const VertexLists lists = vertex_lists(f.data, std::vector<float>{0.01f, 0.01f},
+                                         std::vector<glm::vec3>(2, glm::vec3(0.0f)));
+  const std::vector<float> short_reach(lists.reach.begin(), lists.reach.end() - 1);
+  const std::vector<glm::vec3> short_motion(lists.motion.begin(), lists.motion.end() - 1);
+  EXPECT_THROW((void)gl.find(gpu.sources(), short_reach, lists.motion), Error);
+  EXPECT_THROW((void)gl.find(gpu.sources(), lists.reach, short_motion), Error);
+  EXPECT_NO_THROW((void)gl.find(gpu.sources(), lists.reach, {}));
 }
 
 }  // namespace

@@ -55,6 +55,7 @@
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/device_info.h"
 #include "gl_position_staging.h"
+#include "gl_proximity.h"
 #include "gl_vertex_check.h"
 
 namespace deformcd::gl {
@@ -150,11 +151,10 @@ class GlCollision final : public collision::CollisionBackend {
   // Whether the last detect() read the caller's buffer in place (no gathering copy).
   [[nodiscard]] bool positions_in_place() const;
   // For a proximity search (gl_proximity.h) on the current positions: completes the last pass,
-  // stages the positions, refits every BVH on them (a bvh pass's refit, without its traversal
-  // and narrow phase: the last pass's results stay) and leaves bound what GlProximity::
-  // find_bound reads (SSBOs 0, 7, 8, 25, 26, 27). Throws as detect() does
-  // (gl_collision_proximity.cpp).
-  void prepare_proximity();
+  // stages the positions and leaves bound what GlProximity::find_bound reads (SSBOs 0, 7, 8,
+  // 25, 27); returns the trees' refit order for the search's own boxes. The last pass's results
+  // and boxes stay as they are. Throws as detect() does (gl_collision_proximity.cpp).
+  [[nodiscard]] ProximityRefitOrder prepare_proximity();
 
  private:
   GlCollision(const DeviceInfo& device, const GlCollisionOptions& options);

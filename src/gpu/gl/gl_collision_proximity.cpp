@@ -1,5 +1,6 @@
-// GlCollision's side of the GL proximity search (gl_proximity.h): its BVHs, refitted on the
-// current positions, are what the search queries.
+// GlCollision's side of the GL proximity search (gl_proximity.h): its BVH topology (nodes, the
+// meshes' trees and their refit order) and its staged positions are what the search refits its
+// own boxes over and queries.
 
 #include <epoxy/gl.h>
 
@@ -7,7 +8,7 @@
 
 namespace deformcd::gl {
 
-void GlCollision::prepare_proximity() {
+ProximityRefitOrder GlCollision::prepare_proximity() {
   // A pending pass may still be rerun on the staged positions; staging anew must wait for it.
   complete_pass();
   CollisionBuffers& b = buffers("prepare_proximity");
@@ -18,10 +19,9 @@ void GlCollision::prepare_proximity() {
   }
   staging_.bind();
   b.bind();
-  // The callers' writes to their position buffers land before the refit reads them.
+  // The callers' writes to their position buffers land before the search reads them.
   memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  refit_bvhs(b);
-  storage_barrier();  // the search reads the boxes
+  return {b.bvh_levels.name(), b.bvh_levels_ranges};
 }
 
 }  // namespace deformcd::gl

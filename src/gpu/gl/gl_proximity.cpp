@@ -16,6 +16,32 @@ namespace {
 static_assert(sizeof(collision::ProximityCandidate) == 32,
               "ProximityCandidate is read back as the GLSL struct (proximity.glsl)");
 
+// Where each mesh's vertices start in the per-vertex lists (mesh 0's first).
+std::vector<std::uint32_t> vertex_firsts(const collision::CollisionData& data) {
+  std::vector<std::uint32_t> first;
+  std::uint32_t next = 0;
+  for (const gpu::MeshInfo& mesh : data.meshes) {
+    first.push_back(next);
+    next += mesh.vertex_count;
+  }
+  return first;
+}
+
+std::uint32_t vertex_total(const collision::CollisionData& data) {
+  std::uint32_t total = 0;
+  for (const gpu::MeshInfo& mesh : data.meshes)
+    total += mesh.vertex_count;
+  return total;
+}
+
+// Every mesh's tree has 2 x faces - 1 nodes (collision::build_hierarchies; rebuilds keep it).
+std::uint32_t node_total(const collision::CollisionData& data) {
+  std::uint32_t total = 0;
+  for (const gpu::MeshInfo& mesh : data.meshes)
+    total += 2u * mesh.face_count - 1u;
+  return total;
+}
+
 // Item p's first work item: mesh pair p's mesh a's faces follow the earlier pairs'.
 std::vector<std::uint32_t> pair_first_items(const collision::CollisionData& data) {
   std::vector<std::uint32_t> first = {0u};
@@ -42,16 +68,21 @@ GlProximity::GlProximity(Context& context, const collision::CollisionData& data)
 
 GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionData& data)
     : max_buffer_bytes_(device.max_ssbo_block_bytes),
-      mesh_count_(static_cast<std::uint32_t>(data.mesh_count())),
+      vertex_count_(vertex_total(data)),
+      node_count_(node_total(data)),
       pair_count_(static_cast<std::uint32_t>(data.mesh_pairs.size())),
       item_count_(pair_first_items(data).back()),
+      refit_("proximity/proximity_refit.comp"),
+      refit_level_("proximity/proximity_refit_level.comp"),
       count_("proximity/proximity_count.comp"),
       scan_("proximity/proximity_scan.comp"),
       emit_("proximity/proximity_emit.comp"),
       owners_(at_least_one(collision::primitive_owners(data.faces))),
       mesh_pairs_(at_least_one(data.mesh_pairs)),
       pair_first_(at_least_one(pair_first_items(data))),
-      reach_(std::max<std::size_t>(data.mesh_count(), 1)),
+      vertex_first_(at_least_one(vertex_firsts(data))),
+      motion_(std::max<std::uint32_t>(vertex_count_, 1u)),
+      boxes_(std::max<std::uint32_t>(node_count_, 1u)),
       counts_(std::max<std::uint32_t>(item_count_, 1u)),
       offsets_(std::size_t{item_count_} + 1u) {
   for (ComputeProgram* p : {&count_, &emit_}) {
@@ -59,48 +90,69 @@ GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionDat
     p->set_uniform("u_item_count", item_count_);
   }
   scan_.set_uniform("u_item_count", item_count_);
+  refit_.set_uniform("u_node_count", node_count_);
   const std::uint64_t most =
       std::uint64_t{device.max_work_group_count[0]} * count_.work_group_size()[0];
-  if (item_count_ > most) {
+  if (item_count_ > most || node_count_ > most) {
     throw GlError("GL proximity: " + std::to_string(item_count_) +
-                  " work items (faces of the mesh pairs' first meshes) exceed one dispatch (" +
+                  " work items (faces of the mesh pairs' first meshes) or " +
+                  std::to_string(node_count_) + " BVH nodes exceed one dispatch (" +
                   std::to_string(most) + ")");
   }
 }
 
 std::vector<collision::ProximityCandidate> GlProximity::find(const ProximitySources& sources,
                                                              std::span<const float> reach,
-                                                             std::span<const glm::vec3> drift) {
-  check_reach(reach, drift);  // before anything is rebound
+                                                             std::span<const glm::vec3> motion) {
+  check_lists(reach, motion);  // before anything is rebound
   bind_name(gpu::kNodePosition, sources.positions);
   bind_name(gpu::kFaceInfo, sources.faces);
   bind_name(gpu::kMeshInfo, sources.meshes);
   bind_name(gpu::kBvhNode, sources.bvh_nodes);
-  bind_name(gpu::kBvhBox, sources.bvh_boxes);
   bind_name(gpu::kBodyBvh, sources.mesh_bvhs);
-  return find_bound(reach, drift);
+  return find_bound(sources.refit, reach, motion);
 }
 
-void GlProximity::check_reach(std::span<const float> reach,
-                              std::span<const glm::vec3> drift) const {
-  if (reach.size() != mesh_count_ || drift.size() != mesh_count_) {
-    throw Error("GlProximity::find takes one reach and one drift per mesh: " +
-                std::to_string(mesh_count_) + " expected, " + std::to_string(reach.size()) +
-                " and " + std::to_string(drift.size()) + " given");
+void GlProximity::check_lists(std::span<const float> reach,
+                              std::span<const glm::vec3> motion) const {
+  if (reach.size() != vertex_count_ || (!motion.empty() && motion.size() != vertex_count_)) {
+    throw Error(
+        "GlProximity::find takes one reach and one motion (or none) per vertex of every "
+        "mesh: " +
+        std::to_string(vertex_count_) + " expected, " + std::to_string(reach.size()) +
+        " reaches and " + std::to_string(motion.size()) + " motions given");
   }
 }
 
-std::vector<collision::ProximityCandidate> GlProximity::find_bound(
-    std::span<const float> reach, std::span<const glm::vec3> drift) {
-  check_reach(reach, drift);
-  if (item_count_ == 0) return {};
+void GlProximity::refit(const ProximityRefitOrder& order, std::span<const float> reach,
+                        std::span<const glm::vec3> motion) {
+  // No motion is a motion of zero: x + 0 is x, as the CPU's vertex_motion gives for none.
   std::vector<glm::vec4> packed(reach.size());
-  for (std::size_t m = 0; m < reach.size(); ++m)
-    packed[m] = glm::vec4(drift[m], reach[m]);
-  reach_.upload(std::span<const glm::vec4>(packed));
+  for (std::size_t v = 0; v < reach.size(); ++v)
+    packed[v] = glm::vec4(motion.empty() ? glm::vec3(0.0f) : motion[v], reach[v]);
+  motion_.upload(std::span<const glm::vec4>(packed));
+  motion_.bind(kProximityMotionBinding);
+  vertex_first_.bind(kProximityVertexFirstBinding);
+  boxes_.bind(gpu::kBvhBox);
+  bind_name(kProximityLevelsBinding, order.buffer);
+  refit_.dispatch_covering(node_count_);
+  for (const glm::uvec2& level : order.levels) {
+    storage_barrier();  // the level reads its children's boxes
+    refit_level_.set_uniform("u_first", level.x);
+    refit_level_.set_uniform("u_count", level.y);
+    refit_level_.dispatch_covering(level.y);
+  }
+  storage_barrier();  // the search reads the boxes
+}
+
+std::vector<collision::ProximityCandidate> GlProximity::find_bound(
+    const ProximityRefitOrder& order, std::span<const float> reach,
+    std::span<const glm::vec3> motion) {
+  check_lists(reach, motion);
+  if (item_count_ == 0) return {};
+  refit(order, reach, motion);
   mesh_pairs_.bind(gpu::kBodyPair);
   owners_.bind(kProximityOwnersBinding);
-  reach_.bind(kProximityReachBinding);
   pair_first_.bind(kProximityPairFirstBinding);
   counts_.bind(kProximityCountsBinding);
   offsets_.bind(kProximityOffsetsBinding);
