@@ -176,10 +176,13 @@ class Detector {
   /// closer than the sum). Over the mesh pairs detect() tests; within one mesh, primitives of
   /// triangles sharing a vertex are neighbours and left out. Each pair once, in a fixed order
   /// (mesh pair by mesh pair, then by the triangle of the pair's first mesh whose search found
-  /// it, in the search's traversal order), the same on every backend and thread count. For a
-  /// contact response that keeps bodies `thickness` apart: reach = thickness / 2 + the most a
-  /// vertex strays from its path. Throws InputError for lists of the wrong length, a negative
-  /// or non-finite reach or a non-finite motion.
+  /// it, in the traversal order of the other mesh's hierarchy), the same on every thread count.
+  /// Both backends find the same pairs with the same distances, in the same order while their
+  /// hierarchies are the same (built on the same positions; each backend rebuilds a hierarchy
+  /// that deformation has loosened on its own schedule). For a contact response that keeps
+  /// bodies `thickness` apart: reach = thickness / 2 + the most a vertex strays from its path.
+  /// Throws InputError for lists of the wrong length, a negative or non-finite reach or a
+  /// non-finite motion.
   [[nodiscard]] std::vector<ProximityPair> find_proximity(std::span<const float> reach,
                                                           std::span<const glm::vec3> motion = {});
   /// Counts of the last pass (all 0 before the first).

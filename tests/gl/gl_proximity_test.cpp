@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -18,6 +19,7 @@
 #include "core/collision/proximity.h"
 #include "cpu/cpu_proximity.h"
 #include "cpu/executor.h"
+#include "deformcd/detector.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/ssbo.h"
 #include "gl_test_context.h"
@@ -221,6 +223,78 @@ TEST_F(GlProximityTest, ListsOfTheWrongLengthAreRefused) {
   EXPECT_THROW((void)gl.find(gpu.sources(), short_reach, lists.motion), Error);
   EXPECT_THROW((void)gl.find(gpu.sources(), lists.reach, short_motion), Error);
   EXPECT_NO_THROW((void)gl.find(gpu.sources(), lists.reach, {}));
+}
+
+// Through the public Detector: on GL, find_proximity runs the GL search over the GL backend's
+// trees and computes the distances from positions read back; its pairs equal the CPU
+// detector's field for field (order and distances included), with a reach per vertex or per
+// mesh, with and without motion, with positions in host arrays and in a GL buffer, after the
+// positions move without a detect(), and the GL detector's contacts are not disturbed.
+TEST_F(GlProximityTest, DetectorOnGlEqualsTheCpuDetector) {
+  test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids(), true);
+  const std::vector<CollisionMesh> meshes = test::surface_meshes(test::two_crossing_grids(), true);
+  Detector gl_detector(meshes, {.backend = BackendKind::kGl, .gl_context = &context()});
+  Detector cpu_detector(meshes, {.backend = BackendKind::kCpu, .threads = 2});
+  ASSERT_EQ(gl_detector.backend_name(), "gl");
+  std::vector<std::vector<glm::vec3>> host(f.positions.size());
+  std::vector<glm::vec4> all;
+  for (std::size_t m = 0; m < f.positions.size(); ++m) {
+    for (const glm::vec4& p : f.positions[m])
+      host[m].emplace_back(p);
+    all.insert(all.end(), f.positions[m].begin(), f.positions[m].end());
+  }
+  Ssbo<glm::vec4> buffer{std::span<const glm::vec4>(all)};
+  for (std::size_t m = 0; m < host.size(); ++m) {
+    gl_detector.set_positions(m, std::span<const glm::vec3>(host[m]));
+    cpu_detector.set_positions(m, std::span<const glm::vec3>(host[m]));
+  }
+  const std::vector<glm::vec3> drift = {{0.004f, 0.0f, 0.0f}, {-0.006f, 0.002f, 0.0f}};
+  const auto expect_same = [&](const std::vector<float>& reach,
+                               const std::vector<glm::vec3>& motion, const std::string& where) {
+    const std::vector<ProximityPair> expected = cpu_detector.find_proximity(reach, motion);
+    const std::vector<ProximityPair> found = gl_detector.find_proximity(reach, motion);
+    EXPECT_GT(expected.size(), 0u) << where;
+    EXPECT_EQ(found.size(), expected.size()) << where;
+    EXPECT_TRUE(found == expected) << where;
+  };
+  const VertexLists moving =
+      vertex_lists(f.data, std::vector<float>{0.01f, 0.015f}, drift, 0.003f, 3u);
+  expect_same(moving.reach, moving.motion, "host positions, per vertex, moving");
+  expect_same({0.01f, 0.02f}, {}, "host positions, per mesh, still");
+
+  // The same positions in a GL buffer (vec4 per vertex), then moved there and in the host
+  // arrays alike; the GL detector detects in between.
+  gl_detector.detect();
+  // Each contact's faces and segment, to compare the passes' results.
+  const auto faces_of = [](const std::vector<Contact>& list) {
+    std::vector<std::array<float, 10>> out;
+    out.reserve(list.size());
+    for (const Contact& c : list)
+      out.push_back({static_cast<float>(c.a.body), static_cast<float>(c.a.face),
+                     static_cast<float>(c.b.body), static_cast<float>(c.b.face), c.segment[0].x,
+                     c.segment[0].y, c.segment[0].z, c.segment[1].x, c.segment[1].y,
+                     c.segment[1].z});
+    return out;
+  };
+  const auto contacts = faces_of(gl_detector.contacts());
+  ASSERT_FALSE(contacts.empty());
+  std::size_t first = 0;
+  for (std::size_t m = 0; m < host.size(); ++m) {
+    gl_detector.set_positions(
+        m, GlPositions{buffer.name(), first * sizeof(glm::vec4), sizeof(glm::vec4)});
+    first += host[m].size();
+  }
+  expect_same(moving.reach, moving.motion, "GL buffer, per vertex, moving");
+  EXPECT_TRUE(faces_of(gl_detector.contacts()) == contacts)
+      << "the search leaves the last pass alone";
+  for (std::size_t m = 0, i = 0; m < host.size(); ++m)
+    for (glm::vec3& p : host[m]) {
+      p += glm::vec3(m == 1 ? -0.02f : 0.0f,
+                     0.003f * test::hash_unit(static_cast<std::uint32_t>(i), 9u), 0.0f);
+      all[i++] = glm::vec4(p, 1.0f);
+    }
+  buffer.upload(std::span<const glm::vec4>(all));
+  expect_same(moving.reach, moving.motion, "GL buffer moved, per vertex, moving");
 }
 
 }  // namespace
