@@ -243,7 +243,7 @@ TEST_F(ProximityAgreement, GlEqualsCpuThroughPhase1) {
             test::vertex_lists(replay.fixture.data, reach, {}, 0.0f, static_cast<std::uint32_t>(f));
         if (moving) {
           lists.motion = motion;
-          test::point_views(replay.fixture.data, lists);
+          lists.repoint();
         }
         const std::vector<collision::ProximityCandidate> expected =
             cpu.find(replay.fixture.vertices(), lists.cpu_motion(), lists.cpu_reach());

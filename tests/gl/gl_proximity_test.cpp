@@ -8,15 +8,19 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "collision_test_worlds.h"
+#include "core/collision/primitive_distance.h"
 #include "core/collision/proximity.h"
+#include "core/collision/vertex_positions.h"
 #include "cpu/cpu_proximity.h"
 #include "cpu/executor.h"
 #include "deformcd/detector.h"
@@ -158,6 +162,38 @@ TEST_F(GlProximityTest, SelfProximityGivesTheCpuCandidates) {
       "self");
   EXPECT_GT(sizes[1], sizes[0]);
   EXPECT_GT(sizes[2], 0u);
+}
+
+// Reaches on the border: each half of a candidate's own distance (rounded to float), so that
+// the pair's exact squared distance in double is compared with a limit equal to that distance
+// up to its rounding. Only bit-identical double arithmetic keeps the same pairs on both sides
+// of so many borders; with motion, the closing speeds move the borders by float sums.
+TEST_F(GlProximityTest, ReachesOnTheCandidatesOwnDistancesGiveTheCpuCandidates) {
+  const test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids(), true);
+  cpu::CpuProximity probe(f.data, std::make_shared<cpu::Executor>(2));
+  const VertexLists wide = vertex_lists(f.data, std::vector<float>{0.03f, 0.03f});
+  const std::vector<collision::ProximityCandidate> all =
+      probe.find(f.vertices(), nullptr, wide.cpu_reach());
+  ASSERT_GT(all.size(), 1000u);
+  const std::vector<glm::vec3> drift = {{0.002f, 0.0f, 0.0f}, {0.0f, -0.002f, 0.0f}};
+  std::vector<VertexLists> cases;
+  for (std::size_t i = 0; i < all.size(); i += all.size() / 24u) {
+    const collision::ProximityCandidate& c = all[i];
+    const std::uint32_t first_b = c.kind == gpu::kContactEdgeEdge ? 2u : 1u;
+    glm::vec3 x[4];
+    for (std::uint32_t k = 0; k < 4u; ++k)
+      x[k] = collision::vertex_position(f.vertices(), k < first_b ? c.mesh_a : c.mesh_b,
+                                        c.vertices[k]);
+    const float half = 0.5f * collision::primitive_distance(c.kind, x);
+    VertexLists lists = wide;
+    lists.reach.assign(wide.reach.size(), half);
+    lists.repoint();
+    cases.push_back(std::move(lists));
+    cases.push_back(vertex_lists(f.data, std::vector<float>{half, half}, drift, 0.0005f,
+                                 static_cast<std::uint32_t>(i)));
+  }
+  const std::vector<std::size_t> sizes = expect_cpu_candidates(f, cases, "border reaches");
+  EXPECT_GT(*std::max_element(sizes.begin(), sizes.end()), 0u);
 }
 
 // Plugged into a GlCollision: prepare_proximity stages its positions and binds its trees,

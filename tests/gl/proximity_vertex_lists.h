@@ -16,19 +16,49 @@
 
 namespace deformcd::test {
 
-struct VertexLists {
-  std::vector<float> reach;                        // per vertex of every mesh
-  std::vector<glm::vec3> motion;                   // per vertex of every mesh, or empty
-  std::vector<const float*> reach_of;              // per mesh, into `reach`
-  std::vector<collision::MeshVertices> motion_of;  // per mesh, into `motion` (empty: none)
+/// The lists and the per-mesh views into them (re-pointed when copied: a copy's views are its
+/// own; call repoint() after resizing a list).
+class VertexLists {
+ public:
+  std::vector<float> reach;          // per vertex of every mesh
+  std::vector<glm::vec3> motion;     // per vertex of every mesh, or empty
+  std::vector<std::uint32_t> first;  // per mesh: its first vertex in the lists
 
-  [[nodiscard]] collision::VertexReach cpu_reach() const { return reach_of.data(); }
-  [[nodiscard]] collision::VertexPositions cpu_motion() const {
-    return motion_of.empty() ? nullptr : motion_of.data();
+  VertexLists() = default;
+  VertexLists(const VertexLists& other)
+      : reach(other.reach), motion(other.motion), first(other.first) {
+    repoint();
   }
-};
+  VertexLists(VertexLists&&) noexcept = default;  // a moved vector keeps its elements
+  VertexLists& operator=(const VertexLists& other) {
+    if (this != &other) {
+      reach = other.reach;
+      motion = other.motion;
+      first = other.first;
+      repoint();
+    }
+    return *this;
+  }
+  VertexLists& operator=(VertexLists&&) noexcept = default;
+  ~VertexLists() = default;
 
-inline void point_views(const collision::CollisionData& data, VertexLists& lists);
+  void repoint() {
+    reach_of_.clear();
+    motion_of_.clear();
+    for (const std::uint32_t f : first) {
+      reach_of_.push_back(reach.data() + f);
+      if (!motion.empty()) motion_of_.push_back({&motion[f].x, 3u});
+    }
+  }
+  [[nodiscard]] collision::VertexReach cpu_reach() const { return reach_of_.data(); }
+  [[nodiscard]] collision::VertexPositions cpu_motion() const {
+    return motion_of_.empty() ? nullptr : motion_of_.data();
+  }
+
+ private:
+  std::vector<const float*> reach_of_;              // per mesh, into `reach`
+  std::vector<collision::MeshVertices> motion_of_;  // per mesh, into `motion` (empty: none)
+};
 
 /// Mesh m's vertices get a reach between 0.5 and 1.5 x reach[m] (deterministic noise, `salt`)
 /// and, unless `drift` is empty, the motion drift[m] plus up to `jitter` (m) per component.
@@ -38,6 +68,7 @@ inline VertexLists vertex_lists(const collision::CollisionData& data, std::span<
   VertexLists out;
   std::uint32_t n = 0;
   for (std::uint32_t m = 0; m < data.mesh_count(); ++m) {
+    out.first.push_back(n);
     for (std::uint32_t v = 0; v < data.meshes[m].vertex_count; ++v, ++n) {
       out.reach.push_back(reach[m] * (1.0f + 0.5f * hash_unit(n, salt)));
       if (!drift.empty()) {
@@ -47,20 +78,8 @@ inline VertexLists vertex_lists(const collision::CollisionData& data, std::span<
       }
     }
   }
-  point_views(data, out);
+  out.repoint();
   return out;
-}
-
-/// Points reach_of and motion_of into `lists` (after its vectors changed).
-inline void point_views(const collision::CollisionData& data, VertexLists& lists) {
-  lists.reach_of.clear();
-  lists.motion_of.clear();
-  std::size_t first = 0;
-  for (std::uint32_t m = 0; m < data.mesh_count(); ++m) {
-    lists.reach_of.push_back(lists.reach.data() + first);
-    if (!lists.motion.empty()) lists.motion_of.push_back({&lists.motion[first].x, 3u});
-    first += data.meshes[m].vertex_count;
-  }
 }
 
 }  // namespace deformcd::test
