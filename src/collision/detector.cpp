@@ -364,16 +364,18 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
     searched = true;
   }
 #endif
-  // The distances, on the host, from the positions: a GL buffer's are read back whole (one
-  // copy of vertex_count vertices per mesh) rather than the candidates' own vertices (4 per
-  // candidate), since the candidates outnumber the vertices: on the impact scene at contact
-  // 100k-160k candidates over 6.4k vertices, 100 KB of positions against 5-8 MB.
+  // The distances: the CPU search returns those its filter computed; after a GL search, on the
+  // host from the positions, a GL buffer's read back whole (one copy of vertex_count vertices
+  // per mesh) rather than the candidates' own vertices (4 per candidate), since the candidates
+  // outnumber the vertices: on the impact scene at contact 100k-160k candidates over 6.4k
+  // vertices, 100 KB of positions against 5-8 MB.
   std::vector<std::vector<glm::vec3>> read_back;
   const std::vector<collision::MeshVertices> pose = d.host_vertices(read_back);
+  std::vector<float> distances;
   if (!searched) {
     if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
     found = d.proximity->find(pose.data(), motion_of.empty() ? nullptr : motion_of.data(),
-                              reach_of.data());
+                              reach_of.data(), &distances);
   }
   std::vector<ProximityPair> out(found.size());
   d.executor->run([&] {
@@ -387,6 +389,10 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
       p.vertices = c.vertices;
       p.triangle =
           c.kind == gpu::kContactEdgeEdge ? 0u : c.face_b - d.data.meshes[c.mesh_b].face_offset;
+      if (!distances.empty()) {
+        p.distance = distances[i];
+        return;
+      }
       glm::vec3 x[4];
       for (std::uint32_t k = 0; k < 4u; ++k) {
         const bool side_a = k < (c.kind == gpu::kContactEdgeEdge ? 2u : 1u);
