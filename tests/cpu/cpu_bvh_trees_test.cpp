@@ -4,7 +4,9 @@
 
 #include "cpu/cpu_bvh_trees.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <vector>
@@ -45,7 +47,7 @@ bool same_bits(const std::vector<gpu::Box>& x, const std::vector<gpu::Box>& y) {
 }
 
 bool same_bits(double x, double y) {
-  return std::memcmp(&x, &y, sizeof(double)) == 0;
+  return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
 }
 
 TEST(BvhTrees, TheBigTreeIsCutIntoManySubtrees) {
