@@ -16,6 +16,7 @@
 //        Parallel_tag on every core), then do_intersect on Epick triangles (cgal_contestant.cpp).
 //   bullet-dbvt: Bullet 3.24, a btDbvt per mesh updated as btSoftBody updates its face tree,
 //        collideTT, then the same do_intersect (bullet_contestant.cpp).
+// refit/<scene>/deformcd-bvh: the bvh pass's refit alone (refit_rows.h), on the same frames.
 // One iteration runs every kept contact frame once; the time reported is per frame (wall clock,
 // the iteration's time divided by the frames), "contacts" is the number found over the frames,
 // "threads" the threads the row runs on.
@@ -44,6 +45,7 @@
 #include "deformcd/scene.h"
 #include "pair_check.h"
 #include "peer_contestants.h"
+#include "refit_rows.h"
 
 namespace {
 
@@ -256,6 +258,18 @@ void register_all() {
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime();
       }
+    }
+    for (int threads : {1, 0}) {
+      const std::string name =
+          "refit/" + scene.name + "/deformcd-bvh" + (threads == 1 ? "/threads:1" : "/threads:all");
+      benchmark::RegisterBenchmark(
+          name.c_str(),
+          [](benchmark::State& state, const std::string& scene_name, int t) {
+            bench::refit_row(state, frames_of(scene_name), t);
+          },
+          scene.name, threads)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
     }
     for (const bench::PeerInfo& p : bench::peers()) {
       const std::string name = "contact_frame/" + scene.name + "/" + p.name +

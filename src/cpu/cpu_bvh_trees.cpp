@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include <tbb/parallel_invoke.h>
 #include <glm/common.hpp>
 
 #include "core/collision/bvh.h"
@@ -10,27 +9,43 @@
 
 namespace deformcd::cpu {
 
-namespace {
-
-// Subtrees up to this many nodes are refitted on one thread: below it, splitting costs more
-// than the boxes (a node's refit is a few loads and six min/max).
-constexpr std::uint32_t kSerialRefitNodes = 2048;
-
-}  // namespace
-
 void BvhTrees::upload(const collision::CollisionData& data, collision::VertexPositions pose) {
   upkeep_.reset(data, pose);
   faces_ = data.faces;
   refit_nodes_.resize(upkeep_.nodes().size());
   make_refit_nodes(0, static_cast<std::uint32_t>(refit_nodes_.size()));
   boxes_.assign(upkeep_.nodes().size(), gpu::Box{});
+  ratios_.assign(upkeep_.trees().size(), 0.0);
+  cut_trees();
   refit(pose);
 }
 
+void BvhTrees::cut_trees() {
+  pieces_.clear();
+  top_nodes_.clear();
+  piece_offset_.assign(1, 0u);
+  top_offset_.assign(1, 0u);
+  for (const gpu::BodyBvh& t : upkeep_.trees()) {
+    const collision::BvhCut cut = collision::cut_bvh(upkeep_.nodes(), t.root, t.node_count);
+    for (const glm::uvec2& s : cut.subtrees)
+      pieces_.push_back({s.x, s.y});
+    top_nodes_.insert(top_nodes_.end(), cut.top.begin(), cut.top.end());
+    piece_offset_.push_back(static_cast<std::uint32_t>(pieces_.size()));
+    top_offset_.push_back(static_cast<std::uint32_t>(top_nodes_.size()));
+  }
+  piece_areas_.assign(pieces_.size(), 0.0);
+}
+
 void BvhTrees::refit(collision::VertexPositions positions) {
+  // One piece per task: every piece is 1 to kBvhCutNodes nodes, most of them over half that.
   parallel_for(
-      upkeep_.trees().size(),
-      [&](std::size_t mesh) { refit_mesh(static_cast<std::uint32_t>(mesh), positions); }, 1);
+      pieces_.size(),
+      [&](std::size_t p) {
+        piece_areas_[p] = refit_range(pieces_[p].first, pieces_[p].count, positions);
+      },
+      1);
+  for (std::uint32_t mesh = 0; mesh < ratios_.size(); ++mesh)
+    refit_top(mesh);
 }
 
 void BvhTrees::make_refit_nodes(std::uint32_t first, std::uint32_t count) {
@@ -47,8 +62,9 @@ void BvhTrees::make_refit_nodes(std::uint32_t first, std::uint32_t count) {
 }
 
 // The loop of collision::refit_bvh (reverse preorder, children first), reading refit_nodes_.
-void BvhTrees::refit_range(std::uint32_t first, std::uint32_t count,
-                           collision::VertexPositions positions) {
+double BvhTrees::refit_range(std::uint32_t first, std::uint32_t count,
+                             collision::VertexPositions positions) {
+  double area = 0.0;
   for (std::uint32_t i = first + count; i-- > first;) {
     const RefitNode& n = refit_nodes_[i];
     gpu::Box b = collision::empty_box();
@@ -61,52 +77,45 @@ void BvhTrees::refit_range(std::uint32_t first, std::uint32_t count,
       const gpu::Box& r = boxes_[n.y];
       b.min = glm::vec4(glm::min(glm::vec3(l.min), glm::vec3(r.min)), 0.0f);
       b.max = glm::vec4(glm::max(glm::vec3(l.max), glm::vec3(r.max)), 0.0f);
+      area += collision::box_area(b);
     }
     boxes_[i] = b;
   }
+  return area;
 }
 
-void BvhTrees::refit_mesh(std::uint32_t mesh, collision::VertexPositions positions) {
-  const gpu::BodyBvh& t = upkeep_.tree(mesh);
-  refit_subtree(t.root, t.node_count, positions);
-}
-
-// Preorder puts a subtree in one range: the node, its left subtree [node + 1, right), then its
-// right subtree [right, node + count). The two halves are independent, so they run in parallel
-// down to kSerialRefitNodes, and the node's box is their union.
-void BvhTrees::refit_subtree(std::uint32_t node, std::uint32_t count,
-                             collision::VertexPositions positions) {
-  const std::vector<gpu::BvhNode>& nodes = upkeep_.nodes();
-  if (count <= kSerialRefitNodes) {
-    refit_range(node, count, positions);
-    return;
+// The sum of collision::bvh_area_ratio: the pieces' sums in the cut's order, then the top
+// nodes, last to first (children before parents, which the refit needs too).
+void BvhTrees::refit_top(std::uint32_t mesh) {
+  double internal = 0.0;
+  for (std::uint32_t p = piece_offset_[mesh]; p < piece_offset_[mesh + 1]; ++p)
+    internal += piece_areas_[p];
+  for (std::uint32_t k = top_offset_[mesh + 1]; k-- > top_offset_[mesh];) {
+    const std::uint32_t node = top_nodes_[k];
+    const RefitNode& n = refit_nodes_[node];
+    const gpu::Box& l = boxes_[n.x];
+    const gpu::Box& r = boxes_[n.y];
+    const gpu::Box b = {glm::vec4(glm::min(glm::vec3(l.min), glm::vec3(r.min)), 0.0f),
+                        glm::vec4(glm::max(glm::vec3(l.max), glm::vec3(r.max)), 0.0f)};
+    boxes_[node] = b;
+    internal += collision::box_area(b);
   }
-  const gpu::BvhNode& n = nodes[node];
-  tbb::parallel_invoke([&] { refit_subtree(n.left, n.right - n.left, positions); },
-                       [&] { refit_subtree(n.right, node + count - n.right, positions); });
-  const gpu::Box& l = boxes_[n.left];
-  const gpu::Box& r = boxes_[n.right];
-  boxes_[node] = {glm::vec4(glm::min(glm::vec3(l.min), glm::vec3(r.min)), 0.0f),
-                  glm::vec4(glm::max(glm::vec3(l.max), glm::vec3(r.max)), 0.0f)};
+  const double root = collision::box_area(boxes_[upkeep_.tree(mesh).root]);
+  ratios_[mesh] = root > 0.0 ? internal / root : 0.0;
 }
 
 std::uint32_t BvhTrees::rebuild_degraded(const std::vector<std::uint8_t>& traversed,
                                          collision::VertexPositions positions) {
-  degraded_.assign(traversed.size(), 0u);
-  parallel_for(
-      traversed.size(),
-      [&](std::size_t m) {
-        const auto mesh = static_cast<std::uint32_t>(m);
-        if (traversed[m] != 0u && upkeep_.degraded(mesh, area_ratio(mesh))) degraded_[m] = 1u;
-      },
-      1);
   std::uint32_t rebuilt = 0;
-  for (std::uint32_t mesh = 0; mesh < degraded_.size(); ++mesh) {
-    if (degraded_[mesh] == 0u) continue;
+  for (std::uint32_t mesh = 0; mesh < traversed.size(); ++mesh) {
+    if (traversed[mesh] == 0u || !upkeep_.degraded(mesh, ratios_[mesh])) continue;
     upkeep_.rebuild(mesh, positions, boxes_);
     make_refit_nodes(upkeep_.tree(mesh).root, upkeep_.tree(mesh).node_count);
+    ratios_[mesh] = upkeep_.built_ratio(mesh);
     ++rebuilt;
   }
+  // A new topology, a new cut.
+  if (rebuilt > 0) cut_trees();
   return rebuilt;
 }
 

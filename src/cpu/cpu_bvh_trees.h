@@ -1,11 +1,18 @@
 #pragma once
 // Every mesh's BVH on the CPU, kept fitted to the deforming surface: the boxes are refitted
-// every pass, in parallel across meshes and across the subtrees of a big mesh, and a mesh's
-// tree is rebuilt from its current shape when refitting has loosened it too much. When to
-// rebuild is the shared policy of collision::BvhUpkeep (core/collision/bvh_upkeep.h), which
-// also holds the trees' topology; the CPU measures a tree's area ratio (a pass over its boxes,
-// 9 % of a bvh pass at 50,000 faces per body) only when the tree is about to be traversed, and
-// rebuilds it then if it has degraded.
+// every pass, and a mesh's tree is rebuilt from its current shape when refitting has loosened
+// it too much. When to rebuild is the shared policy of collision::BvhUpkeep
+// (core/collision/bvh_upkeep.h), which also holds the trees' topology; the CPU rebuilds a tree
+// only when it is about to be traversed.
+//
+// Thread-to-data mapping of the refit: every tree is cut once (collision::cut_bvh, on upload
+// and on a rebuild) into subtrees of at most collision::kBvhCutNodes nodes; one parallel loop
+// over all the meshes' subtrees refits each subtree on one thread, children first, and sums its
+// internal nodes' areas into the subtree's own slot; then the calling thread refits the few
+// nodes above the cut (about one per subtree) and adds the slots in the cut's order. The area
+// ratio thus costs no pass of its own (it was 9 % of a bvh pass at 50,000 faces per body), and
+// its bits are collision::bvh_area_ratio's whatever the thread count: the cut does not depend
+// on it, no slot is shared, and the sums are added in one order.
 
 #include <cstdint>
 #include <vector>
@@ -21,22 +28,20 @@ class BvhTrees {
  public:
   // Takes the trees of `data` (built on `pose`) and fits them to it.
   void upload(const collision::CollisionData& data, collision::VertexPositions pose);
-  // Refits every tree to `positions`.
+  // Refits every tree to `positions`, and measures their area ratios.
   void refit(collision::VertexPositions positions);
-  // Rebuilds, from `positions`, the tree of every mesh m with traversed[m] != 0 whose area ratio,
-  // measured now, says it has degraded (collision::BvhUpkeep::degraded): the ratios are measured
-  // in parallel across the meshes, the rebuilds one after the other. Returns how many it rebuilt.
+  // Rebuilds, from `positions` (those of the last refit), the tree of every mesh m with
+  // traversed[m] != 0 whose area ratio, measured by the last refit, says it has degraded
+  // (collision::BvhUpkeep::degraded), one after the other. Returns how many it rebuilt.
   std::uint32_t rebuild_degraded(const std::vector<std::uint8_t>& traversed,
                                  collision::VertexPositions positions);
 
   [[nodiscard]] const std::vector<gpu::BvhNode>& nodes() const { return upkeep_.nodes(); }
   [[nodiscard]] const std::vector<gpu::Box>& boxes() const { return boxes_; }
   [[nodiscard]] const gpu::BodyBvh& tree(std::uint32_t mesh) const { return upkeep_.tree(mesh); }
-  // The area ratio of `mesh`'s tree as last refitted (measured by the call), and right after its
-  // last build.
-  [[nodiscard]] double area_ratio(std::uint32_t mesh) const {
-    return upkeep_.area_ratio(mesh, boxes_);
-  }
+  // The area ratio of `mesh`'s tree as last refitted (or rebuilt), and right after its last
+  // build; both collision::bvh_area_ratio's bit for bit.
+  [[nodiscard]] double area_ratio(std::uint32_t mesh) const { return ratios_[mesh]; }
   [[nodiscard]] double built_area_ratio(std::uint32_t mesh) const {
     return upkeep_.built_ratio(mesh);
   }
@@ -56,17 +61,34 @@ class BvhTrees {
     std::uint32_t mesh;  // kBvhInternal for an internal node
   };
 
+  // A subtree of a mesh's cut: nodes [first, first + count).
+  struct Piece {
+    std::uint32_t first;
+    std::uint32_t count;
+  };
+
   void make_refit_nodes(std::uint32_t first, std::uint32_t count);
-  // collision::refit_bvh over refit_nodes_: the same boxes, bit for bit.
-  void refit_range(std::uint32_t first, std::uint32_t count, collision::VertexPositions positions);
-  void refit_mesh(std::uint32_t mesh, collision::VertexPositions positions);
-  void refit_subtree(std::uint32_t node, std::uint32_t count, collision::VertexPositions positions);
+  // Cuts every mesh's tree into pieces_ and top_nodes_.
+  void cut_trees();
+  // collision::refit_bvh over refit_nodes_ (the same boxes, bit for bit); returns the summed
+  // area of the range's internal nodes, last node to first (collision::bvh_area_ratio's order).
+  double refit_range(std::uint32_t first, std::uint32_t count,
+                     collision::VertexPositions positions);
+  // After its pieces: the mesh's nodes above the cut, and its area ratio into ratios_.
+  void refit_top(std::uint32_t mesh);
 
   collision::BvhUpkeep upkeep_;
   std::vector<gpu::Face> faces_;
   std::vector<RefitNode> refit_nodes_;  // per node
   std::vector<gpu::Box> boxes_;         // per node
-  std::vector<std::uint8_t> degraded_;  // per mesh, rebuild_degraded's
+  // The cuts of every mesh's tree, mesh after mesh: mesh m's pieces are
+  // pieces_[piece_offset_[m], piece_offset_[m + 1]), its top nodes (preorder) likewise.
+  std::vector<Piece> pieces_;
+  std::vector<std::uint32_t> piece_offset_;  // per mesh, + 1
+  std::vector<std::uint32_t> top_nodes_;
+  std::vector<std::uint32_t> top_offset_;  // per mesh, + 1
+  std::vector<double> piece_areas_;        // per piece, this pass
+  std::vector<double> ratios_;             // per mesh: its area ratio, this pass
 };
 
 }  // namespace deformcd::cpu

@@ -3,6 +3,7 @@
 
 #include "core/collision/bvh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -118,6 +119,58 @@ TEST(Bvh, AreaRatioGrowsWhenTheTreeLoosens) {
     p.x = p.y < 0.5f ? 1.2f - p.x : p.x;
   refit_bvh(w.bvh_nodes, t.root, t.node_count, fixture.vertices(), w.faces, boxes);
   EXPECT_GT(bvh_area_ratio(w.bvh_nodes, t.root, t.node_count, boxes), 1.2 * fresh);
+}
+
+TEST(Bvh, ACutHoldsEveryNodeOnceAndItsSubtreesAreWholeAndSmall) {
+  const test::CollisionFixture fixture = two_grids();
+  const CollisionData& w = fixture.data;
+  for (const gpu::BodyBvh& t : w.mesh_bvhs) {
+    for (std::uint32_t max_nodes : {1u, 16u, 100u, t.node_count}) {
+      const BvhCut cut = cut_bvh(w.bvh_nodes, t.root, t.node_count, max_nodes);
+      std::vector<int> seen(t.node_count, 0);
+      for (std::uint32_t node : cut.top) {
+        EXPECT_EQ(w.bvh_nodes[node].face, gpu::kBvhInternal);
+        ++seen[node - t.root];
+      }
+      EXPECT_TRUE(std::is_sorted(cut.top.begin(), cut.top.end()));  // preorder
+      std::uint32_t previous = 0;
+      for (const glm::uvec2& s : cut.subtrees) {
+        EXPECT_TRUE(s.y <= max_nodes || s.y == 1u);
+        EXPECT_GE(s.x, previous);
+        previous = s.x + s.y;
+        // A whole subtree: its root's parent is above the cut, and its nodes' parents inside it.
+        if (s.x != t.root) {
+          EXPECT_EQ(seen[w.bvh_nodes[s.x].parent - t.root], 1);
+        }
+        for (std::uint32_t i = s.x; i < s.x + s.y; ++i) {
+          ++seen[i - t.root];
+          if (i != s.x) {
+            EXPECT_TRUE(w.bvh_nodes[i].parent >= s.x && w.bvh_nodes[i].parent < i);
+          }
+        }
+      }
+      EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }))
+          << "max " << max_nodes;
+      if (max_nodes >= t.node_count) {
+        EXPECT_TRUE(cut.top.empty());
+      }
+    }
+  }
+}
+
+TEST(Bvh, AreaRatioIsTheInternalAreaOverTheRoot) {
+  const test::CollisionFixture fixture = two_grids();
+  const CollisionData& w = fixture.data;
+  std::vector<gpu::Box> boxes(w.bvh_nodes.size());
+  for (const gpu::BodyBvh& t : w.mesh_bvhs) {
+    refit_bvh(w.bvh_nodes, t.root, t.node_count, fixture.vertices(), w.faces, boxes);
+    double internal = 0.0;
+    for (std::uint32_t i = t.root; i < t.root + t.node_count; ++i) {
+      if (w.bvh_nodes[i].face == gpu::kBvhInternal) internal += box_area(boxes[i]);
+    }
+    EXPECT_NEAR(bvh_area_ratio(w.bvh_nodes, t.root, t.node_count, boxes),
+                internal / box_area(boxes[t.root]), 1e-12 * internal / box_area(boxes[t.root]));
+  }
 }
 
 }  // namespace

@@ -19,11 +19,6 @@ glm::vec3 centroid(VertexPositions p, const gpu::Face& f) {
   return (v[0] + v[1] + v[2]) / 3.0f;
 }
 
-double area(const gpu::Box& b) {
-  const glm::dvec3 e = glm::max(glm::dvec3(b.max) - glm::dvec3(b.min), glm::dvec3(0.0));
-  return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
-}
-
 // A range of faces waiting to become the subtree rooted at `node`.
 struct Pending {
   std::uint32_t node;
@@ -103,6 +98,26 @@ std::uint32_t bvh_depth(const std::vector<gpu::BvhNode>& nodes, std::uint32_t ro
   return deepest;
 }
 
+BvhCut cut_bvh(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first, std::uint32_t count,
+               std::uint32_t max_nodes) {
+  BvhCut cut;
+  // Depth first, left before right: both lists come out in preorder.
+  std::vector<glm::uvec2> stack = {{first, count}};
+  while (!stack.empty()) {
+    const glm::uvec2 s = stack.back();
+    stack.pop_back();
+    const gpu::BvhNode& n = nodes[s.x];
+    if (s.y <= max_nodes || n.face != gpu::kBvhInternal) {
+      cut.subtrees.push_back(s);
+      continue;
+    }
+    cut.top.push_back(s.x);
+    stack.emplace_back(n.right, s.x + s.y - n.right);
+    stack.emplace_back(n.left, n.right - n.left);
+  }
+  return cut;
+}
+
 void refit_bvh(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first, std::uint32_t count,
                VertexPositions positions, const std::vector<gpu::Face>& faces,
                std::vector<gpu::Box>& boxes) {
@@ -126,11 +141,18 @@ void refit_bvh(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first, std:
 
 double bvh_area_ratio(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first,
                       std::uint32_t count, const std::vector<gpu::Box>& boxes) {
+  const BvhCut cut = cut_bvh(nodes, first, count);
   double internal = 0.0;
-  for (std::uint32_t i = first; i < first + count; ++i) {
-    if (nodes[i].face == gpu::kBvhInternal) internal += area(boxes[i]);
+  for (const glm::uvec2& s : cut.subtrees) {
+    double sum = 0.0;
+    for (std::uint32_t i = s.x + s.y; i-- > s.x;) {
+      if (nodes[i].face == gpu::kBvhInternal) sum += box_area(boxes[i]);
+    }
+    internal += sum;
   }
-  const double root = area(boxes[first]);
+  for (std::size_t k = cut.top.size(); k-- > 0;)
+    internal += box_area(boxes[cut.top[k]]);
+  const double root = box_area(boxes[first]);
   return root > 0.0 ? internal / root : 0.0;
 }
 

@@ -8,6 +8,9 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/common.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "broad_phase.h"
@@ -39,6 +42,31 @@ inline constexpr double kBvhRebuildFactor = 1.5;
 /// Depth (edges on the longest root-to-leaf path) of the tree rooted at `root`.
 [[nodiscard]] std::uint32_t bvh_depth(const std::vector<gpu::BvhNode>& nodes, std::uint32_t root);
 
+/// Subtrees of at most this many nodes are the units a tree is cut into (cut_bvh): refitted one
+/// per task by the CPU backend, and the pieces of the area ratio's sum. A node's refit is a few
+/// loads and six min/max (a few ns), so a piece of 512-1024 nodes is a few microseconds of
+/// work, well above a oneTBB task's cost, while a 50,000-face tree still gives about 130 pieces
+/// to share out. A constant, not a function of the thread count: the area ratio's summation
+/// order (hence its bits) depends on the cut.
+inline constexpr std::uint32_t kBvhCutNodes = 1024;
+
+/// A tree cut into independent subtrees and the internal nodes above them. Preorder puts a
+/// subtree in one range of nodes ([root, root + count)), and a node's box depends only on its
+/// subtree's, so the subtrees can be refitted in any order or at once, and then the top nodes,
+/// children before parents.
+struct BvhCut {
+  /// Internal nodes above the cut, in preorder (a parent before its children).
+  std::vector<std::uint32_t> top;
+  /// The subtrees below the cut, each (its first node, its node count), in preorder of their
+  /// first nodes; together with `top` they hold every node of the tree once.
+  std::vector<glm::uvec2> subtrees;
+};
+
+/// Cuts the tree of nodes [first, first + count) (first its root) below every node whose
+/// subtree has more than `max_nodes` nodes. Depends on the topology only.
+[[nodiscard]] BvhCut cut_bvh(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first,
+                             std::uint32_t count, std::uint32_t max_nodes = kBvhCutNodes);
+
 /// Recomputes the boxes of nodes [first, first + count) in reverse preorder (children first):
 /// leaves from their face's vertices, internal nodes as the union of their children.
 void refit_bvh(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first, std::uint32_t count,
@@ -66,9 +94,18 @@ void query_bvh(const gpu::BvhNode* nodes, const gpu::Box* boxes, std::uint32_t r
   }
 }
 
+/// Surface area of a box, in double (0 for an empty one).
+[[nodiscard]] inline double box_area(const gpu::Box& b) {
+  const glm::dvec3 e = glm::max(glm::dvec3(b.max) - glm::dvec3(b.min), glm::dvec3(0.0));
+  return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+}
+
 /// How loose a refitted tree has become: the summed surface area of its internal nodes over the
 /// root's (scale-free; grows as deformation makes siblings overlap). Compare with the value
-/// right after a build to decide on a rebuild.
+/// right after a build to decide on a rebuild. The sum has one order, so that a parallel
+/// evaluation gives the same bits: per subtree of cut_bvh(nodes, first, count), in the cut's
+/// order, its internal nodes' areas summed from its last node down to its first, starting from
+/// 0; those sums added in the cut's order; then the top nodes' areas, last to first.
 [[nodiscard]] double bvh_area_ratio(const std::vector<gpu::BvhNode>& nodes, std::uint32_t first,
                                     std::uint32_t count, const std::vector<gpu::Box>& boxes);
 
