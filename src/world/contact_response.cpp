@@ -88,10 +88,13 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
 
 std::vector<glm::vec4> ContactResponse::node_motion() {
   // Each node is predicted to go on at its velocity over the window (plus its body's carry
-  // velocity) and may stray from that straight path by its reach: the thickness (half of it is
-  // the constraint's share, half is play), what gravity adds, and what its velocity's change
-  // since the last search would add if it went on changing as fast (up to half a mean edge). A
-  // node that strays farther starts a new search (project), so no pair is missed. Prediction
+  // velocity) and may stray from that straight path by its reach: a quarter of the thickness
+  // of play (the search adds the constraint's half of the thickness to it), what gravity adds,
+  // and what its velocity's change since the last search would add if it went on changing as
+  // fast (up to half a mean edge). The play trades candidates against searches: on the impact
+  // scene a quarter of the thickness costs about 15 % less than the whole thickness, and a tenth
+  // more again. A node that strays farther starts a new search (project), so no pair is
+  // missed. Prediction
   // per node keeps both sides of a contact, which move together, from sweeping across each
   // other, and a fast body's boxes from growing by more than its own motion; a reach per node
   // keeps the few ringing or braking nodes from starting a search every few substeps (on the
@@ -106,7 +109,7 @@ std::vector<glm::vec4> ContactResponse::node_motion() {
   std::vector<glm::vec4> motion(node_body_.size());
   for (std::size_t b = 0; b < objects_.size(); ++b) {
     const gpu::ObjectInfo& o = objects_[b];
-    const float base = thickness_[b] + 0.5f * glm::length(step_.gravity) * dt * dt;
+    const float base = 0.25f * thickness_[b] + 0.5f * glm::length(step_.gravity) * dt * dt;
     const float most = 0.5f * mean_edge_[b];
     for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
       const glm::vec3 velocity = glm::vec3(v[i]) + carry_[b];
