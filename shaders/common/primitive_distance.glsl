@@ -184,20 +184,27 @@ bool primitives_within(uint kind, vec3 x[4], float closing, float reach) {
   return !(primitive_distance2(kind, x) > limit2);
 }
 
+// largest_per_side: the largest of a pair's per-vertex values on its first side (the vertex, or
+// the first edge) plus the largest on its second.
+float largest_per_side(uint kind, float value[4]) {
+  const uint first_b = kind == CONTACT_EDGE_EDGE ? 2u : 1u;
+  precise float side_a = 0.0, side_b = 0.0;
+  for (uint k = 0u; k < 4u; ++k) {
+    if (k < first_b) {
+      side_a = distance_max(side_a, value[k]);
+    } else {
+      side_b = distance_max(side_b, value[k]);
+    }
+  }
+  precise float total = side_a + side_b;
+  return total;
+}
+
 // closing_speed: how fast a pair's distance can shrink when each vertex moves at m[k]: the
 // fastest of one side's |m - mean| plus the fastest of the other's.
 float closing_speed(uint kind, vec3 m[4]) {
   precise vec3 mean = ((m[0] + m[1]) + (m[2] + m[3])) * 0.25;
-  const uint first_b = kind == CONTACT_EDGE_EDGE ? 2u : 1u;
-  precise float side_a = 0.0, side_b = 0.0;
-  for (uint k = 0u; k < 4u; ++k) {
-    precise float speed = exact_length(m[k] - mean);
-    if (k < first_b) {
-      side_a = distance_max(side_a, speed);
-    } else {
-      side_b = distance_max(side_b, speed);
-    }
-  }
-  precise float closing = side_a + side_b;
-  return closing;
+  float speed[4];
+  for (uint k = 0u; k < 4u; ++k) speed[k] = exact_length(m[k] - mean);
+  return largest_per_side(kind, speed);
 }

@@ -4,17 +4,20 @@
 // together. The why of the method (Jacobi with per-constraint scaling, Coulomb friction,
 // restitution) is in the C++ header.
 //
-// count_active and gather_correction are not here: GLSL 4.30 cannot pass a buffer to a function,
-// so their loops are written out in response/contact_count.comp and response/contact_apply.comp,
-// again line for line.
+// gather_correction is not here: GLSL 4.30 cannot pass a buffer to a function, so its loop is
+// written out in response/contact_apply.comp, again line for line. The count pass
+// (response/contact_count.comp) counts each node's active constraints over its list; the CPU
+// sums the same integer counts from its compacted list of active constraints.
 //
 // Every float is `precise`: without it the driver may fuse a * b + c into one fma (one rounding
 // instead of two) or reorder sums, and the results would drift from the C++ ones by an ulp here
 // and there, which a few substeps of Jacobi iteration amplify. dot, cross and the min / max of
 // glm are written out for the same reason (glm::dot sums (x + y) + z; glm::max(a, b) is
 // a < b ? b : a, which differs from GLSL's max only for NaN and signed zeros, but the mirror
-// should not differ at all). segment_closest_parameters, which the edge-edge geometry uses, is
-// common/primitive_distance.glsl's (the proximity search's distances use it too).
+// should not differ at all). segment_closest_parameters, which the edge-edge geometry uses, those
+// written-out min / max / clamp (distance_min, distance_max, distance_clamp) and the side rule
+// of a pair's nodes (largest_per_side) are common/primitive_distance.glsl's (the proximity
+// search uses them too).
 #include "common/exact_math.glsl"
 #include "common/layout.glsl"
 #include "common/primitive_distance.glsl"
@@ -29,13 +32,6 @@ struct ContactConstants {
   float elapsed;            // s: from the frame's start to the end of this substep
 };
 
-
-// glm::max and glm::min on floats, and glm::clamp(x, lo, hi) = min(max(x, lo), hi).
-float contact_max(float a, float b) { return a < b ? b : a; }
-float contact_min(float a, float b) { return b < a ? b : a; }
-float contact_clamp(float x, float lo, float hi) {
-  return contact_min(contact_max(x, lo), hi);
-}
 
 // plane_barycentric: the closest point of the plane projection of p on triangle (a, b, c) as
 // barycentric weights (u, v, w), u + v + w = 1 (not clamped here); false for a degenerate
@@ -95,8 +91,8 @@ bool contact_geometry(ContactPair pair, vec3 x[4], out vec3 n, out float b[4], o
     if (height < -pair.thickness) return false;
   } else {
     // Untangling (CONTACT_UNTANGLE): weights clamped into the face.
-    precise vec3 clamped = vec3(contact_clamp(uvw.x, 0.0, 1.0), contact_clamp(uvw.y, 0.0, 1.0),
-                                contact_clamp(uvw.z, 0.0, 1.0));
+    precise vec3 clamped = vec3(distance_clamp(uvw.x, 0.0, 1.0), distance_clamp(uvw.y, 0.0, 1.0),
+                                distance_clamp(uvw.z, 0.0, 1.0));
     precise float total = (clamped.x + clamped.y) + clamped.z;
     precise vec3 normalized = clamped / total;
     uvw = normalized;
@@ -123,17 +119,8 @@ float path_deviation(vec3 position, vec4 frame_start, vec4 node_motion, float el
 // window, its nodes deviation[k] from their straight paths (a margin of 1e-4 of the thickness
 // for rounding).
 bool contact_awake(ContactPair pair, float deviation[4], float elapsed) {
-  const uint first_b = pair.kind == CONTACT_EDGE_EDGE ? 2u : 1u;
-  precise float side_a = 0.0, side_b = 0.0;
-  for (uint k = 0u; k < 4u; ++k) {
-    if (k < first_b) {
-      side_a = contact_max(side_a, deviation[k]);
-    } else {
-      side_b = contact_max(side_b, deviation[k]);
-    }
-  }
   precise float closest = pair.gap - pair.closing_speed * elapsed;
-  precise float margin = (side_a + side_b) + 1e-4 * pair.thickness;
+  precise float margin = largest_per_side(pair.kind, deviation) + 1e-4 * pair.thickness;
   return !(closest > margin);
 }
 
@@ -167,16 +154,16 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
     relative_velocity += b[i] * velocity[i].xyz;
   }
   if (!(weight > 0.0)) return;  // every node fixed
-  precise float approach = contact_max(-exact_dot(relative_velocity, n), 0.0);
+  precise float approach = distance_max(-exact_dot(relative_velocity, n), 0.0);
   precise float normal_speed = (1.0 + k.restitution) * approach;
-  precise float push = contact_max(-c - approach * k.h, 0.0);
-  if (pair.kind == CONTACT_UNTANGLE) push = contact_min(push, k.max_untangle_step);
+  precise float push = distance_max(-c - approach * k.h, 0.0);
+  if (pair.kind == CONTACT_UNTANGLE) push = distance_min(push, k.max_untangle_step);
   precise vec3 tangential = relative_velocity - exact_dot(relative_velocity, n) * n;
   precise float slip = sqrt(exact_dot(tangential, tangential));
   precise float keep = 0.0;  // the share of the tangential velocity friction leaves
   precise float static_limit = k.friction_static * normal_speed;
   if (slip > static_limit) {
-    keep = contact_max(1.0 - k.friction_dynamic * normal_speed / slip, 0.0);
+    keep = distance_max(1.0 - k.friction_dynamic * normal_speed / slip, 0.0);
   }
   precise vec3 dv = (normal_speed * n - (1.0 - keep) * tangential) / weight;
   precise vec3 dx = dv * k.h + (push / weight) * n;

@@ -1,9 +1,9 @@
 #version 430
 // The contact response's count pass: one invocation per node counts its active constraints
 // (the activity pass's flag in the w of each constraint's first correction slot) over its CSR
-// list of constraint corners, in list order (count_active in
-// src/core/response/contact_constraints.h, written out here because GLSL cannot pass a buffer
-// to a function). Each invocation writes only its own node's count.
+// list of constraint corners. Each invocation writes only its own node's count. The CPU backend
+// sums the same integer counts from its compacted list of active constraints
+// (src/cpu/cpu_contact_response.cpp): a count does not depend on the order it is summed in.
 #include "common/layout.glsl"
 
 layout(local_size_x = 64) in;
@@ -26,7 +26,6 @@ uniform uint u_node_count;
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= u_node_count) return;  // the last work group reaches past the end
-  // count_active, line for line.
   const uint begin = node_contact_offset[i];
   const uint end = node_contact_offset[i + 1u];
   uint count = 0u;

@@ -7,6 +7,7 @@
 #include "backend_choice.h"
 #include "core/collision/contacts.h"
 #include "core/collision/primitive_distance.h"
+#include "core/geometry.h"
 #include "cpu/cpu_collision.h"
 #include "cpu/parallel_for.h"
 #include "deformcd/error.h"
@@ -342,7 +343,7 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
     motion_of[m] = {&motion[first].x, 3u};
     for (std::uint32_t v = 0; v < d.meshes[m].vertex_count; ++v) {
       const glm::vec3& mv = motion[first + v];
-      if (!std::isfinite(mv.x) || !std::isfinite(mv.y) || !std::isfinite(mv.z)) {
+      if (!geom::is_finite(glm::dvec3(mv))) {
         throw InputError(label_of(d.data, m), "vertex " + std::to_string(v) +
                                                   " has a non-finite motion " + describe(mv));
       }

@@ -57,7 +57,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k) {
         },
         1024);
     // The count pass, summed from the compacted list: the integer counts do not depend on the
-    // order, and equal count_active's over each node's list.
+    // order, and equal the GL count pass's over each node's list.
     acting_.clear();
     for (std::uint32_t p = 0; p < pairs.size(); ++p)
       if (active_[p] != 0u) acting_.push_back(p);

@@ -94,9 +94,9 @@ std::vector<glm::vec4> ContactResponse::node_motion() {
   // fast (up to half a mean edge). The play trades candidates against searches: on the impact
   // scene a quarter of the thickness costs about 15 % less than the whole thickness, and a tenth
   // more again. A node that strays farther starts a new search (project), so no pair is
-  // missed. Prediction
-  // per node keeps both sides of a contact, which move together, from sweeping across each
-  // other, and a fast body's boxes from growing by more than its own motion; a reach per node
+  // missed. Prediction per node keeps both sides of a contact, which move together, from
+  // sweeping across each other, and a fast body's boxes from growing by more than its own
+  // motion; a reach per node
   // keeps the few ringing or braking nodes from starting a search every few substeps (on the
   // impact scene 1-3 nodes, just beyond a fixed reach, started 3 of a frame's 4) without
   // growing every node's. Nodes on no collision surface never enter a pair: their reach is

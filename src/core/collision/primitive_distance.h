@@ -129,23 +129,32 @@ inline bool primitives_within(std::uint32_t kind, const glm::vec3 x[4], float cl
   return !(distance2 > limit * limit);
 }
 
+/// The largest of a pair's per-vertex values (>= 0) on its first side (the vertex, or the first
+/// edge) plus the largest on its second (the face's corners, or the second edge): what moving
+/// each vertex by its value can take off the primitives' distance, at most.
+inline float largest_per_side(std::uint32_t kind, const float value[4]) {
+  const std::uint32_t first_b = kind == gpu::kContactEdgeEdge ? 2u : 1u;
+  float side_a = 0.0f, side_b = 0.0f;
+  for (std::uint32_t k = 0; k < 4u; ++k) {
+    if (k < first_b) {
+      side_a = glm::max(side_a, value[k]);
+    } else {
+      side_b = glm::max(side_b, value[k]);
+    }
+  }
+  return side_a + side_b;
+}
+
 /// How fast a pair's distance can shrink when each vertex moves at m[k] (any unit): the
 /// distance is unchanged by a common motion, so with `mean` the mean of the four, it shrinks by
 /// at most the fastest of one side's |m - mean| plus the fastest of the other's (each point of
 /// a primitive is a convex combination of its vertices). Sides as in primitive_distance.
 inline float closing_speed(std::uint32_t kind, const glm::vec3 m[4]) {
   const glm::vec3 mean = ((m[0] + m[1]) + (m[2] + m[3])) * 0.25f;
-  const std::uint32_t first_b = kind == gpu::kContactEdgeEdge ? 2u : 1u;
-  float side_a = 0.0f, side_b = 0.0f;
-  for (std::uint32_t k = 0; k < 4u; ++k) {
-    const float speed = glm::length(m[k] - mean);
-    if (k < first_b) {
-      side_a = glm::max(side_a, speed);
-    } else {
-      side_b = glm::max(side_b, speed);
-    }
-  }
-  return side_a + side_b;
+  float speed[4];
+  for (std::uint32_t k = 0; k < 4u; ++k)
+    speed[k] = glm::length(m[k] - mean);
+  return largest_per_side(kind, speed);
 }
 
 }  // namespace deformcd::collision

@@ -1,9 +1,10 @@
 #pragma once
-// Contact response as pure per-element functions (issue 12), in four passes per substep: which
-// constraints are active (per constraint), each node's count of them (per node), each
-// constraint's corrections (per constraint), each node's sum (per node). The CPU backend calls
-// these; shaders/response/*.glsl mirror them line for line, so both backends compute the same
-// floating-point operations in the same order.
+// Contact response as pure per-element functions (issue 12), in five passes per substep: each
+// node's distance from its straight path (per node), which constraints are active (per
+// constraint), each node's count of them (per node: an integer, whatever the order), each
+// active constraint's corrections (per constraint), each node's sum (per node). The CPU backend
+// calls these; shaders/response/*.glsl mirror them line for line, so both backends compute the
+// same floating-point operations in the same order.
 //
 // A constraint couples four nodes with weights b (the gradient of its distance along its normal
 // n is b_k n for node k) that sum to zero, so every correction w_k b_k lambda n, with w_k the
@@ -113,17 +114,8 @@ inline float path_deviation(const glm::vec3& position, const glm::vec4& frame_st
 /// the activity pass need not look at its geometry. Untangling constraints (gap -inf) are
 /// always awake. The comparison keeps a margin of 1e-4 of the thickness for rounding.
 inline bool contact_awake(const gpu::ContactPair& pair, const float deviation[4], float elapsed) {
-  const std::uint32_t first_b = pair.kind == gpu::kContactEdgeEdge ? 2u : 1u;
-  float side_a = 0.0f, side_b = 0.0f;
-  for (std::uint32_t k = 0; k < 4u; ++k) {
-    if (k < first_b) {
-      side_a = glm::max(side_a, deviation[k]);
-    } else {
-      side_b = glm::max(side_b, deviation[k]);
-    }
-  }
   const float closest = pair.gap - pair.closing_speed * elapsed;
-  return !(closest > (side_a + side_b) + 1e-4f * pair.thickness);
+  return !(closest > collision::largest_per_side(pair.kind, deviation) + 1e-4f * pair.thickness);
 }
 
 /// The activity pass: whether the constraint acts now (its distance along n is below its
@@ -135,16 +127,6 @@ inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 positio
   float b[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   float c = 0.0f;
   return contact_geometry(pair, x, n, b, c) && c < 0.0f;
-}
-
-/// The count pass for one node: its active constraints, over its CSR list of constraint
-/// corners (slot 4 p + k) in list order; `active` holds one flag per constraint.
-inline std::uint32_t count_active(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
-                                  const std::uint32_t* active) {
-  std::uint32_t count = 0;
-  for (std::uint32_t e = begin; e < end; ++e)
-    count += active[list[e] / 4u];
-  return count;
 }
 
 /// The solve pass: one active constraint's corrections of its four nodes into correction[2 k]

@@ -16,10 +16,10 @@ class ResponseBackend {
   ResponseBackend& operator=(const ResponseBackend&) = delete;
 
   /// Takes a search window's constraints and records the current positions as its start
-  /// (w = the node's body's reach).
+  /// (w = the node's reach, node_motion[n].w).
   virtual void begin_frame(const FrameConstraints& constraints) = 0;
-  /// One Jacobi projection of every constraint on the current positions and velocities:
-  /// the pair pass, the count pass, the node pass (see contact_constraints.h). Returns whether
+  /// One Jacobi projection of every constraint on the current positions and velocities: the
+  /// deviation, activity, count, solve and node passes (see contact_constraints.h). Returns whether
   /// a free node strayed beyond its reach (apply_correction): the window's constraints no
   /// longer cover every pair, and a new search must begin one.
   [[nodiscard]] virtual bool project(const ContactConstants& constants) = 0;
