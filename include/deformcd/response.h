@@ -15,6 +15,9 @@
 
 namespace deformcd {
 
+/// The most Jacobi projections per substep ResponseSettings::iterations may ask for.
+inline constexpr int kMaxResponseIterations = 64;
+
 struct ResponseSettings {
   /// m: the gap contacts keep between surfaces, for every body. Unset: each body's
   /// relative_thickness x its mean surface edge length; two bodies keep the mean of theirs.
@@ -27,13 +30,24 @@ struct ResponseSettings {
   /// 0: the approach speed is absorbed at contact (the bodies' elasticity still makes them
   /// rebound); 1: it is given back.
   float restitution = 0.0f;
-  /// Most an untangling constraint moves its nodes per substep, relative to the body's mean
-  /// surface edge length: small values separate overlapped bodies gently.
-  float untangle_step = 0.02f;
+  /// Most the untangling constraints move their nodes per substep (all iterations together),
+  /// relative to the smallest body's mean surface edge length. Small values separate
+  /// overlapped bodies gently but slowly, and the elastic bodies then push part of the way back
+  /// between substeps: on the overlap scene 0.02 lets the intersection contour grow back by a
+  /// quarter on its way to zero, 0.25 shrinks it every frame.
+  float untangle_step = 0.25f;
+  /// Jacobi projections per substep (1 to 64): each re-solves the constraints that act in the
+  /// substep on the positions the one before left. Mass splitting moves a node by the mean of
+  /// its constraints' corrections, so one projection leaves a node that several constraints
+  /// share short of what the deepest asks (a sharp vertex pressed into a face beside its
+  /// edges), and the springs push it back every substep; on the impact scene 1 projection lets
+  /// surfaces intersect in 13 of 80 frames, 8 in none.
+  int iterations = 8;
 };
 
 /// Throws Error naming the field ("friction_static must be >= 0, not -1") when a value is
-/// negative or not finite, friction_dynamic exceeds friction_static, or restitution exceeds 1.
+/// negative or not finite, friction_dynamic exceeds friction_static, restitution exceeds 1, or
+/// iterations is outside 1 to 64.
 void check_response_settings(const ResponseSettings& settings);
 
 }  // namespace deformcd

@@ -2,7 +2,9 @@
 // The contact response's node pass: one invocation per node sums its constraints' corrections
 // over its CSR list in list order (gather_correction in src/core/response/contact_constraints.h,
 // written out here because GLSL cannot pass a buffer to a function), applies the sums to its
-// own position and velocity and flags a stray beyond its reach (apply_correction).
+// own position and velocity and, in a projection's last iteration (u_watch_reach), flags a
+// stray beyond its reach (apply_correction). Slots of constraints that do not act (the flag in
+// the w of a constraint's first slot) are skipped, as the CPU skips them.
 // Each invocation reads and writes only its own node's position and velocity.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
@@ -37,6 +39,7 @@ layout(std430, binding = BINDING_NODE_MOTION) readonly buffer NodeMotion {
 
 uniform uint u_node_count;
 uniform float u_elapsed;
+uniform bool u_watch_reach;
 
 void main() {
   const uint i = gl_GlobalInvocationID.x;
@@ -48,6 +51,7 @@ void main() {
   precise vec3 dv = vec3(0.0);
   for (uint e = begin; e < end; ++e) {
     const uint slot = node_contact_list[e];
+    if (!(corrections[8u * (slot / 4u)].w > 0.0)) continue;
     dx += corrections[2u * slot].xyz;
     dv += corrections[2u * slot + 1u].xyz;
   }
@@ -55,7 +59,8 @@ void main() {
   vec4 velocity = velocities[i];
   // Every writer writes the same 1, so the flag is the same whatever the order.
   if (apply_correction(position, velocity, dx, dv, frame_start[i], node_motion[i],
-                       u_elapsed)) {
+                       u_elapsed) &&
+      u_watch_reach) {
     node_contact_count[u_node_count] = 1u;
   }
   positions[i] = position;

@@ -1,8 +1,11 @@
 #version 430
-// The contact response's solve pass (after the activity and count passes): one invocation per constraint p reads its four nodes'
-// positions and velocities and writes their corrections to the constraint's own slots: corner
-// 4 p + k's at 2 (4 p + k) (position) and 2 (4 p + k) + 1 (velocity)
-// (solve_contact). No two invocations write the same slot, and nothing here writes a node.
+// The contact response's solve pass (after the activity and count passes; once per Jacobi
+// iteration): one invocation per constraint p that the activity pass found acting (the flag in
+// the w of its first slot, 8 p) reads its four nodes' positions and velocities and writes their
+// corrections to the constraint's own slots: corner 4 p + k's at 2 (4 p + k) (position) and
+// 2 (4 p + k) + 1 (velocity) (solve_contact), the flag kept for the next iteration. An inactive
+// constraint is left alone, as the CPU backend leaves it: the node pass skips its slots. No two
+// invocations write the same slot, and nothing here writes a node.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
 
@@ -17,7 +20,7 @@ layout(std430, binding = BINDING_NODE_VELOCITY) readonly buffer NodeVelocities {
 layout(std430, binding = BINDING_CONTACT_PAIR) readonly buffer ContactPairs {
   ContactPair pairs[];
 };
-layout(std430, binding = BINDING_CONTACT_CORRECTION) writeonly buffer ContactCorrections {
+layout(std430, binding = BINDING_CONTACT_CORRECTION) buffer ContactCorrections {
   vec4 corrections[];
 };
 layout(std430, binding = BINDING_NODE_CONTACT_COUNT) readonly buffer NodeContactCounts {
@@ -34,6 +37,7 @@ uniform float u_max_untangle_step;
 void main() {
   const uint p = gl_GlobalInvocationID.x;
   if (p >= u_pair_count) return;  // the last work group reaches past the end
+  if (!(corrections[8u * p].w > 0.0)) return;  // not acting in this substep
   const ContactPair pair = pairs[p];
   vec4 x[4], v[4];
   for (uint i = 0u; i < 4u; ++i) {
@@ -47,5 +51,6 @@ void main() {
                 ContactConstants(u_h, u_friction_static, u_friction_dynamic, u_restitution,
                                  u_max_untangle_step, 0.0),
                 correction);
+  correction[0].w = 1.0;  // the activity flag, for the next iteration's solve and node passes
   for (uint k = 0u; k < 8u; ++k) corrections[8u * p + k] = correction[k];
 }

@@ -26,7 +26,7 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   });
 }
 
-bool CpuContactResponse::project(const response::ContactConstants& k) {
+bool CpuContactResponse::project(const response::ContactConstants& k, int iterations) {
   std::atomic<bool> strayed{false};  // an OR: the same whatever the order
   const std::vector<gpu::ContactPair>& pairs = constraints_.pairs;
   const std::uint32_t* offset = constraints_.node_offset.data();
@@ -34,8 +34,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k) {
   const std::size_t nodes = state_.positions.size();
   executor_->run([&] {
     // Deviation pass, activity pass (only awake constraints look at their geometry), count,
-    // solve and node passes: each writes only its own element's slots, and each node reads its
-    // own list in order.
+    // then per iteration the solve and node passes: each writes only its own element's slots,
+    // and each node reads its own list in order.
     parallel_for(nodes, [&](std::size_t i) {
       deviation_[i] = response::path_deviation(glm::vec3(state_.positions[i]), frame_start_[i],
                                                constraints_.node_motion[i], k.elapsed);
@@ -65,32 +65,44 @@ bool CpuContactResponse::project(const response::ContactConstants& k) {
     for (const std::uint32_t p : acting_)
       for (const std::uint32_t n : pairs[p].nodes)
         ++counts_[n];
-    parallel_for(
-        acting_.size(),
-        [&](std::size_t a) {
-          const std::uint32_t p = acting_[a];
-          const gpu::ContactPair& pair = pairs[p];
-          glm::vec4 x[4], v[4];
-          for (std::uint32_t i = 0; i < 4u; ++i) {
-            x[i] = state_.positions[pair.nodes[i]];
-            v[i] = state_.velocities[pair.nodes[i]];
-          }
-          const std::uint32_t count[4] = {counts_[pair.nodes[0]], counts_[pair.nodes[1]],
-                                          counts_[pair.nodes[2]], counts_[pair.nodes[3]]};
-          response::solve_contact(pair, x, v, count, k, &corrections_[8u * p]);
-        },
-        256);
-    parallel_for(nodes, [&](std::size_t i) {
-      glm::vec3 dx(0.0f), dv(0.0f);
-      if (counts_[i] != 0u) {
-        response::gather_correction(list, offset[i], offset[i + 1], active_.data(),
-                                    corrections_.data(), dx, dv);
+    touched_.clear();
+    for (std::uint32_t i = 0; i < nodes; ++i)
+      if (counts_[i] != 0u) touched_.push_back(i);
+    for (int iteration = 0; iteration < iterations; ++iteration) {
+      parallel_for(
+          acting_.size(),
+          [&](std::size_t a) {
+            const std::uint32_t p = acting_[a];
+            const gpu::ContactPair& pair = pairs[p];
+            glm::vec4 x[4], v[4];
+            for (std::uint32_t i = 0; i < 4u; ++i) {
+              x[i] = state_.positions[pair.nodes[i]];
+              v[i] = state_.velocities[pair.nodes[i]];
+            }
+            const std::uint32_t count[4] = {counts_[pair.nodes[0]], counts_[pair.nodes[1]],
+                                            counts_[pair.nodes[2]], counts_[pair.nodes[3]]};
+            response::solve_contact(pair, x, v, count, k, &corrections_[8u * p]);
+          },
+          256);
+      const bool last = iteration + 1 == iterations;
+      const auto node_pass = [&](std::uint32_t i) {
+        glm::vec3 dx(0.0f), dv(0.0f);
+        if (counts_[i] != 0u) {
+          response::gather_correction(list, offset[i], offset[i + 1], active_.data(),
+                                      corrections_.data(), dx, dv);
+        }
+        if (response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv,
+                                       frame_start_[i], constraints_.node_motion[i], k.elapsed) &&
+            last) {
+          strayed.store(true, std::memory_order_relaxed);
+        }
+      };
+      if (last) {
+        parallel_for(nodes, [&](std::size_t i) { node_pass(static_cast<std::uint32_t>(i)); });
+      } else {
+        parallel_for(touched_.size(), [&](std::size_t t) { node_pass(touched_[t]); });
       }
-      if (response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv,
-                                     frame_start_[i], constraints_.node_motion[i], k.elapsed)) {
-        strayed.store(true, std::memory_order_relaxed);
-      }
-    });
+    }
   });
   return strayed.load();
 }

@@ -3,7 +3,9 @@
 // shaders (deviation, activity, count, solve, node) over the simulation state's positions and
 // velocities in place, with the same results. Only the active constraints (a few percent of the
 // window's candidates) are counted and solved: their list is compacted after the activity pass
-// in constraint order, the counts summed from it, and the node pass skips inactive slots.
+// in constraint order, the counts summed from it, and the node pass skips inactive slots. The
+// projections before the last visit only the nodes the active constraints touch: every other
+// node's corrections are zero, and only the last projection watches the reaches.
 
 #include <memory>
 #include <vector>
@@ -20,7 +22,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor);
 
   void begin_frame(const response::FrameConstraints& constraints) override;
-  [[nodiscard]] bool project(const response::ContactConstants& constants) override;
+  [[nodiscard]] bool project(const response::ContactConstants& constants, int iterations) override;
 
  private:
   SimulationState& state_;
@@ -31,6 +33,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::vector<std::uint32_t> counts_;   // SSBO 33
   std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep
   std::vector<std::uint32_t> acting_;   // the active constraints, ascending
+  std::vector<std::uint32_t> touched_;  // the nodes of active constraints, ascending
   std::vector<float> deviation_;        // SSBO 36: per node, from its straight path
 };
 

@@ -2,6 +2,7 @@
 #include "contact_response.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <utility>
@@ -21,6 +22,65 @@ void check_value(const char* name, float value, float high = INFINITY) {
                 ", not " + std::to_string(value));
   }
 }
+
+// The primitive pairs of the faces the last exact pass found intersecting: each vertex of one
+// face against the other face, each edge of one against each edge of the other (global nodes).
+// Their proximity constraints are left out: across an intersection their directions point the
+// wrong way (two crossed edges are pushed apart on the sides they crossed to, a vertex through
+// a face is held at the face's back within the thickness) and they would hold the surfaces
+// tangled against the untangling constraints, which take those faces apart.
+class TangledPrimitives {
+ public:
+  TangledPrimitives(const std::vector<Contact>& intersections,
+                    const std::vector<gpu::ObjectInfo>& objects) {
+    for (const Contact& c : intersections) {
+      std::array<std::uint32_t, 3> a{}, b{};
+      for (std::uint32_t k = 0; k < 3u; ++k) {
+        a[k] = objects[c.a.body].node_offset + c.a.nodes[k];
+        b[k] = objects[c.b.body].node_offset + c.b.nodes[k];
+      }
+      add_face_pair(a, b);
+      add_face_pair(b, a);
+    }
+    std::sort(keys_.begin(), keys_.end());
+  }
+
+  [[nodiscard]] bool holds(const gpu::ContactPair& pair) const {
+    if (keys_.empty()) return false;
+    const std::array<std::uint32_t, 4> key =
+        pair.kind == gpu::kContactEdgeEdge
+            ? edge_pair_key(pair.nodes[0], pair.nodes[1], pair.nodes[2], pair.nodes[3])
+            : vertex_face_key(pair.nodes[0], {pair.nodes[1], pair.nodes[2], pair.nodes[3]});
+    return std::binary_search(keys_.begin(), keys_.end(), key);
+  }
+
+ private:
+  static std::array<std::uint32_t, 4> vertex_face_key(std::uint32_t v,
+                                                      std::array<std::uint32_t, 3> face) {
+    std::sort(face.begin(), face.end());
+    return {v, face[0], face[1], face[2]};
+  }
+  // Unordered in both edges and in their order (an edge pair has one key).
+  static std::array<std::uint32_t, 4> edge_pair_key(std::uint32_t a0, std::uint32_t a1,
+                                                    std::uint32_t b0, std::uint32_t b1) {
+    std::array<std::uint32_t, 4> key{std::min(a0, a1), std::max(a0, a1), std::min(b0, b1),
+                                     std::max(b0, b1)};
+    if (std::pair{key[2], key[3]} < std::pair{key[0], key[1]}) {
+      std::swap(key[0], key[2]);
+      std::swap(key[1], key[3]);
+    }
+    return key;
+  }
+  void add_face_pair(const std::array<std::uint32_t, 3>& a, const std::array<std::uint32_t, 3>& b) {
+    for (std::uint32_t i = 0; i < 3u; ++i) {
+      keys_.push_back(vertex_face_key(a[i], b));
+      for (std::uint32_t j = 0; j < 3u; ++j)
+        keys_.push_back(edge_pair_key(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]));
+    }
+  }
+
+  std::vector<std::array<std::uint32_t, 4>> keys_;
+};
 
 }  // namespace
 
@@ -42,6 +102,10 @@ void check_response_settings(const ResponseSettings& s) {
   check_value("restitution", s.restitution, 1.0f);
   check_value("untangle_step", s.untangle_step);
   if (!(s.untangle_step > 0.0f)) throw Error("response untangle_step must be positive, not 0");
+  if (s.iterations < 1 || s.iterations > kMaxResponseIterations) {
+    throw Error("response iterations must be between 1 and " +
+                std::to_string(kMaxResponseIterations) + ", not " + std::to_string(s.iterations));
+  }
 }
 
 float mean_surface_edge(const Body& body) {
@@ -156,6 +220,7 @@ void ContactResponse::search() {
   }
   counts_ = {};
   counts_.searches = searches;
+  const TangledPrimitives tangled(intersections, objects_);
   for (const ProximityPair& p : detector.find_proximity(reach, motion)) {
     gpu::ContactPair pair{};
     const std::uint32_t first_a = objects_[p.mesh_a].node_offset;
@@ -166,6 +231,7 @@ void ContactResponse::search() {
     pair.nodes[2] = first_b + p.vertices[2];
     pair.nodes[3] = first_b + p.vertices[3];
     pair.kind = edges ? gpu::kContactEdgeEdge : gpu::kContactVertexFace;
+    if (tangled.holds(pair)) continue;
     pair.thickness = 0.5f * (thickness_[p.mesh_a] + thickness_[p.mesh_b]);
     pair.gap = p.distance - pair.thickness;
     const glm::vec3 velocity[4] = {
@@ -212,8 +278,9 @@ void ContactResponse::project(float h, bool more_substeps) {
   k.friction_static = settings_.friction_static;
   k.friction_dynamic = settings_.friction_dynamic;
   k.restitution = settings_.restitution;
-  k.max_untangle_step = max_untangle_step_;
-  if (backend_->project(k) && more_substeps) search();
+  // untangle_step bounds a substep's untangling, whatever the iterations: each takes its share.
+  k.max_untangle_step = max_untangle_step_ / static_cast<float>(settings_.iterations);
+  if (backend_->project(k, settings_.iterations) && more_substeps) search();
 }
 
 }  // namespace deformcd

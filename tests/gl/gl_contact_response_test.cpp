@@ -38,6 +38,10 @@ using response::FrameConstraints;
 constexpr ContactConstants kPlain{1e-3f, 0.5f, 0.3f, 0.0f, 0.005f, 1e-3f};
 constexpr ContactConstants kBouncy{1e-3f, 0.8f, 0.6f, 0.5f, 0.002f, 4e-3f};
 const std::vector<ContactConstants> kSchedule = {kPlain, kPlain, kPlain, kBouncy, kBouncy, kBouncy};
+// Jacobi iterations per projection: the schedule's projections cycle through these (one, a
+// few, and the default), every other test runs kIterations.
+constexpr int kScheduleIterations[3] = {1, 3, 8};
+constexpr int kIterations = 4;
 
 // GL and CPU side by side on one world: the GL response corrects a GlSimulation's buffers, the
 // CPU one a copy of the state.
@@ -55,9 +59,9 @@ struct SideBySide {
     cpu.begin_frame(c);
   }
   // Both project; their stray flags must agree too.
-  void project(const ContactConstants& k) {
-    const bool gl_strayed = gl.project(k);
-    const bool cpu_strayed = cpu.project(k);
+  void project(const ContactConstants& k, int iterations) {
+    const bool gl_strayed = gl.project(k, iterations);
+    const bool cpu_strayed = cpu.project(k, iterations);
     EXPECT_EQ(gl_strayed, cpu_strayed) << "stray flags";
   }
   // Expects GL's positions and velocities to equal the CPU's bit for bit.
@@ -85,7 +89,7 @@ void expect_agreement(Context& context, const SimulationState& world, const Fram
   SideBySide both(context, world);
   both.begin_frame(c);
   for (std::size_t s = 0; s < kSchedule.size(); ++s) {
-    both.project(kSchedule[s]);
+    both.project(kSchedule[s], kScheduleIterations[s % 3]);
     both.expect_equal(where + ", projection " + std::to_string(s + 1));
   }
   // Not a comparison of two untouched copies: a good share of the nodes were moved.
@@ -106,7 +110,8 @@ TEST_F(GlContactResponseTest, HandMadeCasesEqualTheCpuBitForBit) {
   SimulationState state = set.world;
   cpu::CpuContactResponse cpu(state, std::make_shared<cpu::Executor>(1));
   cpu.begin_frame(set.constraints);
-  EXPECT_TRUE(cpu.project(kPlain)) << "the push beyond body 1's reach should need a new search";
+  EXPECT_TRUE(cpu.project(kPlain, kIterations))
+      << "the push beyond body 1's reach should need a new search";
   for (const test::ContactScenario& s : set.scenarios) {
     bool moved = false;
     for (std::uint32_t i = s.first_node; i < s.first_node + s.node_count; ++i)
@@ -147,7 +152,7 @@ TEST_F(GlContactResponseTest, InsideASimulationLoopEqualsTheCpuEverySubstep) {
     both.simulation.substep(substep);
     both.simulation.download_positions(both.cpu_state.positions);
     both.simulation.download_velocities(both.cpu_state.velocities);
-    both.project(s < 6 ? kPlain : kBouncy);
+    both.project(s < 6 ? kPlain : kBouncy, kIterations);
     both.expect_equal("substep " + std::to_string(s + 1));
   }
   std::vector<glm::vec4> x;
@@ -197,7 +202,7 @@ TEST_F(GlContactResponseTest, AnEmptyFrameOnlyWatchesTheReach) {
     simulation.download_velocities(before_v);
     ContactConstants k = kPlain;
     k.elapsed = 1e-3f * static_cast<float>(s + 1);
-    const bool strayed = gl.project(k);
+    const bool strayed = gl.project(k, kIterations);
     simulation.download_positions(after_x);
     simulation.download_velocities(after_v);
     EXPECT_EQ(test::bitwise_differences(after_x, before_x), 0u) << "substep " << s + 1;
@@ -231,7 +236,7 @@ TEST_F(GlContactResponseTest, ResultsDoNotDependOnTheScheduleOrOnEarlierFrames) 
     GlContactResponse gl(context(), simulation);
     gl.begin_frame(set.constraints);
     for (const ContactConstants& k : kSchedule)
-      (void)gl.project(k);
+      (void)gl.project(k, kIterations);
     simulation.download_positions(out);
   }
   EXPECT_EQ(test::bitwise_differences(runs[0], runs[1]), 0u);
@@ -248,12 +253,12 @@ TEST_F(GlContactResponseTest, ResultsDoNotDependOnTheScheduleOrOnEarlierFrames) 
   for (const FrameConstraints* frame :
        std::initializer_list<const FrameConstraints*>{&few, &set.constraints, &none}) {
     reused.begin_frame(*frame);
-    (void)reused.project(kPlain);
+    (void)reused.project(kPlain, kIterations);
   }
   simulation.upload(set.world);
   reused.begin_frame(set.constraints);
   for (const ContactConstants& k : kSchedule)
-    (void)reused.project(k);
+    (void)reused.project(k, kIterations);
   std::vector<glm::vec4> reused_x;
   simulation.download_positions(reused_x);
   EXPECT_EQ(test::bitwise_differences(reused_x, runs[0]), 0u);
@@ -265,13 +270,13 @@ TEST_F(GlContactResponseTest, ProjectNeedsAFrameOfTheCurrentUpload) {
   GlContactResponse gl(context(), simulation);
   EXPECT_THROW(gl.begin_frame(set.constraints), Error) << "before the simulation's upload";
   simulation.upload(set.world);
-  EXPECT_THROW((void)gl.project(kPlain), Error) << "before begin_frame";
+  EXPECT_THROW((void)gl.project(kPlain, kIterations), Error) << "before begin_frame";
   gl.begin_frame(set.constraints);
-  (void)gl.project(kPlain);
+  (void)gl.project(kPlain, kIterations);
   simulation.upload(set.world);  // new buffers: the frame starts no longer apply
-  EXPECT_THROW((void)gl.project(kPlain), Error);
+  EXPECT_THROW((void)gl.project(kPlain, kIterations), Error);
   gl.begin_frame(set.constraints);
-  EXPECT_NO_THROW((void)gl.project(kPlain));
+  EXPECT_NO_THROW((void)gl.project(kPlain, kIterations));
 }
 
 // Constraints that do not fit are refused before anything changes: the previous frame is kept,
@@ -293,7 +298,7 @@ TEST_F(GlContactResponseTest, RefusedConstraintsKeepThePreviousFrame) {
       EXPECT_THROW(gl.begin_frame(bad_motion), Error);
     }
     for (const ContactConstants& k : kSchedule)
-      (void)gl.project(k);
+      (void)gl.project(k, kIterations);
     simulation.download_positions(results[refused]);
   }
   EXPECT_EQ(test::bitwise_differences(results[0], results[1]), 0u);

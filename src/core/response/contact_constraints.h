@@ -177,9 +177,9 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
 }
 
 /// The node pass: one node's summed position and velocity corrections over its list, in list
-/// order, of its active constraints (`active`: one flag per constraint). The CPU solves only
-/// the active constraints and skips the others' slots here; the GL solve pass writes zeros into
-/// an inactive constraint's slots and the GL node pass adds them: the same sums.
+/// order, of its active constraints (`active`: one flag per constraint). Both backends solve
+/// only the active constraints and skip the others' slots here (GL reads the flag from the w of
+/// a constraint's first slot).
 inline void gather_correction(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
                               const std::uint32_t* active, const glm::vec4* corrections,
                               glm::vec3& dx, glm::vec3& dv) {

@@ -18,11 +18,12 @@ class ResponseBackend {
   /// Takes a search window's constraints and records the current positions as its start
   /// (w = the node's reach, node_motion[n].w).
   virtual void begin_frame(const FrameConstraints& constraints) = 0;
-  /// One Jacobi projection of every constraint on the current positions and velocities: the
-  /// deviation, activity, count, solve and node passes (see contact_constraints.h). Returns whether
-  /// a free node strayed beyond its reach (apply_correction): the window's constraints no
-  /// longer cover every pair, and a new search must begin one.
-  [[nodiscard]] virtual bool project(const ContactConstants& constants) = 0;
+  /// The projection after a substep, on the current positions and velocities: the deviation,
+  /// activity and count passes once, then `iterations` (>= 1) Jacobi projections of the active
+  /// constraints, each a solve and a node pass (see contact_constraints.h). Returns whether a
+  /// free node ends it beyond its reach (apply_correction): the window's constraints no longer
+  /// cover every pair, and a new search must begin one.
+  [[nodiscard]] virtual bool project(const ContactConstants& constants, int iterations) = 0;
 
  protected:
   ResponseBackend() = default;

@@ -127,7 +127,7 @@ void GlContactResponse::begin_frame(const response::FrameConstraints& constraint
   frame_ready_ = true;
 }
 
-bool GlContactResponse::project(const response::ContactConstants& k) {
+bool GlContactResponse::project(const response::ContactConstants& k, int iterations) {
   if (!frame_ready_) throw Error("GlContactResponse::project before begin_frame()");
   const SimulationBuffers& sim = simulation_.state_buffers();
   // A new upload allocates new buffers before releasing the old ones, so its positions buffer
@@ -163,17 +163,24 @@ bool GlContactResponse::project(const response::ContactConstants& k) {
   }
   count_.dispatch_covering(node_count_);
   storage_barrier();  // the solve pass reads the counts
-  if (pair_count_ > 0) {
-    pairs_.set_uniform("u_h", k.h);
-    pairs_.set_uniform("u_friction_static", k.friction_static);
-    pairs_.set_uniform("u_friction_dynamic", k.friction_dynamic);
-    pairs_.set_uniform("u_restitution", k.restitution);
-    pairs_.set_uniform("u_max_untangle_step", k.max_untangle_step);
-    pairs_.dispatch_covering(pair_count_);
-    storage_barrier();  // the node pass reads the corrections
-  }
+  pairs_.set_uniform("u_h", k.h);
+  pairs_.set_uniform("u_friction_static", k.friction_static);
+  pairs_.set_uniform("u_friction_dynamic", k.friction_dynamic);
+  pairs_.set_uniform("u_restitution", k.restitution);
+  pairs_.set_uniform("u_max_untangle_step", k.max_untangle_step);
   apply_.set_uniform("u_elapsed", k.elapsed);
-  apply_.dispatch_covering(node_count_);
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    if (pair_count_ > 0) {
+      pairs_.dispatch_covering(pair_count_);
+      storage_barrier();  // the node pass reads the corrections
+    }
+    // Only the last iteration's positions are the projection's: it alone watches the reaches.
+    apply_.set_uniform("u_watch_reach", static_cast<std::uint32_t>(iteration + 1 == iterations));
+    apply_.dispatch_covering(node_count_);
+    // The next iteration's solve pass reads the corrected nodes and overwrites the corrections
+    // read here.
+    if (iteration + 1 < iterations) storage_barrier();
+  }
   // The next substep (and the next projection's pair pass), the collision shaders and renderers
   // drawing from SSBO 0 read the corrected nodes; the next pair pass overwrites the corrections
   // read here.

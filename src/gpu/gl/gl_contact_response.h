@@ -9,9 +9,10 @@
 // straight path (SSBO 36); response/contact_activity.comp, one per constraint, flagging whether
 // it acts (only constraints the deviations can have woken look at their geometry);
 // response/contact_count.comp, one per node, counting its active corners over its CSR list
-// (SSBOs 31, 32) into SSBO 33; response/contact_pairs.comp, one per constraint, writing its
-// four corner slots (SSBO 30); response/contact_apply.comp, one per node, gathering its
-// corrections over the same list in list order and writing only its own position and velocity.
+// (SSBOs 31, 32) into SSBO 33; then, once per Jacobi iteration, response/contact_pairs.comp,
+// one per constraint, writing an active constraint's four corner slots (SSBO 30), and
+// response/contact_apply.comp, one per node, gathering its active corrections over the same
+// list in list order and writing only its own position and velocity.
 // Gathers instead of scattering with atomics: GL 4.3 has no float atomics, and a fixed
 // summation order makes the result independent of the schedule and equal to the CPU's bit for
 // bit (shaders/response/contact_constraints.glsl mirrors src/core/response/contact_constraints.h).
@@ -75,7 +76,7 @@ class GlContactResponse final : public response::ResponseBackend {
   // The pair, count and node passes with storage barriers between them, ending with a barrier so
   // that the next substep, the collision shaders and renderers see the corrected nodes. Throws
   // Error before begin_frame(), or when the simulation was uploaded again since.
-  [[nodiscard]] bool project(const response::ContactConstants& constants) override;
+  [[nodiscard]] bool project(const response::ContactConstants& constants, int iterations) override;
 
   // The frame starts (SSBO 34) that begin_frame recorded, one per node (for tests).
   [[nodiscard]] std::vector<glm::vec4> download_frame_start() const;
