@@ -173,8 +173,9 @@ class Detector {
   /// are those whose boxes, swept along the motion and grown by their reaches, overlap on the
   /// current positions, and whose distance now, less the most their vertices' relative motion
   /// can close of it, is within the sum of the reaches (a superset of the pairs that come
-  /// closer than the sum). Over the mesh pairs detect() tests; within one mesh, primitives of
-  /// triangles sharing a vertex are neighbours and left out. Each pair once, in a fixed order
+  /// closer than the sum). Over the mesh pairs detect() tests; within one mesh, a vertex and a
+  /// triangle it is a corner of, or two edges sharing a vertex, are neighbours and left out
+  /// (other primitives of triangles sharing a vertex are pairs). Each pair once, in a fixed order
   /// (mesh pair by mesh pair, then by the triangle of the pair's first mesh whose search found
   /// it, in the traversal order of the other mesh's hierarchy), the same on every thread count.
   /// Both backends find the same pairs with the same distances, in the same order while their

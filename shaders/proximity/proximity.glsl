@@ -1,5 +1,5 @@
 // Proximity candidates (issue 12), mirroring src/core/collision/proximity.h line for line:
-// faces_share_vertex, emit_if_within_reach and emit_face_pair_candidates (the vertices' side,
+// surface_neighbours, emit_if_within_reach and emit_face_pair_candidates (the vertices' side,
 // reach_box and the swept corners, is proximity_vertices.glsl; the distances
 // common/primitive_distance.glsl), with the same tests in the same order on the same floats,
 // so that the GL search finds exactly the CPU's candidates (CpuProximity::find). Change both
@@ -33,18 +33,19 @@ struct ProximityCandidate {
 
 void proximity_emit(ProximityCandidate c);
 
-// faces_share_vertex.
-bool faces_share_vertex(Face a, Face b) {
-  for (uint i = 0u; i < 3u; ++i) {
-    const uint v = face_corner(a, i);
-    if (v == b.a || v == b.b || v == b.c) return true;
-  }
-  return false;
+// surface_neighbours: a vertex with a face it is a corner of, or two edges sharing a vertex, of
+// one mesh.
+bool surface_neighbours(ProximityCandidate c) {
+  const uvec4 v = c.vertices;
+  if (c.mesh_a != c.mesh_b) return false;
+  if (c.kind == CONTACT_VERTEX_FACE) return v[0] == v[1] || v[0] == v[2] || v[0] == v[3];
+  return v[0] == v[2] || v[0] == v[3] || v[1] == v[2] || v[1] == v[3];
 }
 
-// emit_if_within_reach: emits c unless its primitives' distance at x, less what their motion
-// (x to end) can close of it, exceeds `reach`.
+// emit_if_within_reach: emits c unless its primitives are surface neighbours or their distance
+// at x, less what their motion (x to end) can close of it, exceeds `reach`.
 void emit_if_within_reach(ProximityCandidate c, vec3 x[4], vec3 end[4], float reach) {
+  if (surface_neighbours(c)) return;
   precise vec3 m0 = end[0] - x[0], m1 = end[1] - x[1], m2 = end[2] - x[2], m3 = end[3] - x[3];
   const vec3 motion[4] = vec3[4](m0, m1, m2, m3);
   if (primitives_within(c.kind, x, closing_speed(c.kind, motion), reach)) proximity_emit(c);

@@ -2,8 +2,8 @@
 // pair, pair_first[p] the first of pair p's) queries mesh b's BVH, whose boxes are the faces'
 // swept boxes grown by their reaches (proximity_refit*.comp), with its own swept, grown box, and
 // each leaf face found gives the candidates of the face pair (emit_face_pair_candidates), as
-// CpuProximity::find does for that face: within one mesh only faces of higher index sharing no
-// corner.
+// CpuProximity::find does for that face: within one mesh only faces of higher index (the pair's
+// surface neighbours are left out primitive by primitive, surface_neighbours).
 #include "collision/bvh.glsl"
 #include "collision/meshes.glsl"
 #include "collision/surface.glsl"
@@ -36,10 +36,11 @@ uint g_index_a;
 uint g_owners_a;
 bool g_self;
 
+// Within one mesh each face pair once (a face with itself pairs only surface neighbours, which
+// the emit leaves out).
 void bvh_visit(uint index_b) {
-  const Face fb = faces[index_b];
-  if (g_self && (index_b <= g_index_a || faces_share_vertex(g_fa, fb))) return;
-  emit_face_pair_candidates(g_fa, g_index_a, g_owners_a, fb, index_b, owners[index_b]);
+  if (g_self && index_b <= g_index_a) return;
+  emit_face_pair_candidates(g_fa, g_index_a, g_owners_a, faces[index_b], index_b, owners[index_b]);
 }
 
 // Runs work item `item` (< u_item_count).

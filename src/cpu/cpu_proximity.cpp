@@ -71,19 +71,19 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
                 collision::reach_box(xa, 6u, collision::face_reaches(reach, fa, corner));
             auto& out = per_face[i];
             auto& out_distance = per_face_distance[i];
-            collision::query_bvh(
-                upkeep_.nodes().data(), boxes_.data(), tree_b.root, query,
-                [&](std::uint32_t index_b) {
-                  const gpu::Face& fb = data_.faces[index_b];
-                  if (self && (index_b <= index_a || collision::faces_share_vertex(fa, fb))) return;
-                  collision::emit_face_pair_candidates(
-                      positions, motion, reach, fa, index_a, owners_[index_a], fb, index_b,
-                      owners_[index_b],
-                      [&](const collision::ProximityCandidate& c, float distance) {
-                        out.push_back(c);
-                        out_distance.push_back(distance);
-                      });
-                });
+            // Within one mesh each face pair once (a face with itself pairs only surface
+            // neighbours, which the emit leaves out).
+            collision::query_bvh(upkeep_.nodes().data(), boxes_.data(), tree_b.root, query,
+                                 [&](std::uint32_t index_b) {
+                                   if (self && index_b <= index_a) return;
+                                   collision::emit_face_pair_candidates(
+                                       positions, motion, reach, fa, index_a, owners_[index_a],
+                                       data_.faces[index_b], index_b, owners_[index_b],
+                                       [&](const collision::ProximityCandidate& c, float distance) {
+                                         out.push_back(c);
+                                         out_distance.push_back(distance);
+                                       });
+                                 });
           },
           64);
       std::size_t total = all.size();

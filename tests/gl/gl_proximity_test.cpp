@@ -148,8 +148,9 @@ TEST_F(GlProximityTest, SeparateGridsGiveNoneUntilTheReachOrTheMotionSpansTheGap
   EXPECT_EQ(sizes[3], 0u);
 }
 
-// Self-proximity: within a mesh, faces sharing a corner are neighbours and left out, each
-// pair once.
+// Self-proximity: within a mesh, a vertex with a face it is a corner of and edges sharing a
+// vertex are neighbours and left out (the other primitives of faces sharing a corner are
+// pairs), each pair once.
 TEST_F(GlProximityTest, SelfProximityGivesTheCpuCandidates) {
   const test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids(), true);
   ASSERT_EQ(f.data.mesh_pairs.size(), 3u);

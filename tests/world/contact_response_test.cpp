@@ -126,6 +126,140 @@ TEST(ContactResponse, ImpactConservesMomentumAndRebounds) {
   EXPECT_GT(mean_vx(1), 0.0) << "the lion came from the right and goes back";
 }
 
+// A pair as the brute-force enumeration names it: kind (0 vertex-triangle, 1 edge-edge), the
+// meshes, the vertices; edges as (low, high), and within one mesh the lower edge first.
+using PairKey = std::tuple<int, std::uint32_t, std::uint32_t, std::array<std::uint32_t, 4>>;
+
+PairKey pair_key(int kind, std::uint32_t mesh_a, std::uint32_t mesh_b,
+                 std::array<std::uint32_t, 4> v) {
+  if (kind == 1) {
+    if (v[0] > v[1]) std::swap(v[0], v[1]);
+    if (v[2] > v[3]) std::swap(v[2], v[3]);
+    if (mesh_a == mesh_b && std::pair{v[2], v[3]} < std::pair{v[0], v[1]}) {
+      std::swap(v[0], v[2]);
+      std::swap(v[1], v[3]);
+    }
+  }
+  return {kind, mesh_a, mesh_b, v};
+}
+
+// Meshes at their positions, each vertex moving to `ends` and with its own reach.
+struct ProximityWorld {
+  std::vector<CollisionMesh> meshes;
+  std::vector<std::vector<glm::vec3>> positions, ends;
+  std::vector<std::vector<float>> reach_of;
+};
+
+// Every vertex-triangle and edge-edge pair of meshes a and b (a == b: one mesh with itself,
+// leaving out a vertex with a triangle it is a corner of and edges sharing a vertex, each pair
+// once) whose boxes, swept from the positions to the ends and grown by their reaches (a
+// primitive's is its vertices' largest), overlap, and whose distance less what the motions can
+// close of it is within the sum of the reaches.
+std::set<PairKey> brute_force_proximity(const ProximityWorld& w, std::uint32_t a, std::uint32_t b) {
+  const auto reach_most = [&](std::uint32_t m, std::initializer_list<std::uint32_t> v) {
+    float most = 0.0f;
+    for (const std::uint32_t i : v)
+      most = std::max(most, w.reach_of[m][i]);
+    return most;
+  };
+  // The box of vertices `v` of mesh m at both ends of their motion, grown by `grow`.
+  const auto box = [&](std::uint32_t m, std::initializer_list<std::uint32_t> v, float grow) {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const std::uint32_t i : v) {
+      for (const glm::vec3& p : {w.positions[m][i], w.ends[m][i]}) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+      }
+    }
+    return std::pair{lo - grow, hi + grow};
+  };
+  const auto overlap = [](const std::pair<glm::vec3, glm::vec3>& p,
+                          const std::pair<glm::vec3, glm::vec3>& q) {
+    return glm::all(glm::lessThanEqual(p.first, q.second)) &&
+           glm::all(glm::lessThanEqual(q.first, p.second));
+  };
+  // The distance filter (primitive_distance.h, tested against CGAL in test_primitive_distance).
+  const auto within = [&](std::uint32_t kind, std::array<std::uint32_t, 2> mesh,
+                          std::array<std::uint32_t, 4> v, float grow) {
+    const std::uint32_t first_b = kind == gpu::kContactEdgeEdge ? 2u : 1u;
+    glm::vec3 x[4], m[4];
+    for (std::uint32_t k = 0; k < 4u; ++k) {
+      const std::uint32_t i = mesh[k < first_b ? 0 : 1];
+      x[k] = w.positions[i][v[k]];
+      m[k] = w.ends[i][v[k]] - x[k];
+    }
+    return collision::primitives_within(kind, x, collision::closing_speed(kind, m), grow);
+  };
+  const auto edges = [](const CollisionMesh& m) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> out;
+    for (const Triangle& t : m.triangles)
+      for (int k = 0; k < 3; ++k)
+        out.insert(std::minmax(t[k], t[(k + 1) % 3]));
+    return out;
+  };
+  const bool self = a == b;
+  std::set<PairKey> expected;
+  for (const auto& [v_mesh, t_mesh] :
+       self ? std::vector<std::array<std::uint32_t, 2>>{{a, a}}
+            : std::vector<std::array<std::uint32_t, 2>>{{a, b}, {b, a}}) {
+    std::set<std::uint32_t> surface;
+    for (const Triangle& t : w.meshes[v_mesh].triangles)
+      surface.insert(t.begin(), t.end());
+    for (const std::uint32_t v : surface) {
+      const auto vbox = box(v_mesh, {v}, w.reach_of[v_mesh][v]);
+      for (const Triangle& t : w.meshes[t_mesh].triangles) {
+        if (self && (v == t[0] || v == t[1] || v == t[2])) continue;
+        const float reach_t = reach_most(t_mesh, {t[0], t[1], t[2]});
+        if (overlap(vbox, box(t_mesh, {t[0], t[1], t[2]}, reach_t)) &&
+            within(gpu::kContactVertexFace, {v_mesh, t_mesh}, {v, t[0], t[1], t[2]},
+                   w.reach_of[v_mesh][v] + reach_t)) {
+          expected.insert(pair_key(0, v_mesh, t_mesh, {v, t[0], t[1], t[2]}));
+        }
+      }
+    }
+  }
+  for (const auto& [a0, a1] : edges(w.meshes[a])) {
+    const float reach_a = reach_most(a, {a0, a1});
+    const auto abox = box(a, {a0, a1}, reach_a);
+    for (const auto& [b0, b1] : edges(w.meshes[b])) {
+      if (self &&
+          (std::pair{b0, b1} <= std::pair{a0, a1} || a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1))
+        continue;
+      const float reach_b = reach_most(b, {b0, b1});
+      if (overlap(abox, box(b, {b0, b1}, reach_b)) &&
+          within(gpu::kContactEdgeEdge, {a, b}, {a0, a1, b0, b1}, reach_a + reach_b))
+        expected.insert(pair_key(1, a, b, {a0, a1, b0, b1}));
+    }
+  }
+  return expected;
+}
+
+// The pairs `found` as the enumeration names them; none twice.
+std::set<PairKey> found_keys(const std::vector<ProximityPair>& found) {
+  std::set<PairKey> got;
+  for (const ProximityPair& p : found) {
+    const int kind = p.kind == ProximityPair::Kind::kEdgeEdge ? 1 : 0;
+    const bool inserted = got.insert(pair_key(kind, p.mesh_a, p.mesh_b, p.vertices)).second;
+    EXPECT_TRUE(inserted) << "a pair found twice";
+  }
+  return got;
+}
+
+// A world's meshes and current positions, for a detector of their own.
+ProximityWorld proximity_world(const SceneWorld& s, bool self_collision) {
+  ProximityWorld w;
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    CollisionMesh m;
+    m.vertex_count = static_cast<std::uint32_t>(s.bodies[b].body.positions.size());
+    for (const gpu::Face& f : s.bodies[b].body.faces)
+      m.triangles.push_back({f.a, f.b, f.c});
+    m.self_collision = self_collision;
+    w.meshes.push_back(std::move(m));
+    w.positions.push_back(s.world->positions(b));
+  }
+  return w;
+}
+
 // What the proximity search returns equals a brute-force enumeration of every vertex-triangle
 // and edge-edge pair of the two meshes whose boxes, swept along each vertex's own motion and
 // grown by their reaches (one per vertex; a primitive's is its vertices' largest), overlap, and
@@ -140,133 +274,41 @@ TEST(ContactResponse, ProximityEqualsBruteForce) {
     const ResponseCounts c = s.world->response_counts();
     if (c.vertex_face + c.edge_edge > 2000u) break;
   }
-  std::vector<CollisionMesh> meshes;
-  std::vector<std::vector<glm::vec3>> positions;
-  for (std::size_t b = 0; b < 2; ++b) {
-    CollisionMesh m;
-    m.vertex_count = static_cast<std::uint32_t>(s.bodies[b].body.positions.size());
-    for (const gpu::Face& f : s.bodies[b].body.faces)
-      m.triangles.push_back({f.a, f.b, f.c});
-    meshes.push_back(std::move(m));
-    positions.push_back(s.world->positions(b));
-  }
-  Detector detector(meshes, {.backend = BackendKind::kCpu});
+  ProximityWorld w = proximity_world(s, false);
+  Detector detector(w.meshes, {.backend = BackendKind::kCpu});
   for (std::size_t b = 0; b < 2; ++b)
-    detector.set_positions(b, std::span<const glm::vec3>(positions[b]));
+    detector.set_positions(b, std::span<const glm::vec3>(w.positions[b]));
   // A reach per vertex, around 6 mm on the armadillo and 9 mm on the lion.
   const float base[2] = {0.006f, 0.009f};
-  std::vector<std::vector<float>> reach_of(2);
   std::vector<float> reach;
+  w.reach_of.resize(2);
   for (std::size_t b = 0; b < 2; ++b) {
-    for (std::size_t v = 0; v < positions[b].size(); ++v)
-      reach_of[b].push_back(base[b] * (1.0f + 0.5f * std::sin(1.3f * static_cast<float>(v))));
-    reach.insert(reach.end(), reach_of[b].begin(), reach_of[b].end());
+    for (std::size_t v = 0; v < w.positions[b].size(); ++v)
+      w.reach_of[b].push_back(base[b] * (1.0f + 0.5f * std::sin(1.3f * static_cast<float>(v))));
+    reach.insert(reach.end(), w.reach_of[b].begin(), w.reach_of[b].end());
   }
-  const auto reach_most = [&](std::uint32_t b, std::initializer_list<std::uint32_t> v) {
-    float most = 0.0f;
-    for (const std::uint32_t i : v)
-      most = std::max(most, reach_of[b][i]);
-    return most;
-  };
   // Every vertex moves: the bodies toward each other, and each vertex by its own wobble.
   std::vector<glm::vec3> motion;
-  std::vector<std::vector<glm::vec3>> ends = positions;
+  w.ends = w.positions;
   for (std::size_t b = 0; b < 2; ++b) {
-    for (std::size_t v = 0; v < positions[b].size(); ++v) {
+    for (std::size_t v = 0; v < w.positions[b].size(); ++v) {
       const float wobble = 0.004f * std::sin(0.7f * static_cast<float>(v));
       const glm::vec3 m =
           (b == 0 ? glm::vec3(0.02f, 0.0f, 0.0f) : glm::vec3(-0.01f, 0.003f, 0.0f)) +
           glm::vec3(wobble, -wobble, 0.5f * wobble);
       motion.push_back(m);
-      ends[b][v] += m;
+      w.ends[b][v] += m;
     }
   }
-  const std::vector<ProximityPair> found = detector.find_proximity(reach, motion);
-
-  using Key = std::tuple<int, std::uint32_t, std::uint32_t, std::array<std::uint32_t, 4>>;
-  // The box of vertices `v` of body b at both ends of their motion, grown by `grow`.
-  const auto box = [&](std::uint32_t b, std::initializer_list<std::uint32_t> v, float grow) {
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const std::uint32_t i : v) {
-      for (const glm::vec3& p : {positions[b][i], ends[b][i]}) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-      }
-    }
-    return std::pair{lo - grow, hi + grow};
-  };
-  const auto overlap = [](const std::pair<glm::vec3, glm::vec3>& a,
-                          const std::pair<glm::vec3, glm::vec3>& b) {
-    return glm::all(glm::lessThanEqual(a.first, b.second)) &&
-           glm::all(glm::lessThanEqual(b.first, a.second));
-  };
-  // The distance filter (primitive_distance.h, tested against CGAL in test_primitive_distance).
-  const auto within = [&](std::uint32_t kind, std::array<std::uint32_t, 2> body,
-                          std::array<std::uint32_t, 4> v, float grow) {
-    const std::uint32_t first_b = kind == gpu::kContactEdgeEdge ? 2u : 1u;
-    glm::vec3 x[4], m[4];
-    for (std::uint32_t k = 0; k < 4u; ++k) {
-      const std::uint32_t b = body[k < first_b ? 0 : 1];
-      x[k] = positions[b][v[k]];
-      m[k] = ends[b][v[k]] - x[k];
-    }
-    return collision::primitives_within(kind, x, collision::closing_speed(kind, m), grow);
-  };
-  std::set<Key> expected;
-  for (std::uint32_t a = 0; a < 2; ++a) {
-    const std::uint32_t b = 1 - a;
-    std::set<std::uint32_t> surface;
-    for (const Triangle& t : meshes[a].triangles)
-      surface.insert(t.begin(), t.end());
-    for (const std::uint32_t v : surface) {
-      const auto vbox = box(a, {v}, reach_of[a][v]);
-      for (const Triangle& t : meshes[b].triangles) {
-        const float reach_t = reach_most(b, {t[0], t[1], t[2]});
-        if (overlap(vbox, box(b, {t[0], t[1], t[2]}, reach_t)) &&
-            within(gpu::kContactVertexFace, {a, b}, {v, t[0], t[1], t[2]},
-                   reach_of[a][v] + reach_t)) {
-          expected.insert({0, a, b, {v, t[0], t[1], t[2]}});
-        }
-      }
-    }
-  }
-  const auto edges = [](const CollisionMesh& m) {
-    std::set<std::pair<std::uint32_t, std::uint32_t>> out;
-    for (const Triangle& t : m.triangles)
-      for (int k = 0; k < 3; ++k)
-        out.insert(std::minmax(t[k], t[(k + 1) % 3]));
-    return out;
-  };
-  for (const auto& [a0, a1] : edges(meshes[0])) {
-    const float reach_a = reach_most(0, {a0, a1});
-    const auto abox = box(0, {a0, a1}, reach_a);
-    for (const auto& [b0, b1] : edges(meshes[1])) {
-      const float reach_b = reach_most(1, {b0, b1});
-      if (overlap(abox, box(1, {b0, b1}, reach_b)) &&
-          within(gpu::kContactEdgeEdge, {0u, 1u}, {a0, a1, b0, b1}, reach_a + reach_b))
-        expected.insert({1, 0u, 1u, {a0, a1, b0, b1}});
-    }
-  }
-  std::set<Key> got;
-  for (const ProximityPair& p : found) {
-    std::array<std::uint32_t, 4> v = p.vertices;
-    if (p.kind == ProximityPair::Kind::kEdgeEdge) {
-      // Edges in canonical (low, high) order, as the enumeration names them.
-      if (v[0] > v[1]) std::swap(v[0], v[1]);
-      if (v[2] > v[3]) std::swap(v[2], v[3]);
-    }
-    const bool inserted =
-        got.insert({p.kind == ProximityPair::Kind::kEdgeEdge ? 1 : 0, p.mesh_a, p.mesh_b, v})
-            .second;
-    EXPECT_TRUE(inserted) << "a pair found twice";
-  }
+  const std::set<PairKey> expected = brute_force_proximity(w, 0, 1);
+  const std::set<PairKey> got = found_keys(detector.find_proximity(reach, motion));
   EXPECT_GT(expected.size(), 100u) << "the models should be within reach";
   EXPECT_EQ(got.size(), expected.size());
   EXPECT_TRUE(got == expected);
 
   std::vector<float> spread;
   for (std::size_t b = 0; b < 2; ++b)
-    spread.insert(spread.end(), positions[b].size(), base[b]);
+    spread.insert(spread.end(), w.positions[b].size(), base[b]);
   EXPECT_TRUE(detector.find_proximity(base, motion) == detector.find_proximity(spread, motion));
   EXPECT_THROW((void)detector.find_proximity(std::vector<float>(3, 0.01f), motion), InputError);
   spread[7] = -1.0f;
@@ -277,6 +319,55 @@ TEST(ContactResponse, ProximityEqualsBruteForce) {
     EXPECT_NE(std::string(e.what()).find("vertex 7 has a reach of -1"), std::string::npos)
         << e.what();
   }
+}
+
+// Self-proximity equals the brute-force enumeration within one mesh: every vertex-triangle pair
+// but a vertex with a triangle it is a corner of, every edge-edge pair but edges sharing a
+// vertex (primitives of triangles that share only a corner are pairs), on the folding plate
+// where its halves meet and its crease is crushed. Some of the pairs are of triangles sharing a
+// corner, which the search once left out whole (faces_share_vertex).
+TEST(ContactResponse, SelfProximityEqualsBruteForce) {
+  SceneWorld s = open_scene("fold_response", 30);
+  for (int f = 0; f < 30; ++f)
+    s.world->step();
+  ProximityWorld w = proximity_world(s, true);
+  Detector detector(w.meshes, {.backend = BackendKind::kCpu});
+  detector.set_positions(0, std::span<const glm::vec3>(w.positions[0]));
+  // A reach per vertex around 9 mm (the plate's thickness is 8.9 mm), and a motion per vertex.
+  std::vector<glm::vec3> motion;
+  w.reach_of.resize(1);
+  w.ends = w.positions;
+  for (std::size_t v = 0; v < w.positions[0].size(); ++v) {
+    const float i = static_cast<float>(v);
+    w.reach_of[0].push_back(0.009f * (1.0f + 0.5f * std::sin(1.3f * i)));
+    const float wobble = 0.004f * std::sin(0.7f * i);
+    motion.emplace_back(wobble, -wobble, 0.5f * wobble * std::cos(i));
+    w.ends[0][v] += motion.back();
+  }
+  const std::set<PairKey> expected = brute_force_proximity(w, 0, 0);
+  const std::set<PairKey> got = found_keys(detector.find_proximity(w.reach_of[0], motion));
+  EXPECT_GT(expected.size(), 1000u) << "the plate should be folded onto itself";
+  EXPECT_EQ(got.size(), expected.size());
+  EXPECT_TRUE(got == expected);
+  // Vertex-triangle pairs whose vertex is one edge from a corner of the triangle: a triangle of
+  // the vertex shares that corner with the triangle, so the search once left the pair out.
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (const Triangle& t : w.meshes[0].triangles)
+    for (int k = 0; k < 3; ++k)
+      edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+  std::size_t neighbours = 0;
+  for (const auto& [kind, mesh_a, mesh_b, v] : expected) {
+    if (kind != 0) continue;
+    for (std::size_t j = 1; j < 4; ++j) {
+      if (edges.count(std::minmax(v[0], v[j])) != 0) {
+        ++neighbours;
+        break;
+      }
+    }
+  }
+  EXPECT_GT(neighbours, 0u);
+  RecordProperty("pairs", static_cast<int>(expected.size()));
+  RecordProperty("vertex_triangle_pairs_one_edge_apart", static_cast<int>(neighbours));
 }
 
 TEST(ContactResponse, BadSettingsAreErrorsNamingTheField) {

@@ -76,28 +76,31 @@ inline void swept_face_vertices(VertexPositions positions, VertexPositions motio
     out[3u + k] = out[k] + vertex_motion(motion, f.body, face_corner(f, k));
 }
 
+/// Whether candidate c pairs neighbours on one mesh's surface, never a proximity pair: a vertex
+/// with a face it is a corner of, or two edges sharing a vertex. This is the rule of Bridson,
+/// Fedkiw and Anderson 2002 and of cloth codes since, at the level of primitives: faces that
+/// merely share a corner are not left out, since where a surface is crushed (a tight fold) a
+/// face's other primitives can pass through its neighbours' and only these pairs see it.
+[[nodiscard]] inline bool surface_neighbours(const ProximityCandidate& c) {
+  const std::array<std::uint32_t, 4>& v = c.vertices;
+  if (c.mesh_a != c.mesh_b) return false;
+  if (c.kind == gpu::kContactVertexFace) return v[0] == v[1] || v[0] == v[2] || v[0] == v[3];
+  return v[0] == v[2] || v[0] == v[3] || v[1] == v[2] || v[1] == v[3];
+}
+
 /// Emits candidate c, its primitives' vertices at x where the period starts and at `end` where
-/// their motion ends (in primitive_distance's order), unless the primitives' distance at the
-/// start, less what the motions can close of it over the period, exceeds `reach`; `emit` gets
-/// the candidate and that distance (primitive_distance). The GLSL mirror's proximity_emit takes
-/// the candidate alone.
+/// their motion ends (in primitive_distance's order), unless its primitives are surface
+/// neighbours or their distance at the start, less what the motions can close of it over the
+/// period, exceeds `reach`; `emit` gets the candidate and that distance (primitive_distance).
+/// The GLSL mirror's proximity_emit takes the candidate alone.
 template <class Emit>
 void emit_if_within_reach(const ProximityCandidate& c, const glm::vec3 x[4], const glm::vec3 end[4],
                           float reach, const Emit& emit) {
+  if (surface_neighbours(c)) return;
   const glm::vec3 motion[4] = {end[0] - x[0], end[1] - x[1], end[2] - x[2], end[3] - x[3]};
   float distance = 0.0f;
   if (primitives_within(c.kind, x, closing_speed(c.kind, motion), reach, &distance))
     emit(c, distance);
-}
-
-/// Whether two faces of one mesh share a corner: their primitives are neighbours on the surface
-/// and never a proximity pair.
-[[nodiscard]] inline bool faces_share_vertex(const gpu::Face& a, const gpu::Face& b) {
-  for (std::uint32_t i = 0; i < 3u; ++i) {
-    const std::uint32_t v = face_corner(a, i);
-    if (v == b.a || v == b.b || v == b.c) return true;
-  }
-  return false;
 }
 
 /// Every mesh's per-vertex reaches, indexed by mesh (Face::body): vertex i's is [mesh][i].
@@ -112,7 +115,8 @@ inline float face_reaches(VertexReach reach, const gpu::Face& f, float out[3]) {
 }
 
 /// The candidates of one face pair (fa of mesh a, fb of mesh b, whose swept boxes, each grown
-/// by its face's reach, overlap; for one mesh, fa < fb and the faces share no corner) in a
+/// by its face's reach, overlap; for one mesh, fa < fb, and pairs of surface neighbours are
+/// left out, so that two faces sharing a corner still give their other primitives' pairs) in a
 /// fixed order: fa's owned vertices against fb, fb's owned vertices against fa, then fa's owned
 /// edges against fb's. Each vertex moves linearly by its motion over the period and may stray
 /// from that path by its reach: a primitive's box spans both ends of its path (swept) and is
