@@ -167,8 +167,13 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   }
   precise vec3 dv = (normal_speed * n - (1.0 - keep) * tangential) / weight;
   precise vec3 dx = dv * k.h + (push / weight) * n;
+  precise float reduce = 1.0;  // no node moves more than 10 x its share of the correction
   for (int i = 0; i < 4; ++i) {
-    precise float scale = position[i].w * b[i];
+    precise float lever = float(count[i]) * position[i].w * abs(b[i]);
+    if (lever > 10.0 * weight) reduce = distance_min(reduce, 10.0 * weight / lever);
+  }
+  for (int i = 0; i < 4; ++i) {
+    precise float scale = position[i].w * b[i] * reduce;
     precise vec3 move = scale * dx;
     precise vec3 speed = scale * dv;
     correction[2 * i] = vec4(move, 0.0);

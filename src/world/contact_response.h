@@ -44,6 +44,9 @@ class ContactResponse {
  private:
   [[nodiscard]] std::vector<glm::vec4> node_motion();
   void search();
+  /// A self-contact pair's thickness: the body's, or half the pair's distance in the pose the
+  /// body was given in (its rest shape), whichever is less.
+  [[nodiscard]] float self_thickness(const gpu::ContactPair& pair) const;
 
   ResponseSettings settings_;
   StepSettings step_;
@@ -52,6 +55,7 @@ class ContactResponse {
   std::vector<gpu::ObjectInfo> objects_;
   std::vector<std::uint32_t> node_body_;
   std::vector<glm::vec3> carry_;
+  std::vector<glm::vec3> rest_;             // per node: where the body was given (at rest)
   std::vector<std::uint8_t> on_surface_;    // per node: a vertex of its body's collision surface
   std::vector<float> thickness_;            // per body
   std::vector<float> mean_edge_;            // per body, surface
