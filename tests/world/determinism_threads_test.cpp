@@ -49,10 +49,11 @@ int frames_for(const std::string&) {
 }
 #else
 const std::vector<int> kThreadCounts = {2, 3, 4, 8};
-// 24 frames take the path scenes through their contacts; the fold's flaps first meet each
-// other at frame 28 (README), whatever the run's length, so it runs 40.
+// 24 frames take the path scenes through their contacts (and the stack's bodies onto the base
+// and each other); the folding plates' flaps first meet each other at frame 28 (README),
+// whatever the run's length, so they run 40.
 int frames_for(const std::string& scene) {
-  return scene == "fold" ? 40 : 24;
+  return scene == "fold" || scene == "fold_response" ? 40 : 24;
 }
 #endif
 
