@@ -24,6 +24,14 @@
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define DEFORMCD_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define DEFORMCD_UNDER_ASAN 1
+#endif
+#endif
+
 namespace fs = std::filesystem;
 
 namespace deformcd {
@@ -148,6 +156,13 @@ TEST(ContactResponse, FoldingPlateNeverIntersectsItself) {
 // landing) to below 1e-4 of it by the end. (The issue asks for 1e-6 within 3 s and a resting
 // drift below 1 % of the mean edge a second: not met yet, 3.5e-5 at 3 s; README.)
 TEST(ContactResponse, StackedBodiesComeToRestWithoutIntersecting) {
+#ifdef DEFORMCD_UNDER_ASAN
+  // Under the sanitizers (20x slower here) the landings only: every body is on the base or on
+  // another by frame 30.
+  constexpr int kFrames = 40;
+#else
+  constexpr int kFrames = 180;
+#endif
   SceneWorld s = open_scene("stack", 180);
   World& world = *s.world;
   const auto kinetic_energy = [&] {
@@ -162,7 +177,7 @@ TEST(ContactResponse, StackedBodiesComeToRestWithoutIntersecting) {
   double peak = 0.0;
   double last = 0.0;
   std::uint64_t constraints = 0;
-  for (int f = 0; f < 180; ++f) {
+  for (int f = 0; f < kFrames; ++f) {
     world.step();
     EXPECT_EQ(world.contacts().size(), 0u) << "intersecting face pairs in frame " << f + 1;
     const ResponseCounts c = world.response_counts();
@@ -171,6 +186,7 @@ TEST(ContactResponse, StackedBodiesComeToRestWithoutIntersecting) {
     peak = std::max(peak, last);
   }
   EXPECT_GT(constraints, 100000u) << "the bodies should have landed";
+  if (kFrames < 180) return;
   EXPECT_LT(last, 1e-4 * peak) << "peak " << peak << " J";
   RecordProperty("kinetic_energy_ratio_at_3s", std::to_string(last / peak));
 }
