@@ -23,14 +23,7 @@
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
-
-#if defined(__SANITIZE_ADDRESS__)
-#define DEFORMCD_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define DEFORMCD_UNDER_ASAN 1
-#endif
-#endif
+#include "support/sanitizers.h"
 
 namespace fs = std::filesystem;
 
@@ -53,6 +46,22 @@ SceneWorld open_scene(const std::string& name, int frames, int threads = 0) {
   options.response = scene.response;
   out.world = std::make_unique<World>(out.bodies, step_settings(scene.settings), options);
   return out;
+}
+
+// Steps `frames` frames, expecting no intersecting face pair after any of them (the exact
+// detector), and calls each_frame() after each; returns the proximity constraints (vertex-face
+// and edge-edge) of all the frames' searches.
+template <class EachFrame>
+std::uint64_t step_without_intersections(World& world, int frames, const EachFrame& each_frame) {
+  std::uint64_t constraints = 0;
+  for (int f = 0; f < frames; ++f) {
+    world.step();
+    EXPECT_EQ(world.contacts().size(), 0u) << "intersecting face pairs in frame " << f + 1;
+    const ResponseCounts c = world.response_counts();
+    constraints += c.vertex_face + c.edge_edge;
+    each_frame();
+  }
+  return constraints;
 }
 
 double contour_length(const std::vector<Contact>& contacts) {
@@ -113,14 +122,8 @@ TEST(ContactResponse, ImpactConservesMomentumAndRebounds) {
   };
   const auto [p0, scale] = momentum();
   double worst = 0.0;
-  std::uint64_t constraints = 0;
-  for (int f = 0; f < kFrames; ++f) {
-    world.step();
-    EXPECT_EQ(world.contacts().size(), 0u) << "intersecting face pairs in frame " << f + 1;
-    const ResponseCounts c = world.response_counts();
-    constraints += c.vertex_face + c.edge_edge;
-    worst = std::max(worst, glm::length(momentum().first - p0) / scale);
-  }
+  const std::uint64_t constraints = step_without_intersections(
+      world, kFrames, [&] { worst = std::max(worst, glm::length(momentum().first - p0) / scale); });
   EXPECT_GT(constraints, 1000u) << "the bodies should have met";
   EXPECT_LT(worst, 1e-5) << "relative momentum drift";
   RecordProperty("momentum_drift", std::to_string(worst));
@@ -140,13 +143,7 @@ TEST(ContactResponse, ImpactConservesMomentumAndRebounds) {
 TEST(ContactResponse, FoldingPlateNeverIntersectsItself) {
   constexpr int kFrames = 120;
   SceneWorld s = open_scene("fold_response", kFrames);
-  std::uint64_t constraints = 0;
-  for (int f = 0; f < kFrames; ++f) {
-    s.world->step();
-    const ResponseCounts c = s.world->response_counts();
-    constraints += c.vertex_face + c.edge_edge;
-    EXPECT_EQ(s.world->contacts().size(), 0u) << "self-intersecting face pairs in frame " << f + 1;
-  }
+  const std::uint64_t constraints = step_without_intersections(*s.world, kFrames, [] {});
   EXPECT_GT(constraints, 100000u) << "the halves should have met";
   RecordProperty("self_contact_constraints", std::to_string(constraints));
 }
@@ -176,15 +173,10 @@ TEST(ContactResponse, StackedBodiesComeToRestWithoutIntersecting) {
   };
   double peak = 0.0;
   double last = 0.0;
-  std::uint64_t constraints = 0;
-  for (int f = 0; f < kFrames; ++f) {
-    world.step();
-    EXPECT_EQ(world.contacts().size(), 0u) << "intersecting face pairs in frame " << f + 1;
-    const ResponseCounts c = world.response_counts();
-    constraints += c.vertex_face + c.edge_edge;
+  const std::uint64_t constraints = step_without_intersections(world, kFrames, [&] {
     last = kinetic_energy();
     peak = std::max(peak, last);
-  }
+  });
   EXPECT_GT(constraints, 100000u) << "the bodies should have landed";
   if (kFrames < 180) return;
   EXPECT_LT(last, 1e-4 * peak) << "peak " << peak << " J";

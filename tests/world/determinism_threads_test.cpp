@@ -28,14 +28,7 @@
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
-
-#if defined(__SANITIZE_ADDRESS__)
-#define DEFORMCD_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define DEFORMCD_UNDER_ASAN 1
-#endif
-#endif
+#include "support/sanitizers.h"
 
 namespace fs = std::filesystem;
 
