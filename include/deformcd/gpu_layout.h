@@ -17,7 +17,7 @@ namespace deformcd::gpu {
 enum Binding : std::uint32_t {
   kNodePosition = 0,     ///< glm::vec4 per node (xyz, w = inverse mass, 0 = fixed)
   kNodeVelocity = 1,     ///< glm::vec4 per node (xyz, w = 0)
-  kSpringInfo = 2,       ///< Spring per spring
+  kSpringEdge = 2,       ///< SpringEdge per distinct spring edge (the GL mass-spring step)
   kNodeForce = 3,        ///< glm::vec4 per node
   kBoxInfo = 4,          ///< Box per leaf box
   kCollisionResult = 5,  ///< uint per face: nonzero when the face collides
@@ -28,16 +28,18 @@ enum Binding : std::uint32_t {
   kBoxFaceList = 9,      ///< BoxFace rows, box by box
   kFacePair = 10,        ///< intersecting face pairs
   kBoxMask = 11,         ///< int per (box A, box B)
-  // Beyond the paper's 12: what the mass-spring shaders need besides them.
+  // Beyond the paper's 12: what the mass-spring shaders need besides them. The paper computes
+  // each spring and gathers per node over a spring list; these compute each spring edge once
+  // (src/core/sim/node_force_lists.h) and lay the tetrahedron corners out node by node.
   kBodyParams = 12,        ///< BodyParams per body
   kNodeBody = 13,          ///< uint per node: its body
-  kSpringForce = 14,       ///< glm::vec4 per spring: force on node a (node b gets -f)
-  kNodeSpringOffset = 15,  ///< uint per node + 1: CSR offsets into kNodeSpringList
-  kNodeSpringList = 16,    ///< int per (node, spring): +(s+1) if node is s.a, -(s+1) if s.b
-  kTetInfo = 17,           ///< Tetra per tetrahedron
-  kTetForce = 18,          ///< glm::vec4 per tetrahedron corner (4 t + k): volume force
-  kNodeTetOffset = 19,     ///< uint per node + 1: CSR offsets into kNodeTetList
-  kNodeTetList = 20,       ///< uint per (node, tetrahedron corner): the slot 4 t + k
+  kEdgeState = 14,         ///< glm::vec4 per spring edge: unit vector a to b (xyz), q (w)
+  kNodeEdgeOffset = 15,    ///< uint per node + 1: CSR offsets into kNodeEdgeTerm
+  kNodeEdgeTerm = 16,      ///< EdgeTerm per (node, spring), in the node's spring-list order
+  kTetInfo = 17,           ///< Tetra per tetrahedron with nonzero volume stiffness
+  kCornerForce = 18,       ///< glm::vec4 per corner slot: a tetrahedron corner's volume force
+  kNodeCornerOffset = 19,  ///< uint per node + 1: the node's corner slots, contiguous
+  kTetCornerSlot = 20,     ///< glm::uvec4 per kTetInfo tetrahedron: its corners' slots
   // Beyond the paper's 12: what the collision shaders need besides them.
   kFaceBoxes = 21,          ///< glm::uvec2 per face: bit set of the leaf boxes listing it
   kBodyPair = 22,           ///< BodyPair per pair of different bodies
@@ -66,6 +68,8 @@ inline constexpr std::uint32_t kLeafBoxesPerBody = 64;
 
 /// 16 bytes. One spring between two nodes (global indices): rest length and stiffness. Its
 /// damping is stiffness-proportional with its body's coefficient (BodyParams::damping).
+/// SimulationState's springs; both backends compute each spring edge once instead (SpringEdge,
+/// EdgeTerm), so no shader reads this struct.
 struct Spring {
   std::uint32_t a;
   std::uint32_t b;
@@ -187,6 +191,24 @@ struct ObjectInfo {
 static_assert(sizeof(ObjectInfo) == 48);
 static_assert(offsetof(ObjectInfo, box_offset) == 32);
 
+/// 16 bytes. A spring edge (kSpringEdge): two nodes (global indices, a < b) joined by one or
+/// more springs of the same rest length, with the damping of node a's body. The GL step computes
+/// its state (u, q) once for all of its springs (sim::spring_edge_state).
+struct SpringEdge {
+  std::uint32_t a;
+  std::uint32_t b;
+  float rest_length;  ///< m
+  float damping;      ///< s: stiffness-proportional damping coefficient
+};
+
+/// 8 bytes. One of a node's springs (kNodeEdgeTerm): its edge, and its stiffness signed for the
+/// node (+k at the edge's node a, -k at its node b), so that the spring's force on the node is
+/// (signed_stiffness q) u (sim::spring_term).
+struct EdgeTerm {
+  std::uint32_t edge;
+  float signed_stiffness;  ///< N/m
+};
+
 /// 32 bytes. A tetrahedron (global node indices, positively oriented) with its rest volume and
 /// volume stiffness: the volume force that keeps it from collapsing or inverting, which edge
 /// springs alone cannot (a flat tetrahedron's apex can snap through its base).
@@ -204,6 +226,9 @@ struct Tetra {
   float pad1;
 };
 static_assert(sizeof(Tetra) == 32);
+static_assert(sizeof(SpringEdge) == 16);
+static_assert(offsetof(SpringEdge, damping) == 12);
+static_assert(sizeof(EdgeTerm) == 8);
 static_assert(offsetof(Tetra, rest_volume) == 16);
 
 /// ContactPair::kind: a vertex against a face, one-sided along the face's outward normal.

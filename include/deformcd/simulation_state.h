@@ -39,22 +39,25 @@ struct StepSettings {
   float velocity_damping = 0.0f;  ///< 1/s
 };
 
-/// Every body's data, concatenated; indices are global.
+/// Every body's data, concatenated; indices are global. The per-spring and per-corner arrays are
+/// the paper's layout (its Table 1, SSBOs 2 and 14-20); both backends derive from them the
+/// layout they step with (src/core/sim/node_force_lists.h: each spring edge once, corners node
+/// by node), and the GL backend uploads that one at those binding points (gpu::Binding).
 struct SimulationState {
   std::vector<glm::vec4> positions;               ///< SSBO 0: xyz, w = inverse mass (0 = fixed)
   std::vector<glm::vec4> velocities;              ///< SSBO 1: xyz, w = 0
-  std::vector<gpu::Spring> springs;               ///< SSBO 2
+  std::vector<gpu::Spring> springs;               ///< the paper's SSBO 2
   std::vector<glm::vec4> forces;                  ///< SSBO 3: summed spring forces per node
   std::vector<gpu::ObjectInfo> objects;           ///< SSBO 8
   std::vector<gpu::BodyParams> body_params;       ///< SSBO 12
   std::vector<std::uint32_t> node_body;           ///< SSBO 13
-  std::vector<glm::vec4> spring_forces;           ///< SSBO 14
-  std::vector<std::uint32_t> node_spring_offset;  ///< SSBO 15, nodes + 1 entries
-  std::vector<gpu::Tetra> tets;                   ///< SSBO 17
-  std::vector<glm::vec4> tet_forces;              ///< SSBO 18, 4 per tetrahedron
-  std::vector<std::uint32_t> node_tet_offset;     ///< SSBO 19, nodes + 1 entries
-  std::vector<std::uint32_t> node_tet_list;       ///< SSBO 20, 4 x tetrahedra entries
-  std::vector<std::int32_t> node_spring_list;     ///< SSBO 16, 2 x springs entries
+  std::vector<glm::vec4> spring_forces;           ///< the paper's SSBO 14 (no backend writes it)
+  std::vector<std::uint32_t> node_spring_offset;  ///< nodes + 1 entries
+  std::vector<gpu::Tetra> tets;                   ///< every tetrahedron
+  std::vector<glm::vec4> tet_forces;              ///< 4 per tetrahedron (no backend writes it)
+  std::vector<std::uint32_t> node_tet_offset;     ///< nodes + 1 entries
+  std::vector<std::uint32_t> node_tet_list;       ///< 4 x tetrahedra entries: slots 4 t + k
+  std::vector<std::int32_t> node_spring_list;     ///< 2 x springs: +(s+1) at end a, -(s+1) at b
   std::vector<std::string> body_names;
 
   [[nodiscard]] std::size_t node_count() const { return positions.size(); }

@@ -9,7 +9,7 @@
 #define BINDING_NODE_POSITION 0     // vec4 per node (xyz, w = inverse mass, 0 = fixed); in
                                     // collision passes, float words (MeshInfo.position_*)
 #define BINDING_NODE_VELOCITY 1     // vec4 per node (xyz, w = 0)
-#define BINDING_SPRING_INFO 2       // Spring per spring
+#define BINDING_SPRING_EDGE 2       // SpringEdge per distinct spring edge
 #define BINDING_NODE_FORCE 3        // vec4 per node
 #define BINDING_BOX_INFO 4          // Box per leaf box
 #define BINDING_COLLISION_RESULT 5  // uint per face: nonzero when the face collides
@@ -22,13 +22,13 @@
 #define BINDING_BOX_MASK 11         // int per (box A, box B)
 #define BINDING_BODY_PARAMS 12      // BodyParams per body
 #define BINDING_NODE_BODY 13        // uint per node: its body
-#define BINDING_SPRING_FORCE 14     // vec4 per spring: force on node a (node b gets -f)
-#define BINDING_NODE_SPRING_OFFSET 15  // uint per node + 1: CSR offsets
-#define BINDING_NODE_SPRING_LIST 16    // int per (node, spring): +(s+1) if a, -(s+1) if b
-#define BINDING_TET_INFO 17            // Tetra per tetrahedron
-#define BINDING_TET_FORCE 18           // vec4 per tetrahedron corner (4 t + k): volume force
-#define BINDING_NODE_TET_OFFSET 19     // uint per node + 1: CSR offsets
-#define BINDING_NODE_TET_LIST 20       // uint per (node, tetrahedron corner): the slot 4 t + k
+#define BINDING_EDGE_STATE 14          // vec4 per spring edge: unit vector a to b (xyz), q (w)
+#define BINDING_NODE_EDGE_OFFSET 15     // uint per node + 1: CSR offsets into the edge terms
+#define BINDING_NODE_EDGE_TERM 16       // EdgeTerm per (node, spring), in list order
+#define BINDING_TET_INFO 17             // Tetra per tetrahedron with nonzero volume stiffness
+#define BINDING_CORNER_FORCE 18         // vec4 per corner slot: a corner's volume force
+#define BINDING_NODE_CORNER_OFFSET 19   // uint per node + 1: the node's corner slots
+#define BINDING_TET_CORNER_SLOT 20      // uvec4 per tetrahedron: its corners' slots
 #define BINDING_FACE_BOXES 21          // uvec2 per face: bit set of the leaf boxes listing it
 #define BINDING_BODY_PAIR 22           // BodyPair per pair of different bodies
 #define BINDING_COLLISION_COUNTERS 23  // one CollisionCounters
@@ -54,15 +54,6 @@
 // Longest root-to-leaf path a BVH traversal stack holds (collision::kBvhMaxDepth in
 // src/core/collision/bvh.h; not a layout, but a bound the host checks before upload).
 #define BVH_MAX_DEPTH 64u
-
-// 16 bytes. One spring between two nodes (global indices): rest length and stiffness. Its
-// damping is stiffness-proportional with its body's coefficient (BodyParams.damping).
-struct Spring {
-  uint a;
-  uint b;
-  float rest_length;  // m
-  float stiffness;    // N/m
-};
 
 // 16 bytes. A surface triangle, outward-oriented (counter-clockwise seen from outside). In a
 // collision detector's arrays the vertex indices are local to the mesh, and body is the mesh.
@@ -138,6 +129,22 @@ struct BodyParams {
   float pad0;
   float pad1;
   float pad2;
+};
+
+// 16 bytes. A spring edge: two nodes (global indices, a < b) joined by one or more springs of
+// the same rest length, with the damping of node a's body.
+struct SpringEdge {
+  uint a;
+  uint b;
+  float rest_length;  // m
+  float damping;      // s
+};
+
+// 8 bytes. One of a node's springs: its edge and its stiffness signed for the node (+k at the
+// edge's node a, -k at its node b).
+struct EdgeTerm {
+  uint edge;
+  float signed_stiffness;  // N/m
 };
 
 // 32 bytes. A tetrahedron (global node indices, positively oriented) with its rest volume and

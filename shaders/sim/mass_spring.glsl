@@ -2,8 +2,8 @@
 // line: the same float operations in the same order, so that the GL and CPU backends agree to
 // rounding. Change both files together.
 //
-// gather_node_force is not here: GLSL 4.30 cannot pass a buffer to a function, so its loop is
-// written out in sim/node_force.comp, again line for line.
+// The per-node gathers are not here: GLSL 4.30 cannot pass a buffer to a function, so their
+// loops are written out in sim/node_update.comp, again line for line.
 
 // Per-substep constants (sim::SubstepConstants).
 struct SubstepConstants {
@@ -12,17 +12,22 @@ struct SubstepConstants {
   float velocity_decay;  // exp(-velocity_damping * h), applied to every free node
 };
 
-// Force on spring end a (end b gets the opposite): Hooke's law along the spring plus damping
-// of the relative velocity along it, stiffness-proportional: the damping coefficient is
-// `damping` (seconds) x stiffness. A collapsed spring (zero length) exerts no force.
-vec3 spring_force(vec3 xa, vec3 xb, vec3 va, vec3 vb, float rest_length, float stiffness,
-                  float damping) {
+// A spring edge's state (u, q): u the unit vector from a to b and
+// q = (length - rest_length) + damping (vb - va) . u, or (0, 0) for a collapsed edge. Every
+// spring on the edge exerts (k q) u on node a (spring_term with +k) and the opposite on node b
+// (spring_term with -k): Hooke's law along the spring plus stiffness-proportional damping of
+// the relative velocity along it (damping in seconds x stiffness).
+vec4 spring_edge_state(vec3 xa, vec3 xb, vec3 va, vec3 vb, float rest_length, float damping) {
   const vec3 d = xb - xa;
   const float len = sqrt(dot(d, d));
-  if (!(len > 0.0)) return vec3(0.0);
+  if (!(len > 0.0)) return vec4(0.0);
   const vec3 u = d / len;
-  const float magnitude = stiffness * ((len - rest_length) + damping * dot(vb - va, u));
-  return magnitude * u;
+  return vec4(u, (len - rest_length) + damping * dot(vb - va, u));
+}
+
+// One spring's force on a node from its edge's state (spring_edge_state).
+vec3 spring_term(vec4 edge_state, float signed_stiffness) {
+  return (signed_stiffness * edge_state.w) * edge_state.xyz;
 }
 
 // Volume forces on the four corners of tetrahedron (a, b, c, d), from the energy

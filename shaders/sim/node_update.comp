@@ -1,9 +1,12 @@
 #version 430
-// NodeUpdate (the paper's compute shader 3): one invocation per node integrates its velocity
-// and position from the force sim/node_force.comp gathered, gravity and its body's carry
-// velocity. Each invocation reads and writes only its own node.
+// NodeForce and NodeUpdate (the paper's compute shaders 5 and 3) in one pass, since nothing
+// reads another node's force: one invocation per node sums (k q) u over its springs' edge
+// states (sim/edge_update.comp) in its list order, then its tetrahedron corners' forces
+// (sim/tet_update.comp) in slot order, and integrates. A fixed order per node makes the sum
+// deterministic and equal to the CPU backend's (src/cpu/cpu_simulation.cpp), bit for bit.
 #include "common/layout.glsl"
 #include "sim/mass_spring.glsl"
+// The gathers are inline: GLSL cannot pass buffers to functions.
 
 layout(local_size_x = 64) in;
 
@@ -13,7 +16,22 @@ layout(std430, binding = BINDING_NODE_POSITION) buffer NodePositions {
 layout(std430, binding = BINDING_NODE_VELOCITY) buffer NodeVelocities {
   vec4 velocities[];
 };
-layout(std430, binding = BINDING_NODE_FORCE) readonly buffer NodeForces {
+layout(std430, binding = BINDING_EDGE_STATE) readonly buffer EdgeStates {
+  vec4 edge_states[];
+};
+layout(std430, binding = BINDING_NODE_EDGE_OFFSET) readonly buffer NodeEdgeOffsets {
+  uint node_edge_offset[];
+};
+layout(std430, binding = BINDING_NODE_EDGE_TERM) readonly buffer NodeEdgeTerms {
+  EdgeTerm node_edge_terms[];
+};
+layout(std430, binding = BINDING_CORNER_FORCE) readonly buffer CornerForces {
+  vec4 corner_forces[];
+};
+layout(std430, binding = BINDING_NODE_CORNER_OFFSET) readonly buffer NodeCornerOffsets {
+  uint node_corner_offset[];
+};
+layout(std430, binding = BINDING_NODE_FORCE) writeonly buffer NodeForces {
   vec4 node_forces[];
 };
 layout(std430, binding = BINDING_BODY_PARAMS) readonly buffer BodyParameters {
@@ -31,10 +49,23 @@ uniform float u_velocity_decay;
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= u_node_count) return;  // the last work group reaches past the end
+  // The CPU's node pass, line for line: each spring's term (sim::spring_term), then each
+  // corner, each summed from zero in list order. precise: no multiply-add may be fused, so
+  // that every product is rounded as the CPU rounds it.
+  precise vec3 springs = vec3(0.0);
+  for (uint k = node_edge_offset[i]; k < node_edge_offset[i + 1u]; ++k) {
+    const EdgeTerm term = node_edge_terms[k];
+    springs += spring_term(edge_states[term.edge], term.signed_stiffness);
+  }
+  precise vec3 tets = vec3(0.0);
+  for (uint k = node_corner_offset[i]; k < node_corner_offset[i + 1u]; ++k)
+    tets += corner_forces[k].xyz;
+  const vec3 force = springs + tets;
+  node_forces[i] = vec4(force, 0.0);
   vec4 position = positions[i];
   vec4 velocity = velocities[i];
   const vec3 carry_velocity = body_params[node_body[i]].carry_velocity.xyz;
-  integrate_node(position, velocity, node_forces[i].xyz, carry_velocity,
+  integrate_node(position, velocity, force, carry_velocity,
                  SubstepConstants(u_h, u_gravity, u_velocity_decay));
   positions[i] = position;
   velocities[i] = velocity;

@@ -1,8 +1,8 @@
 #version 430
-// TetUpdate (beyond the paper): one invocation per tetrahedron computes the volume forces on
-// its four corners into its own four slots of SSBO 18; sim/node_force.comp gathers them. A
-// tetrahedron with zero volume stiffness (the paper's springs-only model) is skipped: its
-// slots stay zero from the upload.
+// TetUpdate (beyond the paper): one invocation per tetrahedron with nonzero volume stiffness
+// computes the volume forces on its four corners into the corners' slots (SSBO 20 names them),
+// which lie node by node so that sim/node_update.comp reads each node's corners contiguously.
+// Each slot belongs to one corner of one tetrahedron, so there is no write conflict.
 #include "common/layout.glsl"
 #include "sim/mass_spring.glsl"
 
@@ -14,8 +14,11 @@ layout(std430, binding = BINDING_NODE_POSITION) readonly buffer NodePositions {
 layout(std430, binding = BINDING_TET_INFO) readonly buffer TetInfo {
   Tetra tets[];
 };
-layout(std430, binding = BINDING_TET_FORCE) writeonly buffer TetForces {
-  vec4 tet_forces[];
+layout(std430, binding = BINDING_TET_CORNER_SLOT) readonly buffer TetCornerSlots {
+  uvec4 corner_slots[];
+};
+layout(std430, binding = BINDING_CORNER_FORCE) writeonly buffer CornerForces {
+  vec4 corner_forces[];
 };
 
 uniform uint u_tet_count;
@@ -24,12 +27,12 @@ void main() {
   const uint t = gl_GlobalInvocationID.x;
   if (t >= u_tet_count) return;  // the last work group reaches past the end
   const Tetra tet = tets[t];
-  if (tet.stiffness == 0.0) return;
   vec3 f0, f1, f2, f3;
   tet_volume_forces(positions[tet.a].xyz, positions[tet.b].xyz, positions[tet.c].xyz,
                     positions[tet.d].xyz, tet.rest_volume, tet.stiffness, f0, f1, f2, f3);
-  tet_forces[4u * t] = vec4(f0, 0.0);
-  tet_forces[4u * t + 1u] = vec4(f1, 0.0);
-  tet_forces[4u * t + 2u] = vec4(f2, 0.0);
-  tet_forces[4u * t + 3u] = vec4(f3, 0.0);
+  const uvec4 slot = corner_slots[t];
+  corner_forces[slot.x] = vec4(f0, 0.0);
+  corner_forces[slot.y] = vec4(f1, 0.0);
+  corner_forces[slot.z] = vec4(f2, 0.0);
+  corner_forces[slot.w] = vec4(f3, 0.0);
 }

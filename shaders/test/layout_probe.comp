@@ -8,7 +8,7 @@
 
 layout(local_size_x = 4) in;
 
-layout(std430, binding = 0) buffer Springs { Spring springs[]; };
+layout(std430, binding = 0) buffer SpringEdges { SpringEdge edges[]; };
 layout(std430, binding = 1) buffer Faces { Face faces[]; };
 layout(std430, binding = 2) buffer Boxes { Box boxes[]; };
 layout(std430, binding = 3) buffer BoxFaces { BoxFace box_faces[]; };
@@ -23,6 +23,7 @@ layout(std430, binding = 11) buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, binding = 12) buffer BodyBvhs { BodyBvh body_bvhs[]; };
 layout(std430, binding = 13) buffer MeshInfos { MeshInfo meshes[]; };
 layout(std430, binding = 14) buffer ContactPairs { ContactPair contact_pairs[]; };
+layout(std430, binding = 15) buffer EdgeTerms { EdgeTerm edge_terms[]; };
 
 uniform uint u_count;
 
@@ -36,10 +37,13 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= u_count) return;
 
-  springs[i].a = probe(i, 0u);
-  springs[i].b = probe(i, 1u);
-  springs[i].rest_length = probef(i, 2u);
-  springs[i].stiffness = probef(i, 3u);
+  edges[i].a = probe(i, 0u);
+  edges[i].b = probe(i, 1u);
+  edges[i].rest_length = probef(i, 2u);
+  edges[i].damping = probef(i, 3u);
+
+  edge_terms[i].edge = probe(i, 0u);
+  edge_terms[i].signed_stiffness = probef(i, 1u);
 
   faces[i].a = probe(i, 0u);
   faces[i].b = probe(i, 1u);
@@ -123,7 +127,7 @@ void main() {
   if (i == 0u) {
     bindings[0] = BINDING_NODE_POSITION;
     bindings[1] = BINDING_NODE_VELOCITY;
-    bindings[2] = BINDING_SPRING_INFO;
+    bindings[2] = BINDING_SPRING_EDGE;
     bindings[3] = BINDING_NODE_FORCE;
     bindings[4] = BINDING_BOX_INFO;
     bindings[5] = BINDING_COLLISION_RESULT;
@@ -135,13 +139,13 @@ void main() {
     bindings[11] = BINDING_BOX_MASK;
     bindings[12] = BINDING_BODY_PARAMS;
     bindings[13] = BINDING_NODE_BODY;
-    bindings[14] = BINDING_SPRING_FORCE;
-    bindings[15] = BINDING_NODE_SPRING_OFFSET;
-    bindings[16] = BINDING_NODE_SPRING_LIST;
+    bindings[14] = BINDING_EDGE_STATE;
+    bindings[15] = BINDING_NODE_EDGE_OFFSET;
+    bindings[16] = BINDING_NODE_EDGE_TERM;
     bindings[17] = BINDING_TET_INFO;
-    bindings[18] = BINDING_TET_FORCE;
-    bindings[19] = BINDING_NODE_TET_OFFSET;
-    bindings[20] = BINDING_NODE_TET_LIST;
+    bindings[18] = BINDING_CORNER_FORCE;
+    bindings[19] = BINDING_NODE_CORNER_OFFSET;
+    bindings[20] = BINDING_TET_CORNER_SLOT;
     bindings[21] = BINDING_FACE_BOXES;
     bindings[22] = BINDING_BODY_PAIR;
     bindings[23] = BINDING_COLLISION_COUNTERS;

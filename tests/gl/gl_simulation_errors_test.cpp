@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sim/node_force_lists.h"
 #include "deformcd/body.h"
 #include "deformcd/error.h"
 #include "deformcd/simulation_state.h"
@@ -39,16 +40,17 @@ TEST_F(GlSimulationErrorsTest, UseBeforeUploadIsAnError) {
   EXPECT_EQ(gl.gl_position_buffer(), 0u);
 }
 
-// upload() compares every buffer with the limit before allocating: the springs (16 bytes
-// each) and their forces exceed it here while the per-node buffers fit. The failed upload
+// upload() compares every buffer with the limit before allocating: the spring edges (16 bytes
+// each) and their states exceed it here while the per-node buffers fit. The failed upload
 // keeps the previous state, which goes on stepping.
 TEST_F(GlSimulationErrorsTest, BuffersOverTheLimitAreNamedAndThePreviousStateKept) {
   const SimulationState small = small_world();
   BodyInit big_body;
   big_body.body = build_body(test::tet_grid(4, 4, 4, 0.1));
   const SimulationState big = assemble_simulation({big_body});
-  const std::uint64_t limit = 16 * big.springs.size() - 1;
-  ASSERT_LT(16 * big.node_count(), limit);
+  const std::size_t big_edges = sim::build_spring_edges(big).size();
+  const std::uint64_t limit = 16 * big_edges - 1;
+  ASSERT_LT(16 * (big.node_count() + 1), limit);
   ASSERT_GE(limit, 16 * small.springs.size());
 
   GlSimulation gl(context(), {.max_buffer_bytes = limit});
@@ -62,12 +64,11 @@ TEST_F(GlSimulationErrorsTest, BuffersOverTheLimitAreNamedAndThePreviousStateKep
     FAIL() << "expected GlError";
   } catch (const GlError& e) {
     const std::string what = e.what();
-    const std::string springs = std::to_string(big.springs.size());
-    const std::string bytes = std::to_string(16 * big.springs.size());
-    EXPECT_TRUE(
-        contains(what, "Spring Information (SSBO 2): " + bytes + " bytes (" + springs + " x 16)"))
+    const std::string edges = std::to_string(big_edges);
+    const std::string bytes = std::to_string(16 * big_edges);
+    EXPECT_TRUE(contains(what, "Spring Edge (SSBO 2): " + bytes + " bytes (" + edges + " x 16)"))
         << what;
-    EXPECT_TRUE(contains(what, "Spring Force (SSBO 14): " + bytes)) << what;
+    EXPECT_TRUE(contains(what, "Edge State (SSBO 14): " + bytes)) << what;
     EXPECT_TRUE(contains(
         what, "GlSimulationOptions::max_buffer_bytes (" + std::to_string(limit) + " bytes)"))
         << what;

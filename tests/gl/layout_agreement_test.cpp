@@ -19,7 +19,7 @@ namespace deformcd::gl {
 namespace {
 
 struct ProbeOutput {
-  std::vector<gpu::Spring> springs;
+  std::vector<gpu::SpringEdge> edges;
   std::vector<gpu::Face> faces;
   std::vector<gpu::Box> boxes;
   std::vector<gpu::BoxFace> box_faces;
@@ -33,6 +33,7 @@ struct ProbeOutput {
   std::vector<gpu::BodyBvh> body_bvhs;
   std::vector<gpu::MeshInfo> meshes;
   std::vector<gpu::ContactPair> contact_pairs;
+  std::vector<gpu::EdgeTerm> edge_terms;
   // The BINDING_* macros in gpu::Binding order (kBindingCount of them), then the constants
   // (kConstantCount).
   std::vector<std::uint32_t> bindings;
@@ -44,7 +45,7 @@ constexpr std::uint32_t kConstantCount = 17;
 // Runs shaders/test/layout_probe.comp over `count` elements of each struct.
 ProbeOutput run_layout_probe(std::uint32_t count) {
   ComputeProgram program("test/layout_probe.comp");
-  const Ssbo<gpu::Spring> springs(count);
+  const Ssbo<gpu::SpringEdge> edges(count);
   const Ssbo<gpu::Face> faces(count);
   const Ssbo<gpu::Box> boxes(count);
   const Ssbo<gpu::BoxFace> box_faces(count);
@@ -59,7 +60,8 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   const Ssbo<gpu::BodyBvh> body_bvhs(count);
   const Ssbo<gpu::MeshInfo> meshes(count);
   const Ssbo<gpu::ContactPair> contact_pairs(count);
-  springs.bind(0);
+  const Ssbo<gpu::EdgeTerm> edge_terms(count);
+  edges.bind(0);
   faces.bind(1);
   boxes.bind(2);
   box_faces.bind(3);
@@ -74,13 +76,14 @@ ProbeOutput run_layout_probe(std::uint32_t count) {
   body_bvhs.bind(12);
   meshes.bind(13);
   contact_pairs.bind(14);
+  edge_terms.bind(15);
   program.set_uniform("u_count", count);
   program.dispatch_covering(count);
-  return {springs.download(),   faces.download(),         boxes.download(),
-          box_faces.download(), objects.download(),       body_params.download(),
-          tets.download(),      body_pairs.download(),    face_pairs.download(),
-          counters.download(),  bvh_nodes.download(),     body_bvhs.download(),
-          meshes.download(),    contact_pairs.download(), bindings.download()};
+  return {
+      edges.download(),      faces.download(),         boxes.download(),      box_faces.download(),
+      objects.download(),    body_params.download(),   tets.download(),       body_pairs.download(),
+      face_pairs.download(), counters.download(),      bvh_nodes.download(),  body_bvhs.download(),
+      meshes.download(),     contact_pairs.download(), edge_terms.download(), bindings.download()};
 }
 
 std::uint32_t probe(std::uint32_t i, std::uint32_t k) {
@@ -100,11 +103,15 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
   const ProbeOutput out = run_layout_probe(kCount);
   for (std::uint32_t i = 0; i < kCount; ++i) {
     SCOPED_TRACE("element " + std::to_string(i));
-    const gpu::Spring& s = out.springs[i];
+    const gpu::SpringEdge& s = out.edges[i];
     EXPECT_EQ(s.a, probe(i, 0));
     EXPECT_EQ(s.b, probe(i, 1));
     EXPECT_EQ(s.rest_length, probef(i, 2));
-    EXPECT_EQ(s.stiffness, probef(i, 3));
+    EXPECT_EQ(s.damping, probef(i, 3));
+
+    const gpu::EdgeTerm& term = out.edge_terms[i];
+    EXPECT_EQ(term.edge, probe(i, 0));
+    EXPECT_EQ(term.signed_stiffness, probef(i, 1));
 
     const gpu::Face& f = out.faces[i];
     EXPECT_EQ(f.a, probe(i, 0));
@@ -191,13 +198,13 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
 
 TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
   const std::vector<std::uint32_t> expected = {
-      gpu::kNodePosition,      gpu::kNodeVelocity,      gpu::kSpringInfo,
+      gpu::kNodePosition,      gpu::kNodeVelocity,      gpu::kSpringEdge,
       gpu::kNodeForce,         gpu::kBoxInfo,           gpu::kCollisionResult,
       gpu::kFaceNormal,        gpu::kFaceInfo,          gpu::kObjectInfo,
       gpu::kBoxFaceList,       gpu::kFacePair,          gpu::kBoxMask,
-      gpu::kBodyParams,        gpu::kNodeBody,          gpu::kSpringForce,
-      gpu::kNodeSpringOffset,  gpu::kNodeSpringList,    gpu::kTetInfo,
-      gpu::kTetForce,          gpu::kNodeTetOffset,     gpu::kNodeTetList,
+      gpu::kBodyParams,        gpu::kNodeBody,          gpu::kEdgeState,
+      gpu::kNodeEdgeOffset,    gpu::kNodeEdgeTerm,      gpu::kTetInfo,
+      gpu::kCornerForce,       gpu::kNodeCornerOffset,  gpu::kTetCornerSlot,
       gpu::kFaceBoxes,         gpu::kBodyPair,          gpu::kCollisionCounters,
       gpu::kBoxRows,           gpu::kBvhNode,           gpu::kBvhBox,
       gpu::kBodyBvh,           gpu::kCandidatePair,     gpu::kContactPair,

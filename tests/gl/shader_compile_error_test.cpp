@@ -66,7 +66,7 @@ TEST_F(ShaderCompileErrorTest, ErrorAfterAnIncludeNamesTheTopFileAndItsOwnLine) 
               "#include \"common/layout.glsl\"\n"
               "layout(local_size_x = 1) in;\n"
               "void main() {\n"
-              "  Spring s = not_declared;\n"
+              "  SpringEdge s = not_declared;\n"
               "}\n");
   const std::string message = compile_error("test/late_error.comp", library);
   EXPECT_EQ(line_mentioning("not_declared", message).rfind("test/late_error.comp:5", 0), 0u)

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sim/node_force_lists.h"
 #include "deformcd/body.h"
 #include "deformcd/error.h"
 #include "deformcd/simulation_state.h"
@@ -27,37 +28,41 @@ SimulationState two_cube_world() {
 
 TEST(SimulationBufferSizes, ListsEveryBufferWithItsBindingAndSize) {
   const SimulationState w = two_cube_world();
-  const std::vector<BufferSize> sizes = simulation_buffer_sizes(w);
+  const sim::SpringEdges edges = sim::build_spring_edges(w);
+  const sim::TetCorners corners = sim::build_tet_corners(w);
+  // The step's own layout: each spring edge once (springs share edges between tetrahedra).
+  ASSERT_LT(edges.size(), w.springs.size());
+  const std::vector<BufferSize> sizes = simulation_buffer_sizes(w, edges, corners);
   ASSERT_EQ(sizes.size(), 13u);
   const std::vector<std::uint32_t> bindings = {0, 1, 2, 3, 12, 13, 14, 15, 16, 17, 18, 19, 20};
   const std::vector<std::uint64_t> bytes = {16 * w.node_count(),
                                             16 * w.node_count(),
-                                            16 * w.springs.size(),
+                                            16 * edges.size(),
                                             16 * w.node_count(),
                                             32 * 2,
                                             4 * w.node_count(),
-                                            16 * w.springs.size(),
+                                            16 * edges.size(),
                                             4 * (w.node_count() + 1),
-                                            4 * 2 * w.springs.size(),
-                                            32 * w.tets.size(),
-                                            16 * 4 * w.tets.size(),
+                                            8 * w.node_spring_list.size(),
+                                            32 * corners.tets.size(),
+                                            16 * std::uint64_t{corners.slot_count},
                                             4 * (w.node_count() + 1),
-                                            4 * 4 * w.tets.size()};
+                                            16 * corners.tets.size()};
   for (std::size_t i = 0; i < sizes.size(); ++i) {
     EXPECT_EQ(sizes[i].binding, bindings[i]) << sizes[i].name;
     EXPECT_EQ(sizes[i].bytes(), bytes[i]) << sizes[i].name;
   }
-  EXPECT_EQ(sizes[2].name, "Spring Information");
+  EXPECT_EQ(sizes[2].name, "Spring Edge");
 }
 
 TEST(CheckBufferSizes, AcceptsABufferExactlyAtTheLimit) {
-  const std::vector<BufferSize> sizes = {{"Spring Information", 2, 4, 16}};
+  const std::vector<BufferSize> sizes = {{"Spring Edge", 2, 4, 16}};
   EXPECT_NO_THROW(check_buffer_sizes(sizes, 64, "the limit"));
 }
 
 TEST(CheckBufferSizes, NamesEveryBufferOverTheLimitWithItsSizeAndTheLimit) {
   const std::vector<BufferSize> sizes = {
-      {"Node Position", 0, 4, 16}, {"Spring Information", 2, 5, 16}, {"Spring Force", 14, 6, 16}};
+      {"Node Position", 0, 4, 16}, {"Spring Edge", 2, 5, 16}, {"Edge State", 14, 6, 16}};
   try {
     check_buffer_sizes(sizes, 64, "the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE");
     FAIL() << "expected GlError";
@@ -66,9 +71,8 @@ TEST(CheckBufferSizes, NamesEveryBufferOverTheLimitWithItsSizeAndTheLimit) {
     EXPECT_NE(what.find("the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE (64 bytes)"),
               std::string::npos)
         << what;
-    EXPECT_NE(what.find("Spring Information (SSBO 2): 80 bytes (5 x 16)"), std::string::npos)
-        << what;
-    EXPECT_NE(what.find("Spring Force (SSBO 14): 96 bytes (6 x 16)"), std::string::npos) << what;
+    EXPECT_NE(what.find("Spring Edge (SSBO 2): 80 bytes (5 x 16)"), std::string::npos) << what;
+    EXPECT_NE(what.find("Edge State (SSBO 14): 96 bytes (6 x 16)"), std::string::npos) << what;
     EXPECT_EQ(what.find("Node Position"), std::string::npos) << what;
   }
 }

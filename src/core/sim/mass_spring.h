@@ -41,8 +41,7 @@ inline glm::vec3 spring_force(const glm::vec3& xa, const glm::vec3& xb, const gl
 /// q = (length - rest_length) + damping (vb - va) . u, or (0, 0) for a collapsed edge; then each
 /// spring's term (signed_stiffness q) u. With signed_stiffness = stiffness the term equals
 /// spring_force(...) bit for bit (the same operations on the same operands); with -stiffness,
-/// or with a and b swapped, its exact negation. CPU only so far: the GL shaders still compute
-/// spring_force per spring (shaders/sim/mass_spring.glsl), the same arithmetic.
+/// or with a and b swapped, its exact negation. shaders/sim/mass_spring.glsl mirrors both.
 inline glm::vec4 spring_edge_state(const glm::vec3& xa, const glm::vec3& xb, const glm::vec3& va,
                                    const glm::vec3& vb, float rest_length, float damping) {
   const glm::vec3 d = xb - xa;

@@ -28,11 +28,9 @@
 
 namespace deformcd::sim {
 
-/// One entry of a node's spring list: the edge, and the spring's stiffness signed for this node.
-struct EdgeTerm {
-  std::uint32_t edge;
-  float signed_stiffness;  ///< N/m: +k if the node is the edge's node a, -k if its node b
-};
+/// One entry of a node's spring list: the edge, and the spring's stiffness signed for this node
+/// (+k if the node is the edge's node a, -k if its node b); the GL step reads the same array.
+using EdgeTerm = gpu::EdgeTerm;
 
 /// Every distinct (node a, node b, rest length, damping) of a state's springs once, with a < b,
 /// sorted by (a, b); and per node its springs in the order of the state's node_spring_list.

@@ -8,6 +8,7 @@
 
 #include "buffer_from.h"
 #include "buffer_limit.h"
+#include "core/sim/node_force_lists.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/device_info.h"
 #include "device_summary.h"
@@ -39,22 +40,35 @@ GlSimulation::GlSimulation(const DeviceInfo& device, const GlSimulationOptions& 
       max_buffer_bytes_(buffer_limit(device, options.max_buffer_bytes)),
       limit_is_device_(limit_is_device(device, options.max_buffer_bytes)),
       max_work_groups_x_(device.max_work_group_count[0]),
-      spring_update_("sim/spring_update.comp"),
+      edge_update_("sim/edge_update.comp"),
       tet_update_("sim/tet_update.comp"),
-      node_force_("sim/node_force.comp"),
       node_update_("sim/node_update.comp") {}
 
 void GlSimulation::upload(const SimulationState& state) {
   // Everything is checked before the first allocation, so a failed upload keeps the old state.
   check_world_consistency(state);
-  const std::vector<BufferSize> sizes = simulation_buffer_sizes(state);
+  const sim::SpringEdges edges = sim::build_spring_edges(state);
+  const sim::TetCorners corners = sim::build_tet_corners(state);
+  const std::vector<BufferSize> sizes = simulation_buffer_sizes(state, edges, corners);
   check_buffer_sizes(sizes, max_buffer_bytes_,
                      limit_is_device_ ? "the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE"
                                       : "GlSimulationOptions::max_buffer_bytes");
-  check_fits_one_dispatch(spring_update_, state.springs.size(), max_work_groups_x_);
-  check_fits_one_dispatch(tet_update_, state.tets.size(), max_work_groups_x_);
-  check_fits_one_dispatch(node_force_, state.node_count(), max_work_groups_x_);
+  check_fits_one_dispatch(edge_update_, edges.size(), max_work_groups_x_);
+  check_fits_one_dispatch(tet_update_, corners.tets.size(), max_work_groups_x_);
   check_fits_one_dispatch(node_update_, state.node_count(), max_work_groups_x_);
+
+  // The edges as the shaders read them (one struct per edge; the CPU keeps one array per field).
+  std::vector<gpu::SpringEdge> edge_info(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    edge_info[e] = {edges.a[e], edges.b[e], edges.rest_length[e], edges.damping[e]};
+  std::vector<glm::uvec4> corner_slots(corners.tets.size());
+  for (std::size_t t = 0; t < corners.tets.size(); ++t) {
+    corner_slots[t] = {corners.corner_slot[4 * t], corners.corner_slot[4 * t + 1],
+                       corners.corner_slot[4 * t + 2], corners.corner_slot[4 * t + 3]};
+  }
+  // Every slot starts at zero; a slot no node lists is written and never read.
+  const std::vector<glm::vec4> corner_forces(corners.slot_count, glm::vec4(0.0f));
+  const std::vector<glm::vec4> edge_states(edges.size(), glm::vec4(0.0f));
 
   // The new buffers are all allocated before the old ones are released: if GL runs out of
   // memory, the GlError names the buffer and the previous state stays intact.
@@ -63,19 +77,16 @@ void GlSimulation::upload(const SimulationState& state) {
   };
   buffers_.emplace(SimulationBuffers{
       copy(state.positions, gpu::kNodePosition), copy(state.velocities, gpu::kNodeVelocity),
-      copy(state.springs, gpu::kSpringInfo), copy(state.forces, gpu::kNodeForce),
+      copy(edge_info, gpu::kSpringEdge), copy(state.forces, gpu::kNodeForce),
       copy(state.body_params, gpu::kBodyParams), copy(state.node_body, gpu::kNodeBody),
-      copy(state.spring_forces, gpu::kSpringForce),
-      copy(state.node_spring_offset, gpu::kNodeSpringOffset),
-      copy(state.node_spring_list, gpu::kNodeSpringList), copy(state.tets, gpu::kTetInfo),
-      copy(state.tet_forces, gpu::kTetForce), copy(state.node_tet_offset, gpu::kNodeTetOffset),
-      copy(state.node_tet_list, gpu::kNodeTetList), static_cast<std::uint32_t>(state.node_count()),
-      static_cast<std::uint32_t>(state.springs.size()),
-      static_cast<std::uint32_t>(state.tets.size()),
+      copy(edge_states, gpu::kEdgeState), copy(edges.node_offset, gpu::kNodeEdgeOffset),
+      copy(edges.node_terms, gpu::kNodeEdgeTerm), copy(corners.tets, gpu::kTetInfo),
+      copy(corner_forces, gpu::kCornerForce), copy(corners.node_offset, gpu::kNodeCornerOffset),
+      copy(corner_slots, gpu::kTetCornerSlot), static_cast<std::uint32_t>(state.node_count()),
+      static_cast<std::uint32_t>(edges.size()), static_cast<std::uint32_t>(corners.tets.size()),
       static_cast<std::uint32_t>(state.body_params.size())});
+  edge_update_.set_uniform("u_edge_count", buffers_->edge_count);
   tet_update_.set_uniform("u_tet_count", buffers_->tet_count);
-  spring_update_.set_uniform("u_spring_count", buffers_->spring_count);
-  node_force_.set_uniform("u_node_count", buffers_->node_count);
   node_update_.set_uniform("u_node_count", buffers_->node_count);
 }
 
@@ -83,23 +94,21 @@ void GlSimulation::substep(const sim::SubstepConstants& constants) {
   const SimulationBuffers& b = buffers("substep");
   b.positions.bind(gpu::kNodePosition);
   b.velocities.bind(gpu::kNodeVelocity);
-  b.springs.bind(gpu::kSpringInfo);
+  b.edges.bind(gpu::kSpringEdge);
   b.node_forces.bind(gpu::kNodeForce);
   b.body_params.bind(gpu::kBodyParams);
   b.node_body.bind(gpu::kNodeBody);
-  b.spring_forces.bind(gpu::kSpringForce);
-  b.node_spring_offset.bind(gpu::kNodeSpringOffset);
-  b.node_spring_list.bind(gpu::kNodeSpringList);
+  b.edge_states.bind(gpu::kEdgeState);
+  b.node_edge_offset.bind(gpu::kNodeEdgeOffset);
+  b.node_edge_terms.bind(gpu::kNodeEdgeTerm);
   b.tets.bind(gpu::kTetInfo);
-  b.tet_forces.bind(gpu::kTetForce);
-  b.node_tet_offset.bind(gpu::kNodeTetOffset);
-  b.node_tet_list.bind(gpu::kNodeTetList);
+  b.corner_forces.bind(gpu::kCornerForce);
+  b.node_corner_offset.bind(gpu::kNodeCornerOffset);
+  b.tet_corner_slots.bind(gpu::kTetCornerSlot);
 
-  spring_update_.dispatch_covering(b.spring_count);
+  edge_update_.dispatch_covering(b.edge_count);
   tet_update_.dispatch_covering(b.tet_count);
-  storage_barrier();  // node_force reads the spring and tetrahedron forces
-  node_force_.dispatch_covering(b.node_count);
-  storage_barrier();  // node_update reads the node forces
+  storage_barrier();  // node_update reads the edge states and the corner forces
   node_update_.set_uniform("u_h", constants.h);
   node_update_.set_uniform("u_gravity", constants.gravity);
   node_update_.set_uniform("u_velocity_decay", constants.velocity_decay);

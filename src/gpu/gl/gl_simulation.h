@@ -1,12 +1,16 @@
 #pragma once
 // The mass-spring step on the GPU: the paper's compute shaders 4 (SpringUpdate), 5 (NodeForce)
-// and 3 (NodeUpdate), in that order each substep, over SSBOs laid out as in gpu_layout.h.
+// and 3 (NodeUpdate), over SSBOs laid out as in gpu_layout.h, in the CPU backend's layout
+// (src/core/sim/node_force_lists.h): each spring edge once, tetrahedron corners node by node.
 //
-// Thread-to-data mapping: spring_update.comp runs one invocation per spring and writes that
-// spring's force (SSBO 14); node_force.comp runs one per node and sums its springs' forces over
-// its CSR list (SSBOs 15, 16) into SSBO 3; node_update.comp runs one per node and integrates it.
-// The gather replaces the scatter-with-atomics a GPU code might use: GL 4.3 has no float
-// atomics, and a fixed summation order keeps the result deterministic and equal to the CPU's.
+// Thread-to-data mapping, per substep: edge_update.comp runs one invocation per spring edge and
+// writes its state (u, q) (SSBO 14); tet_update.comp runs one per stiff tetrahedron and writes
+// its corners' volume forces into their slots (SSBO 18); node_update.comp runs one per node,
+// sums (k q) u over its springs (SSBOs 15, 16) and its corner slots (SSBO 19), writes the force
+// (SSBO 3) and integrates. The gather replaces the scatter-with-atomics a GPU code might use: GL
+// 4.3 has no float atomics, and a fixed summation order keeps the result deterministic and equal
+// to the CPU's, bit for bit. Against one invocation per spring, the paper's bodies need 4.4x
+// fewer spring-state invocations (each edge carries a spring per tetrahedron around it).
 
 #include <cstdint>
 #include <optional>
@@ -14,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/ext/vector_uint4.hpp>
 #include <glm/vec4.hpp>
 
 #include "compute_program.h"
@@ -36,20 +41,20 @@ struct GlSimulationOptions {
 struct SimulationBuffers {
   Ssbo<glm::vec4> positions;               // SSBO 0
   Ssbo<glm::vec4> velocities;              // SSBO 1
-  Ssbo<gpu::Spring> springs;               // SSBO 2
+  Ssbo<gpu::SpringEdge> edges;             // SSBO 2
   Ssbo<glm::vec4> node_forces;             // SSBO 3
   Ssbo<gpu::BodyParams> body_params;       // SSBO 12
   Ssbo<std::uint32_t> node_body;           // SSBO 13
-  Ssbo<glm::vec4> spring_forces;           // SSBO 14
-  Ssbo<std::uint32_t> node_spring_offset;  // SSBO 15
-  Ssbo<std::int32_t> node_spring_list;     // SSBO 16
-  Ssbo<gpu::Tetra> tets;                   // SSBO 17
-  Ssbo<glm::vec4> tet_forces;              // SSBO 18
-  Ssbo<std::uint32_t> node_tet_offset;     // SSBO 19
-  Ssbo<std::uint32_t> node_tet_list;       // SSBO 20
+  Ssbo<glm::vec4> edge_states;             // SSBO 14
+  Ssbo<std::uint32_t> node_edge_offset;    // SSBO 15
+  Ssbo<gpu::EdgeTerm> node_edge_terms;     // SSBO 16
+  Ssbo<gpu::Tetra> tets;                   // SSBO 17: the stiff ones
+  Ssbo<glm::vec4> corner_forces;           // SSBO 18
+  Ssbo<std::uint32_t> node_corner_offset;  // SSBO 19
+  Ssbo<glm::uvec4> tet_corner_slots;       // SSBO 20
   std::uint32_t node_count = 0;
-  std::uint32_t spring_count = 0;
-  std::uint32_t tet_count = 0;
+  std::uint32_t edge_count = 0;
+  std::uint32_t tet_count = 0;   // stiff tetrahedra
   std::uint32_t body_count = 0;  // body_params' length: node_body's values are below it
 };
 
@@ -69,9 +74,9 @@ class GlSimulation final : public sim::SimulationBackend {
   // an inconsistent state and GlError naming every buffer that is too large, with its size and
   // the limit; the previous buffers are kept then.
   void upload(const SimulationState& state) override;
-  // Binds the buffers (other passes may have rebound the points since), dispatches the three
-  // shaders with storage barriers between them, and ends with a barrier so that later shaders
-  // and vertex fetches see the new positions. Throws Error before upload().
+  // Binds the buffers (other passes may have rebound the points since), dispatches the edge and
+  // tetrahedron passes, a storage barrier, then the node pass, and ends with a barrier so that
+  // later shaders and vertex fetches see the new positions. Throws Error before upload().
   void substep(const sim::SubstepConstants& constants) override;
   // glFinish.
   void finish() override;
@@ -98,9 +103,8 @@ class GlSimulation final : public sim::SimulationBackend {
   std::uint64_t max_buffer_bytes_ = 0;
   bool limit_is_device_ = true;  // whether max_buffer_bytes_ is the device's, for messages
   std::uint32_t max_work_groups_x_ = 0;
-  ComputeProgram spring_update_;
+  ComputeProgram edge_update_;
   ComputeProgram tet_update_;
-  ComputeProgram node_force_;
   ComputeProgram node_update_;
   std::optional<SimulationBuffers> buffers_;
 };

@@ -83,21 +83,24 @@ void check_tets(const SimulationState& w) {
 
 }  // namespace
 
-std::vector<BufferSize> simulation_buffer_sizes(const SimulationState& w) {
+std::vector<BufferSize> simulation_buffer_sizes(const SimulationState& w,
+                                                const sim::SpringEdges& edges,
+                                                const sim::TetCorners& corners) {
   return {
       size_of("Node Position", gpu::kNodePosition, w.positions),
       size_of("Node Velocity", gpu::kNodeVelocity, w.velocities),
-      size_of("Spring Information", gpu::kSpringInfo, w.springs),
+      {"Spring Edge", gpu::kSpringEdge, edges.size(), sizeof(gpu::SpringEdge)},
       size_of("Node Force", gpu::kNodeForce, w.forces),
       size_of("Body Parameters", gpu::kBodyParams, w.body_params),
       size_of("Node Body", gpu::kNodeBody, w.node_body),
-      size_of("Spring Force", gpu::kSpringForce, w.spring_forces),
-      size_of("Node Spring Offset", gpu::kNodeSpringOffset, w.node_spring_offset),
-      size_of("Node Spring List", gpu::kNodeSpringList, w.node_spring_list),
-      size_of("Tetrahedron Information", gpu::kTetInfo, w.tets),
-      size_of("Tetrahedron Force", gpu::kTetForce, w.tet_forces),
-      size_of("Node Tetrahedron Offset", gpu::kNodeTetOffset, w.node_tet_offset),
-      size_of("Node Tetrahedron List", gpu::kNodeTetList, w.node_tet_list),
+      {"Edge State", gpu::kEdgeState, edges.size(), sizeof(glm::vec4)},
+      size_of("Node Edge Offset", gpu::kNodeEdgeOffset, edges.node_offset),
+      size_of("Node Edge Term", gpu::kNodeEdgeTerm, edges.node_terms),
+      size_of("Tetrahedron Information", gpu::kTetInfo, corners.tets),
+      {"Corner Force", gpu::kCornerForce, corners.slot_count, sizeof(glm::vec4)},
+      size_of("Node Corner Offset", gpu::kNodeCornerOffset, corners.node_offset),
+      {"Tetrahedron Corner Slot", gpu::kTetCornerSlot, corners.tets.size(),
+       4 * sizeof(std::uint32_t)},
   };
 }
 

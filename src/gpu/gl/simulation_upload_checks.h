@@ -9,13 +9,14 @@
 #include <string_view>
 #include <vector>
 
+#include "core/sim/node_force_lists.h"
 #include "deformcd/simulation_state.h"
 
 namespace deformcd::gl {
 
 // One buffer the simulation would create.
 struct BufferSize {
-  std::string_view name;  // the paper's Table 1 name, or ours for bindings 12-16
+  std::string_view name;  // the paper's Table 1 name, or ours beyond it
   std::uint32_t binding;  // gpu::Binding
   std::uint64_t count;    // elements
   std::uint64_t element_bytes;
@@ -23,8 +24,11 @@ struct BufferSize {
   [[nodiscard]] std::uint64_t bytes() const { return count * element_bytes; }
 };
 
-// The buffers GlSimulation creates for `state`, in binding order.
-[[nodiscard]] std::vector<BufferSize> simulation_buffer_sizes(const SimulationState& state);
+// The buffers GlSimulation creates for `state`, whose spring edges and tetrahedron corners are
+// `edges` and `corners` (sim::build_spring_edges, sim::build_tet_corners), in binding order.
+[[nodiscard]] std::vector<BufferSize> simulation_buffer_sizes(const SimulationState& state,
+                                                              const sim::SpringEdges& edges,
+                                                              const sim::TetCorners& corners);
 
 // Throws GlError when any buffer holds more than `max_bytes`, naming each such buffer with its
 // size and the limit; `limit_name` says whose limit it is, `owner` whose buffers they are (the
