@@ -5,6 +5,7 @@
 // q = (length - rest) + damping (v_b - v_a) . u. Each spring's force is then (k q) u, which
 // sim/node_update.comp forms per node. Each invocation writes only its own edge's slot.
 #include "common/layout.glsl"
+#include "common/exact_math.glsl"
 #include "sim/mass_spring.glsl"
 
 layout(local_size_x = 64) in;

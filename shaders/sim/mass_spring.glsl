@@ -1,6 +1,8 @@
 // The mass-spring step's per-element functions, mirroring src/core/sim/mass_spring.h line for
-// line: the same float operations in the same order, so that the GL and CPU backends agree to
-// rounding. Change both files together.
+// line: the same float operations in the same order, dot and cross as glm's, products and sums
+// `precise` (no fused multiply-add: llvmpipe fused glm's dot, and 70 % of the nodes' forces
+// differed from the CPU's in the last bit), so that the GL and CPU backends agree bit for bit.
+// Include common/exact_math.glsl first. Change both files together.
 //
 // The per-node gathers are not here: GLSL 4.30 cannot pass a buffer to a function, so their
 // loops are written out in sim/node_update.comp, again line for line.
@@ -19,15 +21,17 @@ struct SubstepConstants {
 // the relative velocity along it (damping in seconds x stiffness).
 vec4 spring_edge_state(vec3 xa, vec3 xb, vec3 va, vec3 vb, float rest_length, float damping) {
   const vec3 d = xb - xa;
-  const float len = sqrt(dot(d, d));
+  const float len = sqrt(exact_dot(d, d));
   if (!(len > 0.0)) return vec4(0.0);
   const vec3 u = d / len;
-  return vec4(u, (len - rest_length) + damping * dot(vb - va, u));
+  precise const float q = (len - rest_length) + damping * exact_dot(vb - va, u);
+  return vec4(u, q);
 }
 
 // One spring's force on a node from its edge's state (spring_edge_state).
 vec3 spring_term(vec4 edge_state, float signed_stiffness) {
-  return (signed_stiffness * edge_state.w) * edge_state.xyz;
+  precise const vec3 term = (signed_stiffness * edge_state.w) * edge_state.xyz;
+  return term;
 }
 
 // Volume forces on the four corners of tetrahedron (a, b, c, d), from the energy
@@ -35,15 +39,19 @@ vec3 spring_term(vec4 edge_state, float signed_stiffness) {
 void tet_volume_forces(vec3 a, vec3 b, vec3 c, vec3 d, float rest_volume, float stiffness,
                        out vec3 out0, out vec3 out1, out vec3 out2, out vec3 out3) {
   const vec3 ab = b - a, ac = c - a, ad = d - a;
-  const vec3 grad_b = cross(ac, ad) / 6.0;
-  const vec3 grad_c = cross(ad, ab) / 6.0;
-  const vec3 grad_d = cross(ab, ac) / 6.0;
-  const float volume = dot(ab, grad_b);
-  const float scale = -stiffness * (volume - rest_volume);
-  out1 = scale * grad_b;
-  out2 = scale * grad_c;
-  out3 = scale * grad_d;
-  out0 = -(out1 + out2 + out3);
+  const vec3 grad_b = exact_cross(ac, ad) / 6.0;
+  const vec3 grad_c = exact_cross(ad, ab) / 6.0;
+  const vec3 grad_d = exact_cross(ab, ac) / 6.0;
+  const float volume = exact_dot(ab, grad_b);
+  precise const float scale = -stiffness * (volume - rest_volume);
+  precise const vec3 f1 = scale * grad_b;
+  precise const vec3 f2 = scale * grad_c;
+  precise const vec3 f3 = scale * grad_d;
+  precise const vec3 f0 = -(f1 + f2 + f3);
+  out0 = f0;
+  out1 = f1;
+  out2 = f2;
+  out3 = f3;
 }
 
 // Semi-implicit (symplectic) Euler for one node: velocity from force and gravity, decayed,
@@ -52,12 +60,13 @@ void tet_volume_forces(vec3 a, vec3 b, vec3 c, vec3 d, float rest_volume, float 
 void integrate_node(inout vec4 position, inout vec4 velocity, vec3 force, vec3 carry_velocity,
                     SubstepConstants c) {
   const float inverse_mass = position.w;
-  vec3 v = velocity.xyz;
+  precise vec3 v = velocity.xyz;
   if (inverse_mass > 0.0) {
     v = (v + c.h * (force * inverse_mass + c.gravity)) * c.velocity_decay;
   } else {
     v = vec3(0.0);
   }
   velocity = vec4(v, 0.0);
-  position = vec4(position.xyz + c.h * (v + carry_velocity), inverse_mass);
+  precise const vec3 moved = position.xyz + c.h * (v + carry_velocity);
+  position = vec4(moved, inverse_mass);
 }

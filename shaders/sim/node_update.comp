@@ -5,6 +5,7 @@
 // (sim/tet_update.comp) in slot order, and integrates. A fixed order per node makes the sum
 // deterministic and equal to the CPU backend's (src/cpu/cpu_simulation.cpp), bit for bit.
 #include "common/layout.glsl"
+#include "common/exact_math.glsl"
 #include "sim/mass_spring.glsl"
 // The gathers are inline: GLSL cannot pass buffers to functions.
 

@@ -4,6 +4,7 @@
 // which lie node by node so that sim/node_update.comp reads each node's corners contiguously.
 // Each slot belongs to one corner of one tetrahedron, so there is no write conflict.
 #include "common/layout.glsl"
+#include "common/exact_math.glsl"
 #include "sim/mass_spring.glsl"
 
 layout(local_size_x = 64) in;
