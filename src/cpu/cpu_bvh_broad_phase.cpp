@@ -76,6 +76,7 @@ void BvhBroadPhase::traverse(const gpu::BodyPair& pair, const NarrowPhase& narro
                              PairCollector& out) {
   const gpu::BvhNode* nodes = trees_.nodes().data();
   const gpu::Box* boxes = trees_.boxes().data();
+  const TraversalTrees trees{nodes, boxes, trees_.child_boxes().data(), trees_.record_of().data()};
   const std::uint32_t root_a = trees_.tree(pair.a).root;
   const std::uint32_t root_b = trees_.tree(pair.b).root;
   const bool self = pair.a == pair.b;
@@ -93,7 +94,7 @@ void BvhBroadPhase::traverse(const gpu::BodyPair& pair, const NarrowPhase& narro
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
                         // The test is fused into the traversal: no candidate list to write and
                         // read back. Within one mesh the narrow phase takes the lower face first.
-                        traverse_node_pair(nodes, boxes, self, frontier_[i],
+                        traverse_node_pair(trees, self, frontier_[i],
                                            [&](std::uint32_t face_a, std::uint32_t face_b) {
                                              if (self && face_b < face_a) {
                                                narrow.test(face_b, face_a, local);
