@@ -43,6 +43,7 @@ void CpuCollision::upload(const collision::CollisionData& data) {
   boxes_.assign(box_rows_.size(), collision::empty_box());
   mask_.assign(std::size_t{kBoxes} * kBoxes, -1);
   flags_.assign(faces_.size(), 0u);
+  geometry_.reset(faces_.size());
   pairs_.clear();
   counters_ = {};
   executor_->run([&] { bvh_.upload(data, vertices_.data()); });
@@ -94,7 +95,8 @@ void CpuCollision::run(BroadPhase method) {
       flags_.size(), [&](std::size_t f) { flags_[f] = 0u; }, kFaceGrain);
   pairs_.clear();
   counters_ = {};
-  const NarrowPhase narrow{vertices_.data(), faces_.data(), flags_.data()};
+  geometry_.begin_pass(executor_->threads() > 1);
+  const NarrowPhase narrow{vertices_.data(), faces_.data(), flags_.data(), &geometry_};
   switch (method) {
     case BroadPhase::kNone:
       return;

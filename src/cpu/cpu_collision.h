@@ -64,6 +64,7 @@ class CpuCollision final : public collision::CollisionBackend {
   std::vector<std::int32_t> mask_;    // SSBO 11, one mesh pair's 64 x 64
   std::vector<std::uint32_t> flags_;  // SSBO 5
   std::vector<gpu::FacePair> pairs_;  // SSBO 10
+  FaceGeometryCache geometry_;        // per face, this pass
   gpu::CollisionCounters counters_{};
   PairCollector collector_;
   OctreeCompactPass octree_compact_;
