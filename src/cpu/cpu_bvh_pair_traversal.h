@@ -250,9 +250,7 @@ void traverse_node_pair(const TraversalTrees& t, bool self, const NodePair& star
       }
       hits = detail::children_overlap(x, 0, x, 1) << 1u;
     } else {
-      hits = detail::children_overlap(x, 0, y, 0) | detail::children_overlap(x, 0, y, 1) << 1u |
-             detail::children_overlap(x, 1, y, 0) << 2u |
-             detail::children_overlap(x, 1, y, 1) << 3u;
+      hits = detail::four_children_overlap(x, y);
     }
     while (hits != 0u) {
       const int i = std::countr_zero(hits) >> 1;
