@@ -269,6 +269,10 @@ void traverse_node_pair(const TraversalTrees& t, bool self, const NodePair& star
         detail::query_records(t.records, cx, detail::child_box(y, j),
                               [&](std::uint32_t face) { visit(face, cy & ~kLeafChild); });
       } else {
+        // The records are read when the pair is popped: start loading them now (the records
+        // of a 5,000-face body, 300 KB, stay in L2, not L1).
+        __builtin_prefetch(&t.records[cx]);
+        __builtin_prefetch(&t.records[cy]);
         stack[size++] = {cx, cy};
       }
     }
