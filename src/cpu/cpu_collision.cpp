@@ -126,7 +126,8 @@ void CpuCollision::run(BroadPhase method) {
   pairs_.clear();
   counters_ = {};
   geometry_.begin_pass(executor_->threads() > 1);
-  const NarrowPhase narrow{vertices_.data(), faces_.data(), flags_.data(), &geometry_};
+  const NarrowPhase narrow{vertices_.data(), faces_.data(), flags_.data(), &geometry_,
+                           method == BroadPhase::kBvh};
   switch (method) {
     case BroadPhase::kNone:
       return;

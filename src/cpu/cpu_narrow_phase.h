@@ -119,6 +119,9 @@ struct NarrowPhase {
   const gpu::Face* faces;
   std::uint32_t* flags;         // per face: 1 when it intersects a face
   FaceGeometryCache* geometry;  // faces of two bodies are tested from it
+  // The broad phase hands on only pairs whose triangles' boxes touch (the bvh's leaf boxes are
+  // the min/max of the triangles' floats): the triangle test skips its box test.
+  bool boxes_touch = false;
 
   // Tests the pair and appends it to `out` when the faces intersect; counts the test.
   void test(std::uint32_t face_a, std::uint32_t face_b, ThreadPairs& out) const {
@@ -131,8 +134,10 @@ struct NarrowPhase {
       // What face_pair_intersect does for faces of two bodies (they share no node).
       collision::TriangleGeometry own_a;
       collision::TriangleGeometry own_b;
-      hit = collision::tri_tri_intersect(geometry->get(face_a, fa, positions, own_a),
-                                         geometry->get(face_b, fb, positions, own_b));
+      const collision::TriangleGeometry& ga = geometry->get(face_a, fa, positions, own_a);
+      const collision::TriangleGeometry& gb = geometry->get(face_b, fb, positions, own_b);
+      hit = boxes_touch ? collision::tri_tri_intersect_touching(ga, gb)
+                        : collision::tri_tri_intersect(ga, gb);
     } else {
       hit = collision::face_pair_intersect(fa, fb, positions);
     }

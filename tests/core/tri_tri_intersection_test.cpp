@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "core/collision/tri_tri_primitives.h"
+
 namespace deformcd::collision {
 namespace {
 
@@ -243,6 +245,14 @@ TEST(TriTriIntersect, FromTriangleGeometryGivesTheSameBits) {
       ASSERT_EQ(plain.coplanar, prepared.coplanar) << n;
       ASSERT_TRUE(same(plain.segment[0], prepared.segment[0])) << n;
       ASSERT_TRUE(same(plain.segment[1], prepared.segment[1])) << n;
+      if (detail::boxes_touch(a.v, b.v)) {  // the bvh's entry, for boxes known to touch
+        const TriTriResult touching =
+            tri_tri_intersect_touching(triangle_geometry(a.v), triangle_geometry(b.v));
+        ASSERT_EQ(plain.intersect, touching.intersect) << n;
+        ASSERT_EQ(plain.coplanar, touching.coplanar) << n;
+        ASSERT_TRUE(same(plain.segment[0], touching.segment[0])) << n;
+        ASSERT_TRUE(same(plain.segment[1], touching.segment[1])) << n;
+      }
       intersecting += plain.intersect ? 1 : 0;
     }
   }

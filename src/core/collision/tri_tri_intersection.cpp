@@ -395,10 +395,14 @@ TriangleGeometry triangle_geometry(const glm::vec3 t[3]) {
 }
 
 TriTriResult tri_tri_intersect(const TriangleGeometry& p, const TriangleGeometry& q) {
-  // tri_tri_intersect(p.v, q.v) step by step, with each triangle's own values read from its
-  // geometry. The pair's size there is sqrt(max(la2, lb2)), here max(sqrt(la2), sqrt(lb2)): the
-  // same float, since a correctly rounded square root is monotonic.
   if (!boxes_touch(p.v, q.v)) return {};
+  return tri_tri_intersect_touching(p, q);
+}
+
+TriTriResult tri_tri_intersect_touching(const TriangleGeometry& p, const TriangleGeometry& q) {
+  // tri_tri_intersect(p.v, q.v) step by step after its box test, with each triangle's own values
+  // read from its geometry. The pair's size there is sqrt(max(la2, lb2)), here
+  // max(sqrt(la2), sqrt(lb2)): the same float, since a correctly rounded square root is monotonic.
   bool swap = false;
   bool decided = false;
   for (int k = 0; k < 3; ++k) {

@@ -63,4 +63,9 @@ TriangleGeometry triangle_geometry(const glm::vec3 t[3]);
 /// tri_tri_intersect(p.v, q.v), bit for bit, from the triangles' geometry.
 TriTriResult tri_tri_intersect(const TriangleGeometry& p, const TriangleGeometry& q);
 
+/// The same for triangles whose bounding boxes are known to touch (detail::boxes_touch, as a
+/// BVH's leaf boxes, the min/max of the same floats, are when they overlap): its first test
+/// skipped.
+TriTriResult tri_tri_intersect_touching(const TriangleGeometry& p, const TriangleGeometry& q);
+
 }  // namespace deformcd::collision
