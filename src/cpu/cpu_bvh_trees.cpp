@@ -66,6 +66,9 @@ void BvhTrees::make_child_boxes() {
     if (nodes[i].face == gpu::kBvhInternal) record_of_[i] = records++;
   }
   child_boxes_.assign(records, ChildBoxes{});
+  for (std::uint32_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].face == gpu::kBvhInternal) refit_nodes_[i].z = record_of_[i];
+  }
   slots_.assign(nodes.size(), gpu::kBvhInternal);
   for (std::uint32_t i = 0; i < nodes.size(); ++i) {
     const gpu::BvhNode& n = nodes[i];
@@ -127,10 +130,13 @@ double BvhTrees::refit_range(std::uint32_t first, std::uint32_t count,
         hi = glm::max(hi, p);
       }
     } else {
-      const gpu::Box& l = boxes_[n.x];
-      const gpu::Box& r = boxes_[n.y];
-      lo = glm::min(glm::vec3(l.min), glm::vec3(r.min));
-      hi = glm::max(glm::vec3(l.max), glm::vec3(r.max));
+      // The children's boxes from the node's own record (one cache line, written by the
+      // children just before), the same floats as boxes_[n.x] and boxes_[n.y].
+      const ChildBoxes& r = child_boxes_[n.z];
+      lo = glm::min(glm::vec3(r.min[0][0], r.min[1][0], r.min[2][0]),
+                    glm::vec3(r.min[0][1], r.min[1][1], r.min[2][1]));
+      hi = glm::max(glm::vec3(r.max[0][0], r.max[1][0], r.max[2][0]),
+                    glm::vec3(r.max[0][1], r.max[1][1], r.max[2][1]));
     }
     const gpu::Box b = {glm::vec4(lo, 0.0f), glm::vec4(hi, 0.0f)};
     if (n.mesh == gpu::kBvhInternal) area += collision::box_area(b);

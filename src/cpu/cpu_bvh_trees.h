@@ -82,7 +82,7 @@ class BvhTrees {
   struct RefitNode {
     std::uint32_t x;     // left child, or corner a
     std::uint32_t y;     // right child, or corner b
-    std::uint32_t z;     // corner c
+    std::uint32_t z;     // corner c, or the internal node's record (ChildBoxes)
     std::uint32_t mesh;  // kBvhInternal for an internal node
   };
 
