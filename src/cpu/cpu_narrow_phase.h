@@ -11,6 +11,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "core/collision/face_pair_intersection.h"
+#include "core/collision/tri_tri_plane_step.h"
 #include "core/collision/vertex_positions.h"
 #include "deformcd/gpu_layout.h"
 
@@ -20,6 +21,17 @@ namespace deformcd::cpu {
 struct ThreadPairs {
   std::vector<gpu::FacePair> pairs;
   std::uint64_t candidates = 0;
+  // Room for the triangle geometry a batch's tests make without keeping it in the shared cache
+  // (FaceGeometryCache::get with several threads), two per candidate of a batch.
+  std::vector<collision::TriangleGeometry> own;
+};
+
+// Candidate face pairs (face_a < face_b) waiting for their tests (NarrowPhase::add).
+struct CandidateBatch {
+  static constexpr std::uint32_t kSize = 64;
+  std::uint32_t face_a[kSize];
+  std::uint32_t face_b[kSize];
+  std::uint32_t count = 0;
 };
 
 // Per-thread result lists: a test appends to its own thread's list without locking. The lists
@@ -123,6 +135,46 @@ struct NarrowPhase {
   // the min/max of the triangles' floats): the triangle test skips its box test.
   bool boxes_touch = false;
 
+  // test() for a batch of pairs: queues the pair, and tests the batch when it is full. The
+  // caller flushes the batch at the end. Faces of two bodies take the triangle test in two
+  // loops: the first step (tri_tri_plane_step) over the whole batch without branches, keeping
+  // the pairs it does not answer, then the rest of the test for those (boxes_touch must hold).
+  void add(std::uint32_t face_a, std::uint32_t face_b, CandidateBatch& batch,
+           ThreadPairs& out) const {
+    if (face_a >= face_b) return;
+    batch.face_a[batch.count] = face_a;
+    batch.face_b[batch.count] = face_b;
+    if (++batch.count == CandidateBatch::kSize) flush(batch, out);
+  }
+
+  void flush(CandidateBatch& batch, ThreadPairs& out) const {
+    if (out.own.size() < 2 * CandidateBatch::kSize) out.own.resize(2 * CandidateBatch::kSize);
+    collision::TriTriPlaneStep steps[CandidateBatch::kSize];
+    std::uint32_t of_step[CandidateBatch::kSize];
+    std::uint32_t kept = 0;
+    for (std::uint32_t k = 0; k < batch.count; ++k) {
+      const std::uint32_t face_a = batch.face_a[k];
+      const std::uint32_t face_b = batch.face_b[k];
+      const gpu::Face& fa = faces[face_a];
+      const gpu::Face& fb = faces[face_b];
+      if (fa.body == fb.body) {
+        test(face_a, face_b, out);
+        continue;
+      }
+      ++out.candidates;
+      const collision::TriangleGeometry& ga = geometry->get(face_a, fa, positions, out.own[2 * k]);
+      const collision::TriangleGeometry& gb =
+          geometry->get(face_b, fb, positions, out.own[2 * k + 1]);
+      of_step[kept] = k;
+      kept += collision::tri_tri_plane_step(ga, gb, steps[kept]) ? 1u : 0u;
+    }
+    for (std::uint32_t s = 0; s < kept; ++s) {
+      const collision::TriTriResult hit = collision::tri_tri_finish(steps[s]);
+      if (hit.intersect) record(batch.face_a[of_step[s]], batch.face_b[of_step[s]], hit, out);
+    }
+    batch.count = 0;
+  }
+
   // Tests the pair and appends it to `out` when the faces intersect; counts the test.
   void test(std::uint32_t face_a, std::uint32_t face_b, ThreadPairs& out) const {
     if (face_a >= face_b) return;
@@ -141,7 +193,12 @@ struct NarrowPhase {
     } else {
       hit = collision::face_pair_intersect(fa, fb, positions);
     }
-    if (!hit.intersect) return;
+    if (hit.intersect) record(face_a, face_b, hit, out);
+  }
+
+  // An intersecting pair: its faces flagged, the pair appended to `out`.
+  void record(std::uint32_t face_a, std::uint32_t face_b, const collision::TriTriResult& hit,
+              ThreadPairs& out) const {
     // Several threads may flag one face; the value written is the same.
     std::atomic_ref<std::uint32_t>(flags[face_a]).store(1u, std::memory_order_relaxed);
     std::atomic_ref<std::uint32_t>(flags[face_b]).store(1u, std::memory_order_relaxed);

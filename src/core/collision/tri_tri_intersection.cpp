@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "collision/tri_tri_plane_step.h"
 #include "collision/tri_tri_primitives.h"
 
 // Tolerances and the uncertain zone. Nothing is compared with an absolute epsilon: every
@@ -401,30 +402,20 @@ TriTriResult tri_tri_intersect(const TriangleGeometry& p, const TriangleGeometry
 
 TriTriResult tri_tri_intersect_touching(const TriangleGeometry& p, const TriangleGeometry& q) {
   // tri_tri_intersect(p.v, q.v) step by step after its box test, with each triangle's own values
-  // read from its geometry. The pair's size there is sqrt(max(la2, lb2)), here
-  // max(sqrt(la2), sqrt(lb2)): the same float, since a correctly rounded square root is monotonic.
-  bool swap = false;
-  bool decided = false;
-  for (int k = 0; k < 3; ++k) {
-    for (int c = 0; c < 3; ++c) {
-      if (!decided && p.v[k][c] != q.v[k][c]) {
-        swap = q.v[k][c] < p.v[k][c];
-        decided = true;
-      }
-    }
-  }
-  const TriangleGeometry& a = swap ? q : p;
-  const TriangleGeometry& b = swap ? p : q;
-  if (!a.proper) return {};
-  const float size = std::max(a.edge, b.edge);
-  const float tol_a = a.rel_tol * size;
-  float db[3];
-  for (int i = 0; i < 3; ++i)
-    db[i] = snap_to_zero(glm::dot(a.u, b.v[i] - a.v[0]), tol_a);
-  if (same_strict_side(db)) return {};
-  if (!b.proper) return {};
-  return finish_intersect(a.v, b.v, a.n, a.n_len, a.u, a.l2, b.n, b.n_len, b.u, b.l2, size,
-                          b.rel_tol * size, db);
+  // read from its geometry (tri_tri_plane_step.h). The pair's size there is sqrt(max(la2, lb2)),
+  // here max(sqrt(la2), sqrt(lb2)): the same float, since a correctly rounded square root is
+  // monotonic. Its early answers are all "no intersection", so taking them together changes no
+  // result.
+  TriTriPlaneStep step;
+  if (!tri_tri_plane_step(p, q, step)) return {};
+  return tri_tri_finish(step);
+}
+
+TriTriResult tri_tri_finish(const TriTriPlaneStep& step) {
+  const TriangleGeometry& a = *step.a;
+  const TriangleGeometry& b = *step.b;
+  return finish_intersect(a.v, b.v, a.n, a.n_len, a.u, a.l2, b.n, b.n_len, b.u, b.l2, step.size,
+                          b.rel_tol * step.size, step.db);
 }
 
 }  // namespace deformcd::collision
