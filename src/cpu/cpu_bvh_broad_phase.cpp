@@ -76,6 +76,7 @@ void BvhBroadPhase::traverse(const gpu::BodyPair& pair, const NarrowPhase& narro
                              PairCollector& out) {
   const gpu::BvhNode* nodes = trees_.nodes().data();
   const gpu::Box* boxes = trees_.boxes().data();
+  const TraversalTrees trees{nodes, boxes, trees_.child_boxes().data(), trees_.record_of().data()};
   const std::uint32_t root_a = trees_.tree(pair.a).root;
   const std::uint32_t root_b = trees_.tree(pair.b).root;
   const bool self = pair.a == pair.b;
@@ -90,18 +91,21 @@ void BvhBroadPhase::traverse(const gpu::BodyPair& pair, const NarrowPhase& narro
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, frontier_.size(), 1),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       ThreadPairs& local = out.local();
+                      CandidateBatch batch;
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        // The test is fused into the traversal: no candidate list to write and
-                        // read back. Within one mesh the narrow phase takes the lower face first.
-                        traverse_node_pair(nodes, boxes, self, frontier_[i],
+                        // The tests are fused into the traversal, in batches: no candidate list
+                        // to write and read back. Within one mesh the narrow phase takes the
+                        // lower face first.
+                        traverse_node_pair(trees, self, frontier_[i],
                                            [&](std::uint32_t face_a, std::uint32_t face_b) {
                                              if (self && face_b < face_a) {
-                                               narrow.test(face_b, face_a, local);
+                                               narrow.add(face_b, face_a, batch, local);
                                              } else {
-                                               narrow.test(face_a, face_b, local);
+                                               narrow.add(face_a, face_b, batch, local);
                                              }
                                            });
                       }
+                      narrow.flush(batch, local);
                     });
 }
 

@@ -1,13 +1,30 @@
 #include "cpu_bvh_trees.h"
 
 #include <algorithm>
+#include <string>
 
 #include <glm/common.hpp>
 
 #include "core/collision/bvh.h"
+#include "deformcd/error.h"
 #include "parallel_for.h"
 
 namespace deformcd::cpu {
+
+namespace {
+
+// Box [lo, hi] of the node whose slot is `slot` (record * 2 + child) into its parent's record.
+inline void write_slot(ChildBoxes* records, std::uint32_t slot, const glm::vec3& lo,
+                       const glm::vec3& hi) {
+  ChildBoxes& r = records[slot >> 1];
+  const std::uint32_t k = slot & 1u;
+  for (int a = 0; a < 3; ++a) {
+    r.min[a][k] = lo[a];
+    r.max[a][k] = hi[a];
+  }
+}
+
+}  // namespace
 
 void BvhTrees::upload(const collision::CollisionData& data, collision::VertexPositions pose) {
   upkeep_.reset(data, pose);
@@ -16,6 +33,7 @@ void BvhTrees::upload(const collision::CollisionData& data, collision::VertexPos
   make_refit_nodes(0, static_cast<std::uint32_t>(refit_nodes_.size()));
   boxes_.assign(upkeep_.nodes().size(), gpu::Box{});
   ratios_.assign(upkeep_.trees().size(), 0.0);
+  make_child_boxes();
   cut_trees();
   refit(pose);
 }
@@ -34,6 +52,37 @@ void BvhTrees::cut_trees() {
     top_offset_.push_back(static_cast<std::uint32_t>(top_nodes_.size()));
   }
   piece_areas_.assign(pieces_.size(), 0.0);
+}
+
+void BvhTrees::make_child_boxes() {
+  const std::vector<gpu::BvhNode>& nodes = upkeep_.nodes();
+  if (faces_.size() >= kLeafChild) {
+    throw Error("CPU bvh: " + std::to_string(faces_.size()) +
+                " faces; the traversal's records hold fewer than 2^31");
+  }
+  record_of_.assign(nodes.size(), gpu::kBvhInternal);
+  std::uint32_t records = 0;
+  for (std::uint32_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].face == gpu::kBvhInternal) record_of_[i] = records++;
+  }
+  child_boxes_.assign(records, ChildBoxes{});
+  for (std::uint32_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].face == gpu::kBvhInternal) refit_nodes_[i].z = record_of_[i];
+  }
+  slots_.assign(nodes.size(), gpu::kBvhInternal);
+  for (std::uint32_t i = 0; i < nodes.size(); ++i) {
+    const gpu::BvhNode& n = nodes[i];
+    if (n.face != gpu::kBvhInternal) continue;
+    ChildBoxes& r = child_boxes_[record_of_[i]];
+    const std::uint32_t children[2] = {n.left, n.right};
+    for (std::uint32_t k = 0; k < 2; ++k) {
+      const std::uint32_t c = children[k];
+      r.child[k] = nodes[c].face != gpu::kBvhInternal ? kLeafChild | nodes[c].face : record_of_[c];
+      slots_[c] = 2 * record_of_[i] + k;
+      write_slot(child_boxes_.data(), slots_[c], glm::vec3(boxes_[c].min),
+                 glm::vec3(boxes_[c].max));
+    }
+  }
 }
 
 void BvhTrees::refit(collision::VertexPositions positions) {
@@ -67,19 +116,32 @@ double BvhTrees::refit_range(std::uint32_t first, std::uint32_t count,
   double area = 0.0;
   for (std::uint32_t i = first + count; i-- > first;) {
     const RefitNode& n = refit_nodes_[i];
-    gpu::Box b = collision::empty_box();
+    // collision::refit_bvh's operations, in its order (a leaf grows the empty box by its
+    // corners a, b, c), kept in registers: the box is stored, not built in memory and read back.
+    glm::vec3 lo;
+    glm::vec3 hi;
     if (n.mesh != gpu::kBvhInternal) {
-      collision::grow_box(b, collision::vertex_position(positions, n.mesh, n.x));
-      collision::grow_box(b, collision::vertex_position(positions, n.mesh, n.y));
-      collision::grow_box(b, collision::vertex_position(positions, n.mesh, n.z));
+      const gpu::Box e = collision::empty_box();
+      lo = glm::vec3(e.min);
+      hi = glm::vec3(e.max);
+      for (const std::uint32_t v : {n.x, n.y, n.z}) {
+        const glm::vec3 p = collision::vertex_position(positions, n.mesh, v);
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+      }
     } else {
-      const gpu::Box& l = boxes_[n.x];
-      const gpu::Box& r = boxes_[n.y];
-      b.min = glm::vec4(glm::min(glm::vec3(l.min), glm::vec3(r.min)), 0.0f);
-      b.max = glm::vec4(glm::max(glm::vec3(l.max), glm::vec3(r.max)), 0.0f);
-      area += collision::box_area(b);
+      // The children's boxes from the node's own record (one cache line, written by the
+      // children just before), the same floats as boxes_[n.x] and boxes_[n.y].
+      const ChildBoxes& r = child_boxes_[n.z];
+      lo = glm::min(glm::vec3(r.min[0][0], r.min[1][0], r.min[2][0]),
+                    glm::vec3(r.min[0][1], r.min[1][1], r.min[2][1]));
+      hi = glm::max(glm::vec3(r.max[0][0], r.max[1][0], r.max[2][0]),
+                    glm::vec3(r.max[0][1], r.max[1][1], r.max[2][1]));
     }
+    const gpu::Box b = {glm::vec4(lo, 0.0f), glm::vec4(hi, 0.0f)};
+    if (n.mesh == gpu::kBvhInternal) area += collision::box_area(b);
     boxes_[i] = b;
+    if (slots_[i] != gpu::kBvhInternal) write_slot(child_boxes_.data(), slots_[i], lo, hi);
   }
   return area;
 }
@@ -98,6 +160,9 @@ void BvhTrees::refit_top(std::uint32_t mesh) {
     const gpu::Box b = {glm::vec4(glm::min(glm::vec3(l.min), glm::vec3(r.min)), 0.0f),
                         glm::vec4(glm::max(glm::vec3(l.max), glm::vec3(r.max)), 0.0f)};
     boxes_[node] = b;
+    if (slots_[node] != gpu::kBvhInternal) {
+      write_slot(child_boxes_.data(), slots_[node], glm::vec3(b.min), glm::vec3(b.max));
+    }
     internal += collision::box_area(b);
   }
   const double root = collision::box_area(boxes_[upkeep_.tree(mesh).root]);
@@ -114,8 +179,11 @@ std::uint32_t BvhTrees::rebuild_degraded(const std::vector<std::uint8_t>& traver
     ratios_[mesh] = upkeep_.built_ratio(mesh);
     ++rebuilt;
   }
-  // A new topology, a new cut.
-  if (rebuilt > 0) cut_trees();
+  // A new topology, a new cut and new records.
+  if (rebuilt > 0) {
+    make_child_boxes();
+    cut_trees();
+  }
   return rebuilt;
 }
 

@@ -13,6 +13,13 @@
 // ratio thus costs no pass of its own (it was 9 % of a bvh pass at 50,000 faces per body), and
 // its bits are collision::bvh_area_ratio's whatever the thread count: the cut does not depend
 // on it, no slot is shared, and the sums are added in one order.
+//
+// For the traversal the refit also writes each node's box into its parent's ChildBoxes record
+// (the same floats as boxes()): an internal node's two children's boxes side by side, one cache
+// line, so that splitting a pair of nodes loads two records where it loaded the two nodes and
+// four boxes elsewhere (issue 14: a third of a one-thread pass was the traversal's loads and
+// branches). A record is written only by the task refitting the child, or by the calling thread
+// for the nodes above the cut.
 
 #include <cstdint>
 #include <vector>
@@ -23,6 +30,20 @@
 #include "deformcd/gpu_layout.h"
 
 namespace deformcd::cpu {
+
+// An internal node as the traversal reads it: its two children's boxes, per axis side by side
+// ([axis][child]), and its children: a leaf as kLeafChild | its global face, an internal node as
+// the index of its own record. 64 bytes, one cache line.
+struct alignas(64) ChildBoxes {
+  float min[3][2];
+  float max[3][2];
+  std::uint32_t child[2];
+  std::uint32_t unused[2];
+};
+static_assert(sizeof(ChildBoxes) == 64);
+
+// ChildBoxes::child of a leaf: this bit and the leaf's face (faces are fewer than 2^31).
+inline constexpr std::uint32_t kLeafChild = 0x80000000u;
 
 class BvhTrees {
  public:
@@ -39,6 +60,10 @@ class BvhTrees {
   [[nodiscard]] const std::vector<gpu::BvhNode>& nodes() const { return upkeep_.nodes(); }
   [[nodiscard]] const std::vector<gpu::Box>& boxes() const { return boxes_; }
   [[nodiscard]] const gpu::BodyBvh& tree(std::uint32_t mesh) const { return upkeep_.tree(mesh); }
+  // One record per internal node (boxes as last refitted), and per node the index of its record
+  // (kBvhInternal for a leaf).
+  [[nodiscard]] const std::vector<ChildBoxes>& child_boxes() const { return child_boxes_; }
+  [[nodiscard]] const std::vector<std::uint32_t>& record_of() const { return record_of_; }
   // The area ratio of `mesh`'s tree as last refitted (or rebuilt), and right after its last
   // build; both collision::bvh_area_ratio's bit for bit.
   [[nodiscard]] double area_ratio(std::uint32_t mesh) const { return ratios_[mesh]; }
@@ -57,7 +82,7 @@ class BvhTrees {
   struct RefitNode {
     std::uint32_t x;     // left child, or corner a
     std::uint32_t y;     // right child, or corner b
-    std::uint32_t z;     // corner c
+    std::uint32_t z;     // corner c, or the internal node's record (ChildBoxes)
     std::uint32_t mesh;  // kBvhInternal for an internal node
   };
 
@@ -68,6 +93,9 @@ class BvhTrees {
   };
 
   void make_refit_nodes(std::uint32_t first, std::uint32_t count);
+  // The records of every internal node, their children and the slots of every node, with the
+  // boxes of boxes_ (on upload and after a rebuild).
+  void make_child_boxes();
   // Cuts every mesh's tree into pieces_ and top_nodes_.
   void cut_trees();
   // collision::refit_bvh over refit_nodes_ (the same boxes, bit for bit); returns the summed
@@ -79,8 +107,13 @@ class BvhTrees {
 
   collision::BvhUpkeep upkeep_;
   std::vector<gpu::Face> faces_;
-  std::vector<RefitNode> refit_nodes_;  // per node
-  std::vector<gpu::Box> boxes_;         // per node
+  std::vector<RefitNode> refit_nodes_;    // per node
+  std::vector<gpu::Box> boxes_;           // per node
+  std::vector<ChildBoxes> child_boxes_;   // per internal node, in the nodes' order
+  std::vector<std::uint32_t> record_of_;  // per node: its record, kBvhInternal for a leaf
+  // Per node: where its box goes in its parent's record (record * 2 + child), kBvhInternal for
+  // a root.
+  std::vector<std::uint32_t> slots_;
   // The cuts of every mesh's tree, mesh after mesh: mesh m's pieces are
   // pieces_[piece_offset_[m], piece_offset_[m + 1]), its top nodes (preorder) likewise.
   std::vector<Piece> pieces_;

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <random>
 #include <sstream>
@@ -451,7 +452,22 @@ struct MissCounts {
   std::int64_t false_positives_outside = 0;  // separation_measure >= kZone
   std::int64_t degenerate = 0;               // a triangle below kTriTriDegenerateTolerance
   std::int64_t degenerate_misses = 0;        // of those, intersecting per CGAL (the contract)
+  std::int64_t geometry_differs = 0;         // tri_tri_intersect from TriangleGeometry differs
 };
+
+bool same_bits(const vec3& x, const vec3& y) {
+  return std::memcmp(&x, &y, sizeof(vec3)) == 0;
+}
+
+// The CPU broad phases' entry (each triangle's geometry made once) against the plain one.
+bool same_result_from_geometry(const Tri& p, const Tri& q) {
+  const TriTriResult plain = tri_tri_intersect(p.data(), q.data());
+  const TriTriResult prepared =
+      tri_tri_intersect(triangle_geometry(p.data()), triangle_geometry(q.data()));
+  return plain.intersect == prepared.intersect && plain.coplanar == prepared.coplanar &&
+         same_bits(plain.segment[0], prepared.segment[0]) &&
+         same_bits(plain.segment[1], prepared.segment[1]);
+}
 
 bool near_degenerate(const Tri& t) {
   const vec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
@@ -477,6 +493,10 @@ void compare_no_miss(const Pair& pair, const std::string& name, MissCounts& k) {
   k.degenerate += degenerate ? 1 : 0;
   const bool exact = CGAL::do_intersect(cp, cq);
   const bool ours = tri_tri_intersect(pair[0].data(), pair[1].data()).intersect;
+  if (!same_result_from_geometry(pair[0], pair[1]) && ++k.geometry_differs <= 5) {
+    ADD_FAILURE() << name << ": the result from TriangleGeometry differs, pair"
+                  << test::describe_pair(pair[0], pair[1]);
+  }
   k.exact += exact ? 1 : 0;
   if (exact && !ours && degenerate) {
     ++k.degenerate_misses;
@@ -535,6 +555,7 @@ TEST(TriTriAgainstCgal, NoMissedPair) {
     all.false_negatives += k.false_negatives;
     all.false_positives += k.false_positives;
     all.false_positives_outside += k.false_positives_outside;
+    all.geometry_differs += k.geometry_differs;
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -543,6 +564,7 @@ TEST(TriTriAgainstCgal, NoMissedPair) {
             << " (outside the zone " << all.false_positives_outside << ")\n";
   EXPECT_EQ(all.false_negatives, 0);
   EXPECT_EQ(all.false_positives_outside, 0);
+  EXPECT_EQ(all.geometry_differs, 0);
 }
 
 }  // namespace

@@ -1,10 +1,13 @@
 #include "core/collision/tri_tri_intersection.h"
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
+
+#include "core/collision/tri_tri_primitives.h"
 
 namespace deformcd::collision {
 namespace {
@@ -206,6 +209,54 @@ TEST(TriTriIntersect, IsSymmetricInItsArguments) {
   }
   EXPECT_GT(intersecting, 500);  // the sample exercises both answers
   EXPECT_LT(intersecting, 4500);
+}
+
+// The entry the CPU broad phases use (each triangle's geometry made once per pass) gives the
+// plain test's result bit for bit: random pairs, coplanar ones, degenerate ones, both orders.
+TEST(TriTriIntersect, FromTriangleGeometryGivesTheSameBits) {
+  std::mt19937 rng(271828);
+  std::uniform_real_distribution<float> coord(-1.0f, 1.0f);
+  const auto same = [](const vec3& x, const vec3& y) {
+    return std::memcmp(&x, &y, sizeof(vec3)) == 0;
+  };
+  int intersecting = 0;
+  for (int n = 0; n < 20000; ++n) {
+    Tri p;
+    Tri q;
+    for (int i = 0; i < 3; ++i) {
+      p.v[i] = vec3(coord(rng), coord(rng), coord(rng));
+      q.v[i] = vec3(coord(rng), coord(rng), coord(rng));
+    }
+    if (n % 4 == 1) {  // coplanar: both in z = p's first z
+      for (int i = 0; i < 3; ++i)
+        q.v[i].z = p.v[i].z = p.v[0].z;
+    } else if (n % 4 == 2) {  // p degenerate (its third vertex on its first edge) or nearly
+      p.v[2] = p.v[0] + (p.v[1] - p.v[0]) * 0.25f + vec3(0.0f, 0.0f, n % 8 == 2 ? 0.0f : 1e-5f);
+    } else if (n % 4 == 3) {  // q shares p's vertex 0 and nearly its plane
+      q.v[0] = p.v[0];
+    }
+    for (int order = 0; order < 2; ++order) {
+      const Tri& a = order == 0 ? p : q;
+      const Tri& b = order == 0 ? q : p;
+      const TriTriResult plain = intersect(a, b);
+      const TriTriResult prepared =
+          tri_tri_intersect(triangle_geometry(a.v), triangle_geometry(b.v));
+      ASSERT_EQ(plain.intersect, prepared.intersect) << n;
+      ASSERT_EQ(plain.coplanar, prepared.coplanar) << n;
+      ASSERT_TRUE(same(plain.segment[0], prepared.segment[0])) << n;
+      ASSERT_TRUE(same(plain.segment[1], prepared.segment[1])) << n;
+      if (detail::boxes_touch(a.v, b.v)) {  // the bvh's entry, for boxes known to touch
+        const TriTriResult touching =
+            tri_tri_intersect_touching(triangle_geometry(a.v), triangle_geometry(b.v));
+        ASSERT_EQ(plain.intersect, touching.intersect) << n;
+        ASSERT_EQ(plain.coplanar, touching.coplanar) << n;
+        ASSERT_TRUE(same(plain.segment[0], touching.segment[0])) << n;
+        ASSERT_TRUE(same(plain.segment[1], touching.segment[1])) << n;
+      }
+      intersecting += plain.intersect ? 1 : 0;
+    }
+  }
+  EXPECT_GT(intersecting, 4000);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "collision/tri_tri_plane_step.h"
 #include "collision/tri_tri_primitives.h"
 
 // Tolerances and the uncertain zone. Nothing is compared with an absolute epsilon: every
@@ -233,62 +234,14 @@ bool slab_part_meets_triangle(const glm::vec3 s[3], const glm::vec3 t[3], const 
   return meet;
 }
 
-}  // namespace
-
-TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]) {
+// The test once both triangles are proper and b is not wholly on one side of a's plane: a, b in
+// canonical order, their normals (n), lengths, unit normals (u), longest edges squared (l2), the
+// pair's size, b's plane tolerance and b's snapped distances to a's plane.
+TriTriResult finish_intersect(const glm::vec3 a[3], const glm::vec3 b[3], const glm::vec3& na,
+                              float na_len, const glm::vec3& ua, float la2, const glm::vec3& nb,
+                              float nb_len, const glm::vec3& ub, float lb2, float size, float tol_b,
+                              const float db[3]) {
   TriTriResult result;
-  // Triangles whose bounding boxes are apart cannot meet. The test is exact, so it rejects no
-  // true contact, only uncertain-zone answers for pairs that are provably apart; and it makes
-  // the answer consistent with broad phases that cull by exact bounding boxes (octree leaf
-  // boxes are min/max of the same floats): any pair reported here has touching leaf boxes, so
-  // every such broad phase returns exactly the pairs that testing all pairs returns.
-  if (!boxes_touch(p, q)) return result;
-  // Symmetry: process the pair in a canonical order (lexicographic on the 9 coordinates), so
-  // that f(p, q) and f(q, p) run the same float operations and return the same result.
-  bool swap = false;
-  bool decided = false;
-  for (int k = 0; k < 3; ++k) {
-    for (int c = 0; c < 3; ++c) {
-      if (!decided && p[k][c] != q[k][c]) {
-        swap = q[k][c] < p[k][c];
-        decided = true;
-      }
-    }
-  }
-  glm::vec3 a[3];
-  glm::vec3 b[3];
-  for (int i = 0; i < 3; ++i) {
-    a[i] = swap ? q[i] : p[i];
-    b[i] = swap ? p[i] : q[i];
-  }
-
-  // Degenerate triangles have no plane: no intersection (this also covers zero-length edges,
-  // where both sides are 0, so nothing below divides by zero). The contract of the public API
-  // (a degenerate triangle intersects nothing; its neighbours in a surface report the contact).
-  const float la2 = longest_edge2(a);
-  const float lb2 = longest_edge2(b);
-  const glm::vec3 na = glm::cross(a[1] - a[0], a[2] - a[0]);
-  const float na_len = glm::length(na);
-  if (!(na_len > kTriTriDegenerateTolerance * la2)) return result;
-  const float size = std::sqrt(std::max(la2, lb2));
-  const glm::vec3 ua = na / na_len;
-
-  // Signed distances of each triangle's vertices to the other's plane, snapped to the plane
-  // within the tolerance above (divided by |n|, since the normals here are unit).
-  const float tol_a = (kTriTriTolerance + kTriTriRoundoff * la2 / na_len) * size;
-  float db[3];
-  for (int i = 0; i < 3; ++i)
-    db[i] = snap_to_zero(glm::dot(ua, b[i] - a[0]), tol_a);
-  // b wholly on one side of a's plane, every vertex beyond the tolerance: apart on the exact
-  // coordinates too (the tolerance holds the rounding of the distances), whatever b's plane.
-  // Decided before b's plane is computed: the most common answer on the candidates of a broad
-  // phase (42 % of the tests on bench_peers' contact frames).
-  if (same_strict_side(db)) return result;
-  const glm::vec3 nb = glm::cross(b[1] - b[0], b[2] - b[0]);
-  const float nb_len = glm::length(nb);
-  if (!(nb_len > kTriTriDegenerateTolerance * lb2)) return result;
-  const glm::vec3 ub = nb / nb_len;
-  const float tol_b = (kTriTriTolerance + kTriTriRoundoff * lb2 / nb_len) * size;
   float da[3];
   for (int i = 0; i < 3; ++i)
     da[i] = snap_to_zero(glm::dot(ub, a[i] - b[0]), tol_b);
@@ -366,6 +319,103 @@ TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]) {
   result.segment[0] = contact;
   result.segment[1] = contact;
   return result;
+}
+
+}  // namespace
+
+TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]) {
+  TriTriResult result;
+  // Triangles whose bounding boxes are apart cannot meet. The test is exact, so it rejects no
+  // true contact, only uncertain-zone answers for pairs that are provably apart; and it makes
+  // the answer consistent with broad phases that cull by exact bounding boxes (octree leaf
+  // boxes are min/max of the same floats): any pair reported here has touching leaf boxes, so
+  // every such broad phase returns exactly the pairs that testing all pairs returns.
+  if (!boxes_touch(p, q)) return result;
+  // Symmetry: process the pair in a canonical order (lexicographic on the 9 coordinates), so
+  // that f(p, q) and f(q, p) run the same float operations and return the same result.
+  bool swap = false;
+  bool decided = false;
+  for (int k = 0; k < 3; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      if (!decided && p[k][c] != q[k][c]) {
+        swap = q[k][c] < p[k][c];
+        decided = true;
+      }
+    }
+  }
+  glm::vec3 a[3];
+  glm::vec3 b[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = swap ? q[i] : p[i];
+    b[i] = swap ? p[i] : q[i];
+  }
+
+  // Degenerate triangles have no plane: no intersection (this also covers zero-length edges,
+  // where both sides are 0, so nothing below divides by zero). The contract of the public API
+  // (a degenerate triangle intersects nothing; its neighbours in a surface report the contact).
+  const float la2 = longest_edge2(a);
+  const float lb2 = longest_edge2(b);
+  const glm::vec3 na = glm::cross(a[1] - a[0], a[2] - a[0]);
+  const float na_len = glm::length(na);
+  if (!(na_len > kTriTriDegenerateTolerance * la2)) return result;
+  const float size = std::sqrt(std::max(la2, lb2));
+  const glm::vec3 ua = na / na_len;
+
+  // Signed distances of each triangle's vertices to the other's plane, snapped to the plane
+  // within the tolerance above (divided by |n|, since the normals here are unit).
+  const float tol_a = (kTriTriTolerance + kTriTriRoundoff * la2 / na_len) * size;
+  float db[3];
+  for (int i = 0; i < 3; ++i)
+    db[i] = snap_to_zero(glm::dot(ua, b[i] - a[0]), tol_a);
+  // b wholly on one side of a's plane, every vertex beyond the tolerance: apart on the exact
+  // coordinates too (the tolerance holds the rounding of the distances), whatever b's plane.
+  // Decided before b's plane is computed: the most common answer on the candidates of a broad
+  // phase (42 % of the tests on bench_peers' contact frames).
+  if (same_strict_side(db)) return result;
+  const glm::vec3 nb = glm::cross(b[1] - b[0], b[2] - b[0]);
+  const float nb_len = glm::length(nb);
+  if (!(nb_len > kTriTriDegenerateTolerance * lb2)) return result;
+  const glm::vec3 ub = nb / nb_len;
+  const float tol_b = (kTriTriTolerance + kTriTriRoundoff * lb2 / nb_len) * size;
+  return finish_intersect(a, b, na, na_len, ua, la2, nb, nb_len, ub, lb2, size, tol_b, db);
+}
+
+TriangleGeometry triangle_geometry(const glm::vec3 t[3]) {
+  // tri_tri_intersect's expressions for a (and b), one by one.
+  TriangleGeometry g;
+  for (int i = 0; i < 3; ++i)
+    g.v[i] = t[i];
+  g.l2 = longest_edge2(t);
+  g.n = glm::cross(t[1] - t[0], t[2] - t[0]);
+  g.n_len = glm::length(g.n);
+  g.edge = std::sqrt(g.l2);
+  g.proper = g.n_len > kTriTriDegenerateTolerance * g.l2;
+  g.u = g.proper ? g.n / g.n_len : glm::vec3(0.0f);
+  g.rel_tol = g.proper ? kTriTriTolerance + kTriTriRoundoff * g.l2 / g.n_len : 0.0f;
+  return g;
+}
+
+TriTriResult tri_tri_intersect(const TriangleGeometry& p, const TriangleGeometry& q) {
+  if (!boxes_touch(p.v, q.v)) return {};
+  return tri_tri_intersect_touching(p, q);
+}
+
+TriTriResult tri_tri_intersect_touching(const TriangleGeometry& p, const TriangleGeometry& q) {
+  // tri_tri_intersect(p.v, q.v) step by step after its box test, with each triangle's own values
+  // read from its geometry (tri_tri_plane_step.h). The pair's size there is sqrt(max(la2, lb2)),
+  // here max(sqrt(la2), sqrt(lb2)): the same float, since a correctly rounded square root is
+  // monotonic. Its early answers are all "no intersection", so taking them together changes no
+  // result.
+  TriTriPlaneStep step;
+  if (!tri_tri_plane_step(p, q, step)) return {};
+  return tri_tri_finish(step);
+}
+
+TriTriResult tri_tri_finish(const TriTriPlaneStep& step) {
+  const TriangleGeometry& a = *step.a;
+  const TriangleGeometry& b = *step.b;
+  return finish_intersect(a.v, b.v, a.n, a.n_len, a.u, a.l2, b.n, b.n_len, b.u, b.l2, step.size,
+                          b.rel_tol * step.size, step.db);
 }
 
 }  // namespace deformcd::collision

@@ -43,4 +43,29 @@ struct TriTriResult {
 /// tri_tri_intersect(q, p) return the same result, segment included.
 TriTriResult tri_tri_intersect(const glm::vec3 p[3], const glm::vec3 q[3]);
 
+/// What tri_tri_intersect computes of each triangle on its own, by the same float operations.
+/// A caller that tests one triangle against several (a broad phase's candidates: about three
+/// tests per face in contact on bench_peers' frames) makes it once per triangle and pass.
+struct TriangleGeometry {
+  glm::vec3 v[3];
+  glm::vec3 n;    ///< cross(v[1] - v[0], v[2] - v[0])
+  glm::vec3 u;    ///< n / |n|, zero for a degenerate triangle
+  float l2;       ///< the longest edge, squared
+  float n_len;    ///< |n|
+  float edge;     ///< sqrt(l2)
+  float rel_tol;  ///< kTriTriTolerance + kTriTriRoundoff x l2 / |n|: the plane tolerance / size
+  bool proper;    ///< not degenerate: |n| > kTriTriDegenerateTolerance x l2
+};
+
+/// The geometry of triangle t (vertices in the order given).
+TriangleGeometry triangle_geometry(const glm::vec3 t[3]);
+
+/// tri_tri_intersect(p.v, q.v), bit for bit, from the triangles' geometry.
+TriTriResult tri_tri_intersect(const TriangleGeometry& p, const TriangleGeometry& q);
+
+/// The same for triangles whose bounding boxes are known to touch (detail::boxes_touch, as a
+/// BVH's leaf boxes, the min/max of the same floats, are when they overlap): its first test
+/// skipped.
+TriTriResult tri_tri_intersect_touching(const TriangleGeometry& p, const TriangleGeometry& q);
+
 }  // namespace deformcd::collision
