@@ -42,7 +42,8 @@ class ContactResponse {
   [[nodiscard]] const ResponseCounts& counts() const { return counts_; }
 
  private:
-  [[nodiscard]] std::vector<glm::vec4> node_motion();
+  /// Each node's path velocity and reach over a search window of `window` seconds.
+  [[nodiscard]] std::vector<glm::vec4> node_motion(float window);
   void search();
   /// A self-contact pair's thickness: the body's, or half the pair's distance in the pose the
   /// body was given in (its rest shape), whichever is less.
@@ -65,6 +66,8 @@ class ContactResponse {
   Detector* detector_ = nullptr;        // of the frame
   std::vector<Contact> intersections_;  // of the frame
   float elapsed_ = 0.0f;                // since the window began
+  float frame_time_ = 0.0f;             // since the frame began
+  float since_search_ = 0.0f;           // since the last search (across frames)
   ResponseCounts counts_;
 };
 

@@ -50,7 +50,7 @@ SceneWorld open_scene(const std::string& name, int frames, int threads = 0) {
 
 // Steps `frames` frames, expecting no intersecting face pair after any of them (the exact
 // detector), and calls each_frame() after each; returns the proximity constraints (vertex-face
-// and edge-edge) of all the frames' searches.
+// and edge-edge) of each frame's last search, summed.
 template <class EachFrame>
 std::uint64_t step_without_intersections(World& world, int frames, const EachFrame& each_frame) {
   std::uint64_t constraints = 0;
@@ -144,7 +144,8 @@ TEST(ContactResponse, FoldingPlateNeverIntersectsItself) {
   constexpr int kFrames = 120;
   SceneWorld s = open_scene("fold_response", kFrames);
   const std::uint64_t constraints = step_without_intersections(*s.world, kFrames, [] {});
-  EXPECT_GT(constraints, 100000u) << "the halves should have met";
+  // About 200 through frame 10, before the flaps meet; about 46,000 over the run.
+  EXPECT_GT(constraints, 10000u) << "the halves should have met";
   RecordProperty("self_contact_constraints", std::to_string(constraints));
 }
 
