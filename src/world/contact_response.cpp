@@ -172,10 +172,10 @@ std::vector<glm::vec4> ContactResponse::node_motion(float window) {
   if (state == nullptr) simulation_.download_velocities(velocities_);
   const std::vector<glm::vec4>& v = state != nullptr ? state->velocities : velocities_;
   if (last_velocities_.size() != v.size()) last_velocities_ = v;
-  // A node's velocity changed by |dv| since the last search, since_search_ ago: at that rate
-  // (|dv| x change_rate), over the window its deviation from the straight path grows to
-  // 1/2 rate window^2.
-  const float change_rate = 1.0f / std::max(since_search_, window);
+  // A node's velocity changed by |dv| since the last search, elapsed_ ago (the last window's
+  // time, not yet reset): at that rate (|dv| x change_rate), over the window its deviation from
+  // the straight path grows to 1/2 rate window^2.
+  const float change_rate = 1.0f / std::max(elapsed_, window);
   std::vector<glm::vec4> motion(node_body_.size());
   for (std::size_t b = 0; b < objects_.size(); ++b) {
     const gpu::ObjectInfo& o = objects_[b];
@@ -220,7 +220,6 @@ void ContactResponse::begin_frame(Detector& detector, std::vector<Contact> inter
 void ContactResponse::search() {
   Detector& detector = *detector_;
   const std::vector<Contact>& intersections = intersections_;
-  elapsed_ = 0.0f;
   const std::uint64_t searches = counts_.searches + 1u;
   response::FrameConstraints c;
   // The window ends with the frame, since the next begin_frame() searches anyway: a search that
@@ -229,7 +228,7 @@ void ContactResponse::search() {
   // the results did not change).
   const float window = step_.dt - frame_time_;
   c.node_motion = node_motion(window);
-  since_search_ = 0.0f;
+  elapsed_ = 0.0f;
   // The detector's vertices are the surface nodes, in node order, body after body; the search
   // window lasts at most a frame. A vertex's search reach is its body's half of the thickness
   // plus its node's reach (interior nodes, on no surface, are not the detector's vertices'
@@ -297,7 +296,6 @@ void ContactResponse::search() {
 void ContactResponse::project(float h, bool more_substeps) {
   elapsed_ += h;
   frame_time_ += h;
-  since_search_ += h;
   response::ContactConstants k{};
   k.h = h;
   k.elapsed = elapsed_;

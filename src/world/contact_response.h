@@ -65,9 +65,8 @@ class ContactResponse {
   float max_untangle_step_ = 0.0f;
   Detector* detector_ = nullptr;        // of the frame
   std::vector<Contact> intersections_;  // of the frame
-  float elapsed_ = 0.0f;                // since the window began
+  float elapsed_ = 0.0f;                // since the window began (the last search)
   float frame_time_ = 0.0f;             // since the frame began
-  float since_search_ = 0.0f;           // since the last search (across frames)
   ResponseCounts counts_;
 };
 
