@@ -239,7 +239,7 @@ inline constexpr std::uint32_t kContactEdgeEdge = 1;
 /// through that face's plane (untangling from the exact intersection list).
 inline constexpr std::uint32_t kContactUntangle = 2;
 
-/// 32 bytes. One contact constraint (global node indices): kContactVertexFace and
+/// 48 bytes. One contact constraint (global node indices): kContactVertexFace and
 /// kContactUntangle: vertex, face a, b, c; kContactEdgeEdge: edge (a0, a1), edge (b0, b1).
 struct ContactPair {
   std::uint32_t nodes[4];
@@ -251,8 +251,16 @@ struct ContactPair {
   /// m/s: the most the nodes' straight paths (their velocities where the window starts) can
   /// close of the distance per second (collision::closing_speed).
   float closing_speed;
+  /// kContactVertexFace: 1 when the vertex was in front of the face (on its outward side) where
+  /// the window starts, else 0. Only a vertex that started in front is held off the face; one
+  /// that started behind it is on the far side of a thin part, or inside the body (where the
+  /// untangling constraints take it out). 0 for other kinds.
+  float side;
+  float pad0;
+  float pad1;
+  float pad2;
 };
-static_assert(sizeof(ContactPair) == 32);
+static_assert(sizeof(ContactPair) == 48);
 static_assert(offsetof(ContactPair, kind) == 16);
 
 /// 32 bytes. Per-body parameters of the mass-spring step.

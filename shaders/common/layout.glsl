@@ -112,7 +112,7 @@ struct ObjectInfo {
 #define CONTACT_EDGE_EDGE 1u    // two edges, apart along the line of their closest points
 #define CONTACT_UNTANGLE 2u     // vertex of an intersecting face, out through the other's plane
 
-// 32 bytes. One contact constraint (global node indices): vertex, face a, b, c (vertex-face,
+// 48 bytes. One contact constraint (global node indices): vertex, face a, b, c (vertex-face,
 // untangle) or edge (a0, a1), edge (b0, b1) (edge-edge).
 struct ContactPair {
   uvec4 nodes;
@@ -120,6 +120,10 @@ struct ContactPair {
   float thickness;      // m: the distance the constraint keeps
   float gap;            // m: distance less thickness at the window's start (-inf: untangle)
   float closing_speed;  // m/s: how fast the nodes' straight paths can close the distance
+  float side;           // vertex-face: 1 when the vertex started the window in front of the face
+  float pad0;
+  float pad1;
+  float pad2;
 };
 
 // 32 bytes. Per-body parameters of the mass-spring step.

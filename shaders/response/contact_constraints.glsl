@@ -86,9 +86,10 @@ bool contact_geometry(ContactPair pair, vec3 x[4], out vec3 n, out float b[4], o
   n = unit;
   precise float height = exact_dot(x[0] - x[1], unit);
   if (pair.kind == CONTACT_VERTEX_FACE) {
-    // Only where the vertex lies over the face, and not deeper behind it than the thickness.
+    // Only where the vertex lies over the face, started the window in front of it, and is not
+    // deeper behind it than the thickness.
     if (uvw.x < 0.0 || uvw.y < 0.0 || uvw.z < 0.0) return false;
-    if (height < -pair.thickness) return false;
+    if (!(pair.side > 0.0) || height < -pair.thickness) return false;
   } else {
     // Untangling (CONTACT_UNTANGLE): weights clamped into the face.
     precise vec3 clamped = vec3(distance_clamp(uvw.x, 0.0, 1.0), distance_clamp(uvw.y, 0.0, 1.0),

@@ -123,6 +123,10 @@ void main() {
   contact_pairs[i].thickness = probef(i, 5u);
   contact_pairs[i].gap = probef(i, 6u);
   contact_pairs[i].closing_speed = probef(i, 7u);
+  contact_pairs[i].side = probef(i, 8u);
+  contact_pairs[i].pad0 = probef(i, 9u);
+  contact_pairs[i].pad1 = probef(i, 10u);
+  contact_pairs[i].pad2 = probef(i, 11u);
 
   if (i == 0u) {
     bindings[0] = BINDING_NODE_POSITION;

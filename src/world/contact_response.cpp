@@ -243,6 +243,10 @@ void ContactResponse::search() {
   counts_ = {};
   counts_.searches = searches;
   const TangledPrimitives tangled(intersections, objects_);
+  // The positions now, for the side each vertex-face pair's vertex starts on.
+  const SimulationState* state = simulation_.host_state();
+  if (state == nullptr) simulation_.download_positions(positions_);
+  const std::vector<glm::vec4>& x = state != nullptr ? state->positions : positions_;
   for (const ProximityPair& p : detector.find_proximity(reach, motion)) {
     gpu::ContactPair pair{};
     const std::uint32_t first_a = objects_[p.mesh_a].node_offset;
@@ -261,6 +265,11 @@ void ContactResponse::search() {
         glm::vec3(c.node_motion[pair.nodes[0]]), glm::vec3(c.node_motion[pair.nodes[1]]),
         glm::vec3(c.node_motion[pair.nodes[2]]), glm::vec3(c.node_motion[pair.nodes[3]])};
     pair.closing_speed = collision::closing_speed(pair.kind, velocity);
+    if (!edges) {
+      const glm::vec3 corners[4] = {glm::vec3(x[pair.nodes[0]]), glm::vec3(x[pair.nodes[1]]),
+                                    glm::vec3(x[pair.nodes[2]]), glm::vec3(x[pair.nodes[3]])};
+      pair.side = response::vertex_face_side(corners);
+    }
     c.pairs.push_back(pair);
     ++(edges ? counts_.edge_edge : counts_.vertex_face);
   }

@@ -61,6 +61,7 @@ class ContactResponse {
   std::vector<float> thickness_;            // per body
   std::vector<float> mean_edge_;            // per body, surface
   std::vector<glm::vec4> velocities_;       // read back from a GL simulation
+  std::vector<glm::vec4> positions_;        // read back from a GL simulation
   std::vector<glm::vec4> last_velocities_;  // per node, at the last search
   float max_untangle_step_ = 0.0f;
   Detector* detector_ = nullptr;        // of the frame

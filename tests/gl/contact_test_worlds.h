@@ -78,6 +78,7 @@ struct HandMadeContacts {
 /// that none disturbs another (except where sharing is the point). Thickness 0.01 m.
 inline HandMadeContacts hand_made_contacts() {
   constexpr float kThickness = 0.01f;
+  constexpr std::uint32_t kVertexFaceFromBehind = 100u;  // a vf pair with side 0
   HandMadeContacts out;
   std::vector<glm::vec4> x, v;
   std::vector<std::uint32_t> body;
@@ -100,7 +101,9 @@ inline HandMadeContacts hand_made_contacts() {
       gpu::ContactPair p{};
       for (int k = 0; k < 4; ++k)
         p.nodes[k] = first + local[k];
-      p.kind = kind;
+      // kVertexFaceFromBehind: a vertex-face constraint whose vertex started behind the face.
+      p.kind = kind == kVertexFaceFromBehind ? gpu::kContactVertexFace : kind;
+      p.side = kind == gpu::kContactVertexFace ? 1.0f : 0.0f;
       p.thickness = kThickness;
       out.constraints.pairs.push_back(p);
     }
@@ -121,6 +124,8 @@ inline HandMadeContacts hand_made_contacts() {
       {{vf, v_on_f}}, true);
   add("vertex-face, below deeper than the thickness", {{0.0f, 0.0f, -0.03f}, f0, f1, f2}, free4, {},
       {{vf, v_on_f}}, false);
+  add("vertex-face, below within the thickness, started behind",
+      {{0.0f, -0.02f, -0.006f}, f0, f1, f2}, free4, {}, {{kVertexFaceFromBehind, v_on_f}}, false);
   add("vertex-face, beside the face", {{0.3f, 0.0f, 0.002f}, f0, f1, f2}, free4, {}, {{vf, v_on_f}},
       false);
   add("vertex-face, degenerate (collinear) face",
@@ -222,6 +227,8 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes,
       pair.nodes[k] = n;
     }
     pair.kind = p % 3u;
+    // Most vertex-face constraints started in front of their faces, some behind.
+    if (pair.kind == gpu::kContactVertexFace) pair.side = unit(rng) < 0.8f ? 1.0f : 0.0f;
     pair.thickness = 0.005f + 0.03f * unit(rng);
     out.constraints.pairs.push_back(pair);
   }

@@ -193,6 +193,8 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
     EXPECT_EQ(cp.thickness, probef(i, 5));
     EXPECT_EQ(cp.gap, probef(i, 6));
     EXPECT_EQ(cp.closing_speed, probef(i, 7));
+    EXPECT_EQ(cp.side, probef(i, 8));
+    EXPECT_EQ(cp.pad2, probef(i, 11));
   }
 }
 
