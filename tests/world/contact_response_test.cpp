@@ -35,10 +35,13 @@ struct SceneWorld {
   std::unique_ptr<World> world;
 };
 
-SceneWorld open_scene(const std::string& name, int frames, int threads = 0) {
+// `shear` (0: none) shears the first body's start, x += shear y on each of its nodes.
+SceneWorld open_scene(const std::string& name, int frames, int threads = 0, float shear = 0.0f) {
   const Scene scene = read_scene(fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (name + ".json"));
   SceneWorld out;
   out.bodies = make_scene_bodies(scene, read_tetgen, frames);
+  for (glm::vec4& x : out.bodies[0].body.positions)
+    x.x += shear * x.y;
   WorldOptions options;
   options.backend = BackendKind::kCpu;
   options.cpu_threads = threads;
@@ -152,15 +155,8 @@ TEST(ContactResponse, ImpactStaysApartFromPerturbedStarts) {
   constexpr int kFrames = 60;  // the contact begins at frame 15; the bodies part by frame 60
   for (const float shear : shears) {
     SCOPED_TRACE("shear " + std::to_string(shear));
-    const Scene scene = read_scene(fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / "impact.json");
-    std::vector<BodyInit> bodies = make_scene_bodies(scene, read_tetgen, kFrames);
-    for (glm::vec4& x : bodies[0].body.positions)
-      x.x += shear * x.y;
-    WorldOptions options;
-    options.backend = BackendKind::kCpu;
-    options.response = scene.response;
-    World world(bodies, step_settings(scene.settings), options);
-    const std::uint64_t constraints = step_without_intersections(world, kFrames, [] {});
+    SceneWorld s = open_scene("impact", kFrames, 0, shear);
+    const std::uint64_t constraints = step_without_intersections(*s.world, kFrames, [] {});
     EXPECT_GT(constraints, 1000u) << "the bodies should have met";
   }
 }
