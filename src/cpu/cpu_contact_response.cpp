@@ -29,8 +29,6 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
 bool CpuContactResponse::project(const response::ContactConstants& k, int iterations) {
   std::atomic<bool> strayed{false};  // an OR: the same whatever the order
   const std::vector<gpu::ContactPair>& pairs = constraints_.pairs;
-  const std::uint32_t* offset = constraints_.node_offset.data();
-  const std::uint32_t* list = constraints_.node_list.data();
   const std::size_t nodes = state_.positions.size();
   executor_->run([&] {
     // Deviation pass, activity pass (only awake constraints look at their geometry), count,
@@ -66,8 +64,22 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       for (const std::uint32_t n : pairs[p].nodes)
         ++counts_[n];
     touched_.clear();
-    for (std::uint32_t i = 0; i < nodes; ++i)
+    active_offset_.resize(nodes + 1u);
+    std::uint32_t slots = 0;
+    for (std::uint32_t i = 0; i < nodes; ++i) {
+      active_offset_[i] = slots;
+      slots += counts_[i];
       if (counts_[i] != 0u) touched_.push_back(i);
+    }
+    active_offset_[nodes] = slots;
+    // Each node's active slots, ascending (constraints in order, corners in order): its list's
+    // order without the inactive slots, so the sums are the GL node pass's, without walking
+    // the slots of the many candidates that do not act.
+    active_slots_.resize(slots);
+    cursor_.assign(active_offset_.begin(), active_offset_.end() - 1);
+    for (const std::uint32_t p : acting_)
+      for (std::uint32_t corner = 0; corner < 4u; ++corner)
+        active_slots_[cursor_[pairs[p].nodes[corner]]++] = 4u * p + corner;
     for (int iteration = 0; iteration < iterations; ++iteration) {
       parallel_for(
           acting_.size(),
@@ -88,8 +100,9 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       const auto node_pass = [&](std::uint32_t i) {
         glm::vec3 dx(0.0f), dv(0.0f);
         if (counts_[i] != 0u) {
-          response::gather_correction(list, offset[i], offset[i + 1], active_.data(),
-                                      corrections_.data(), dx, dv);
+          response::gather_correction(active_slots_.data(), active_offset_[i],
+                                      active_offset_[i + 1], active_.data(), corrections_.data(),
+                                      dx, dv);
         }
         if (response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv,
                                        frame_start_[i], constraints_.node_motion[i], k.elapsed) &&
