@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <utility>
 
 #include "parallel_for.h"
 
@@ -10,13 +11,14 @@ namespace deformcd::cpu {
 CpuContactResponse::CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor)
     : state_(state), executor_(std::move(executor)) {}
 
-void CpuContactResponse::begin_frame(const response::FrameConstraints& constraints) {
-  constraints_ = constraints;
+void CpuContactResponse::begin_frame(response::FrameConstraints constraints) {
+  constraints_ = std::move(constraints);
   const std::size_t nodes = state_.positions.size();
   frame_start_.resize(nodes);
   deviation_.assign(nodes, 0.0f);
   counts_.assign(nodes, 0u);
-  corrections_.assign(8u * constraints_.pairs.size(), glm::vec4(0.0f));
+  // Not cleared: a projection writes every slot of the constraints it solves and reads no other.
+  corrections_.resize(8u * constraints_.pairs.size());
   active_.assign(constraints_.pairs.size(), 0u);
   acting_.clear();
   executor_->run([&] {

@@ -23,7 +23,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   /// Corrects `state` (a CPU simulation's, which must outlive this) on `executor`'s threads.
   CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor);
 
-  void begin_frame(const response::FrameConstraints& constraints) override;
+  void begin_frame(response::FrameConstraints constraints) override;
   [[nodiscard]] bool project(const response::ContactConstants& constants, int iterations) override;
 
  private:

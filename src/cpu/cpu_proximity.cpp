@@ -57,44 +57,52 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
       const gpu::MeshInfo& mesh_a = data_.meshes[pair.a];
       const gpu::BodyBvh& tree_b = upkeep_.tree(pair.b);
       const bool self = pair.a == pair.b;
-      std::vector<std::vector<collision::ProximityCandidate>> per_face(mesh_a.face_count);
-      std::vector<std::vector<float>> per_face_distance(mesh_a.face_count);
+      // Fixed chunks of faces, each with its own lists, joined in chunk order: the order does
+      // not depend on the schedule, and a face costs no allocation of its own.
+      constexpr std::size_t kChunk = 64;
+      const std::size_t chunks = (mesh_a.face_count + kChunk - 1) / kChunk;
+      std::vector<std::vector<collision::ProximityCandidate>> per_chunk(chunks);
+      std::vector<std::vector<float>> per_chunk_distance(chunks);
       parallel_for(
-          mesh_a.face_count,
-          [&](std::size_t i) {
-            const std::uint32_t index_a = mesh_a.face_offset + static_cast<std::uint32_t>(i);
-            const gpu::Face& fa = data_.faces[index_a];
-            glm::vec3 xa[6];
-            float corner[3];
-            collision::swept_face_vertices(positions, motion, fa, xa);
-            const gpu::Box query =
-                collision::reach_box(xa, 6u, collision::face_reaches(reach, fa, corner));
-            auto& out = per_face[i];
-            auto& out_distance = per_face_distance[i];
-            // Within one mesh each face pair once (a face with itself pairs only surface
-            // neighbours, which the emit leaves out).
-            collision::query_bvh(upkeep_.nodes().data(), boxes_.data(), tree_b.root, query,
-                                 [&](std::uint32_t index_b) {
-                                   if (self && index_b <= index_a) return;
-                                   collision::emit_face_pair_candidates(
-                                       positions, motion, reach, fa, index_a, owners_[index_a],
-                                       data_.faces[index_b], index_b, owners_[index_b],
-                                       [&](const collision::ProximityCandidate& c, float distance) {
-                                         out.push_back(c);
-                                         out_distance.push_back(distance);
-                                       });
-                                 });
+          chunks,
+          [&](std::size_t chunk) {
+            auto& out = per_chunk[chunk];
+            auto& out_distance = per_chunk_distance[chunk];
+            const std::size_t end = std::min<std::size_t>((chunk + 1) * kChunk, mesh_a.face_count);
+            for (std::size_t i = chunk * kChunk; i < end; ++i) {
+              const std::uint32_t index_a = mesh_a.face_offset + static_cast<std::uint32_t>(i);
+              const gpu::Face& fa = data_.faces[index_a];
+              glm::vec3 xa[6];
+              float corner[3];
+              collision::swept_face_vertices(positions, motion, fa, xa);
+              const gpu::Box query =
+                  collision::reach_box(xa, 6u, collision::face_reaches(reach, fa, corner));
+              // Within one mesh each face pair once (a face with itself pairs only surface
+              // neighbours, which the emit leaves out).
+              collision::query_bvh(
+                  upkeep_.nodes().data(), boxes_.data(), tree_b.root, query,
+                  [&](std::uint32_t index_b) {
+                    if (self && index_b <= index_a) return;
+                    collision::emit_face_pair_candidates(
+                        positions, motion, reach, fa, index_a, owners_[index_a],
+                        data_.faces[index_b], index_b, owners_[index_b],
+                        [&](const collision::ProximityCandidate& c, float distance) {
+                          out.push_back(c);
+                          out_distance.push_back(distance);
+                        });
+                  });
+            }
           },
-          64);
+          1);
       std::size_t total = all.size();
-      for (const auto& list : per_face)
+      for (const auto& list : per_chunk)
         total += list.size();
       all.reserve(total);
-      for (const auto& list : per_face)
+      for (const auto& list : per_chunk)
         all.insert(all.end(), list.begin(), list.end());
       if (distances != nullptr) {
         distances->reserve(total);
-        for (const auto& list : per_face_distance)
+        for (const auto& list : per_chunk_distance)
           distances->insert(distances->end(), list.begin(), list.end());
       }
     }

@@ -299,7 +299,7 @@ void ContactResponse::search() {
     }
   }
   response::index_constraints_by_node(static_cast<std::uint32_t>(node_body_.size()), c);
-  backend_->begin_frame(c);
+  backend_->begin_frame(std::move(c));
 }
 
 void ContactResponse::project(float h, bool more_substeps) {

@@ -15,9 +15,10 @@ class ResponseBackend {
   ResponseBackend(const ResponseBackend&) = delete;
   ResponseBackend& operator=(const ResponseBackend&) = delete;
 
-  /// Takes a search window's constraints and records the current positions as its start
-  /// (w = the node's reach, node_motion[n].w).
-  virtual void begin_frame(const FrameConstraints& constraints) = 0;
+  /// Takes a search window's constraints (by value: the world moves them in, a backend may keep
+  /// them without a copy) and records the current positions as its start (w = the node's
+  /// reach, node_motion[n].w).
+  virtual void begin_frame(FrameConstraints constraints) = 0;
   /// The projection after a substep, on the current positions and velocities: the deviation,
   /// activity and count passes once, then `iterations` (>= 1) Jacobi projections of the active
   /// constraints, each a solve and a node pass (see contact_constraints.h). Returns whether a

@@ -65,7 +65,7 @@ GlContactResponse::GlContactResponse(const DeviceInfo& device, GlSimulation& sim
       count_("response/contact_count.comp"),
       apply_("response/contact_apply.comp") {}
 
-void GlContactResponse::begin_frame(const response::FrameConstraints& constraints) {
+void GlContactResponse::begin_frame(response::FrameConstraints constraints) {
   // Everything is checked, and every buffer that must grow allocated, before the first change:
   // a failure keeps the previous frame's constraints.
   const SimulationBuffers& sim = simulation_.state_buffers();
