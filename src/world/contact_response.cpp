@@ -150,9 +150,44 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
     }
   }
   max_untangle_step_ = settings.untangle_step * smallest_edge;
+  smallest_edge_ = smallest_edge;
 }
 
-std::vector<glm::vec4> ContactResponse::node_motion(float window) {
+const std::vector<glm::vec4>& ContactResponse::velocities() {
+  const SimulationState* state = simulation_.host_state();
+  if (state != nullptr) return state->velocities;
+  simulation_.download_velocities(velocities_);
+  return velocities_;
+}
+
+int ContactResponse::window_substeps(const std::vector<glm::vec4>& v) const {
+  // The window is as long as the surfaces' relative motion covers at most about a mean edge:
+  // every pair that can close over the window is a candidate, and the candidates (their search
+  // and each substep's activity pass) cost more than searches do, so a fast approach is
+  // searched in short windows. On the impact scene (one thread, 80 frames) that took 12-15 %
+  // off proximity + response against windows to the frame's end, and the stack's 8 %; windows
+  // of half or twice that motion cost 5-10 % more than this one. The relative speed is bounded
+  // by the diagonal of the box of the surface nodes' velocities.
+  const int remaining = step_.substeps - substep_;
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (std::size_t b = 0; b < objects_.size(); ++b) {
+    const gpu::ObjectInfo& o = objects_[b];
+    for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
+      if (on_surface_[i] == 0u) continue;
+      const glm::vec3 velocity = glm::vec3(v[i]) + carry_[b];
+      lo = glm::min(lo, velocity);
+      hi = glm::max(hi, velocity);
+    }
+  }
+  const float relative = glm::length(hi - lo);
+  if (!(relative > 0.0f) || !std::isfinite(relative)) return remaining;
+  const float h = step_.dt / static_cast<float>(step_.substeps);
+  const float span = kWindowEdges * smallest_edge_ / (relative * h);
+  if (!(span < static_cast<float>(remaining))) return remaining;
+  return std::max(1, static_cast<int>(std::ceil(span)));
+}
+
+std::vector<glm::vec4> ContactResponse::node_motion(const std::vector<glm::vec4>& v, float window) {
   // Each node is predicted to go on at its velocity over the window (plus its body's carry
   // velocity) and may stray from that straight path by its reach: a quarter of the thickness
   // of play (the search adds the constraint's half of the thickness to it), what gravity adds
@@ -168,9 +203,6 @@ std::vector<glm::vec4> ContactResponse::node_motion(float window) {
   // ringing or braking nodes from starting a search every few substeps without growing every
   // node's. Nodes on no collision surface never enter a pair: their reach is infinite, so they
   // never start a search.
-  const SimulationState* state = simulation_.host_state();
-  if (state == nullptr) simulation_.download_velocities(velocities_);
-  const std::vector<glm::vec4>& v = state != nullptr ? state->velocities : velocities_;
   if (last_velocities_.size() != v.size()) last_velocities_ = v;
   // A node's velocity changed by |dv| since the last search, elapsed_ ago (the last window's
   // time, not yet reset): at that rate (|dv| x change_rate), over the window its deviation from
@@ -212,6 +244,7 @@ float ContactResponse::self_thickness(const gpu::ContactPair& pair) const {
 void ContactResponse::begin_frame(Detector& detector, std::vector<Contact> intersections) {
   detector_ = &detector;
   frame_time_ = 0.0f;
+  substep_ = 0;
   intersections_ = std::move(intersections);
   counts_ = {};
   search();
@@ -222,12 +255,18 @@ void ContactResponse::search() {
   const std::vector<Contact>& intersections = intersections_;
   const std::uint64_t searches = counts_.searches + 1u;
   response::FrameConstraints c;
-  // The window ends with the frame, since the next begin_frame() searches anyway: a search that
-  // a stray node starts mid-frame sweeps the nodes over the frame's rest, not a whole frame (on
-  // the impact scene the frame's last search kept about 6,500 candidates instead of 29,000, and
-  // the results did not change).
-  const float window = step_.dt - frame_time_;
-  c.node_motion = node_motion(window);
+  // The window ends with the frame at the latest, since the next begin_frame() searches anyway:
+  // a search that a stray node starts mid-frame sweeps the nodes over the frame's rest, not a
+  // whole frame (on the impact scene the frame's last search kept about 6,500 candidates
+  // instead of 29,000, and the results did not change); and earlier when the surfaces move
+  // fast (window_substeps).
+  const std::vector<glm::vec4>& node_velocity = velocities();
+  const int substeps = window_substeps(node_velocity);
+  window_end_ = substep_ + substeps;
+  const float window = window_end_ == step_.substeps ? step_.dt - frame_time_
+                                                     : static_cast<float>(substeps) * step_.dt /
+                                                           static_cast<float>(step_.substeps);
+  c.node_motion = node_motion(node_velocity, window);
   elapsed_ = 0.0f;
   // The detector's vertices are the surface nodes, in node order, body after body; the search
   // window lasts at most a frame. A vertex's search reach is its body's half of the thickness
@@ -313,7 +352,9 @@ void ContactResponse::project(float h, bool more_substeps) {
   k.restitution = settings_.restitution;
   // untangle_step bounds a substep's untangling, whatever the iterations: each takes its share.
   k.max_untangle_step = max_untangle_step_ / static_cast<float>(settings_.iterations);
-  if (backend_->project(k, settings_.iterations) && more_substeps) search();
+  ++substep_;
+  const bool strayed = backend_->project(k, settings_.iterations);
+  if ((strayed || substep_ >= window_end_) && more_substeps) search();
 }
 
 }  // namespace deformcd

@@ -19,6 +19,10 @@ namespace deformcd {
 
 class ContactResponse {
  public:
+  /// The surfaces' relative motion over a search window: about this many of the smallest
+  /// body's mean surface edges at most.
+  static constexpr float kWindowEdges = 1.0f;
+
   /// `bodies` as the world got them, `state` as assembled from them (node offsets, node
   /// bodies); `simulation` is read for velocities; `backend` corrects its state.
   ContactResponse(const ResponseSettings& settings, const std::vector<BodyInit>& bodies,
@@ -42,8 +46,13 @@ class ContactResponse {
   [[nodiscard]] const ResponseCounts& counts() const { return counts_; }
 
  private:
-  /// Each node's path velocity and reach over a search window of `window` seconds.
-  [[nodiscard]] std::vector<glm::vec4> node_motion(float window);
+  /// The nodes' velocities now (the CPU state's, or read back from GL).
+  [[nodiscard]] const std::vector<glm::vec4>& velocities();
+  /// How many substeps a search window starting now lasts, the nodes at velocities v.
+  [[nodiscard]] int window_substeps(const std::vector<glm::vec4>& v) const;
+  /// Each node's path velocity and reach over a search window of `window` seconds, the nodes
+  /// at velocities v.
+  [[nodiscard]] std::vector<glm::vec4> node_motion(const std::vector<glm::vec4>& v, float window);
   void search();
   /// A self-contact pair's thickness: the body's, or half the pair's distance in the pose the
   /// body was given in (its rest shape), whichever is less.
@@ -68,6 +77,9 @@ class ContactResponse {
   std::vector<Contact> intersections_;  // of the frame
   float elapsed_ = 0.0f;                // since the window began (the last search)
   float frame_time_ = 0.0f;             // since the frame began
+  int substep_ = 0;                     // substeps projected in the frame
+  int window_end_ = 0;                  // the substep the window ends after
+  float smallest_edge_ = 0.0f;          // the smallest body's mean surface edge
   ResponseCounts counts_;
 };
 
