@@ -299,6 +299,38 @@ std::vector<Contact> Detector::contacts() const {
   return collision::make_contacts(pairs, impl_->data.faces, impl_->data.meshes);
 }
 
+// The detector's pairs from the search's candidates: their distances from `distances` (the
+// CPU search's) or, when that is empty (a GL search), from `pose`.
+static std::vector<ProximityPair> to_proximity_pairs(
+    Detector::Impl& d, const std::vector<collision::ProximityCandidate>& found,
+    const std::vector<float>& distances, const std::vector<collision::MeshVertices>& pose) {
+  std::vector<ProximityPair> out(found.size());
+  d.executor->run([&] {
+    cpu::parallel_for(found.size(), [&](std::size_t i) {
+      const collision::ProximityCandidate& c = found[i];
+      ProximityPair& p = out[i];
+      p.kind = c.kind == gpu::kContactEdgeEdge ? ProximityPair::Kind::kEdgeEdge
+                                               : ProximityPair::Kind::kVertexTriangle;
+      p.mesh_a = c.mesh_a;
+      p.mesh_b = c.mesh_b;
+      p.vertices = c.vertices;
+      p.triangle =
+          c.kind == gpu::kContactEdgeEdge ? 0u : c.face_b - d.data.meshes[c.mesh_b].face_offset;
+      if (!distances.empty()) {
+        p.distance = distances[i];
+        return;
+      }
+      glm::vec3 x[4];
+      for (std::uint32_t k = 0; k < 4u; ++k) {
+        const bool side_a = k < (c.kind == gpu::kContactEdgeEdge ? 2u : 1u);
+        x[k] = collision::vertex_position(pose.data(), side_a ? c.mesh_a : c.mesh_b, c.vertices[k]);
+      }
+      p.distance = collision::primitive_distance(c.kind, x);
+    });
+  });
+  return out;
+}
+
 std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach,
                                                     std::span<const glm::vec3> motion) {
   Impl& d = *impl_;
@@ -378,31 +410,69 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
     found = d.proximity->find(pose.data(), motion_of.empty() ? nullptr : motion_of.data(),
                               reach_of.data(), &distances);
   }
-  std::vector<ProximityPair> out(found.size());
-  d.executor->run([&] {
-    cpu::parallel_for(found.size(), [&](std::size_t i) {
-      const collision::ProximityCandidate& c = found[i];
-      ProximityPair& p = out[i];
-      p.kind = c.kind == gpu::kContactEdgeEdge ? ProximityPair::Kind::kEdgeEdge
-                                               : ProximityPair::Kind::kVertexTriangle;
-      p.mesh_a = c.mesh_a;
-      p.mesh_b = c.mesh_b;
-      p.vertices = c.vertices;
-      p.triangle =
-          c.kind == gpu::kContactEdgeEdge ? 0u : c.face_b - d.data.meshes[c.mesh_b].face_offset;
-      if (!distances.empty()) {
-        p.distance = distances[i];
-        return;
-      }
-      glm::vec3 x[4];
-      for (std::uint32_t k = 0; k < 4u; ++k) {
-        const bool side_a = k < (c.kind == gpu::kContactEdgeEdge ? 2u : 1u);
-        x[k] = collision::vertex_position(pose.data(), side_a ? c.mesh_a : c.mesh_b, c.vertices[k]);
-      }
-      p.distance = collision::primitive_distance(c.kind, x);
-    });
-  });
-  return out;
+  // The search's inputs, for widen_proximity(): the pose copied (a host array is read in
+  // place and will have moved on).
+  Impl::ProximitySearch& last = d.last_proximity;
+  last.pose.resize(d.meshes.size());
+  for (std::size_t m = 0; m < d.meshes.size(); ++m) {
+    last.pose[m].resize(d.meshes[m].vertex_count);
+    for (std::uint32_t v = 0; v < d.meshes[m].vertex_count; ++v)
+      last.pose[m][v] = collision::vertex_position(pose.data(), static_cast<std::uint32_t>(m), v);
+  }
+  last.motion.assign(motion.begin(), motion.end());
+  last.reach.assign(reach.begin(), reach.end());
+  last.cpu_boxes = !searched;
+  last.valid = true;
+  return to_proximity_pairs(d, found, distances, pose);
+}
+
+std::vector<ProximityPair> Detector::widen_proximity(std::span<const std::uint32_t> vertices,
+                                                     std::span<const float> reach) {
+  Impl& d = *impl_;
+  Impl::ProximitySearch& last = d.last_proximity;
+  if (!last.valid) throw Error("widen_proximity: no find_proximity() to widen yet");
+  if (vertices.size() != reach.size()) {
+    throw InputError("widen_proximity",
+                     "takes one reach per vertex named: " + std::to_string(vertices.size()) +
+                         " vertices, " + std::to_string(reach.size()) + " reaches");
+  }
+  std::vector<std::uint32_t> first(d.meshes.size() + 1u, 0u);
+  for (std::size_t m = 0; m < d.meshes.size(); ++m)
+    first[m + 1u] = first[m] + d.meshes[m].vertex_count;
+  std::vector<std::array<std::uint32_t, 2>> widened(vertices.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const std::uint32_t v = vertices[i];
+    if (v >= first.back()) {
+      throw InputError("widen_proximity", "vertex " + std::to_string(v) + " (entry " +
+                                              std::to_string(i) + ") is not below the " +
+                                              std::to_string(first.back()) + " vertices");
+    }
+    if (!(reach[i] >= 0.0f) || !std::isfinite(reach[i])) {
+      throw InputError("widen_proximity", "vertex " + std::to_string(v) + " has a reach of " +
+                                              std::to_string(reach[i]) +
+                                              " (a finite value >= 0 is wanted)");
+    }
+    const auto mesh = static_cast<std::uint32_t>(std::upper_bound(first.begin(), first.end(), v) -
+                                                 first.begin() - 1);
+    widened[i] = {mesh, v - first[mesh]};
+  }
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    last.reach[vertices[i]] = reach[i];
+  std::vector<collision::MeshVertices> pose(d.meshes.size());
+  std::vector<collision::MeshVertices> motion_of(last.motion.empty() ? 0u : d.meshes.size());
+  std::vector<const float*> reach_of(d.meshes.size());
+  for (std::size_t m = 0; m < d.meshes.size(); ++m) {
+    pose[m] = {&last.pose[m][0].x, 3u};
+    if (!motion_of.empty()) motion_of[m] = {&last.motion[first[m]].x, 3u};
+    reach_of[m] = last.reach.data() + first[m];
+  }
+  if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
+  std::vector<float> distances;
+  const std::vector<collision::ProximityCandidate> found =
+      d.proximity->widen(pose.data(), motion_of.empty() ? nullptr : motion_of.data(),
+                         reach_of.data(), widened, last.cpu_boxes, distances);
+  last.cpu_boxes = true;
+  return to_proximity_pairs(d, found, distances, pose);
 }
 
 CollisionCounts Detector::counts() const {

@@ -42,6 +42,16 @@ struct Detector::Impl {
   // GL: made by the first find_proximity(), over the GL backend's trees and positions; after
   // the backend (destroyed before it, while the context lives).
   std::unique_ptr<gl::GlProximity, GlProximityDeleter> gl_proximity;
+  /// The last find_proximity()'s inputs, for widen_proximity(): the positions it searched (per
+  /// mesh, copied), each vertex's motion and reach (the motion's order), and whether the CPU
+  /// search's boxes are from it (false after a GL search).
+  struct ProximitySearch {
+    std::vector<std::vector<glm::vec3>> pose;
+    std::vector<glm::vec3> motion;
+    std::vector<float> reach;
+    bool cpu_boxes = false;
+    bool valid = false;
+  } last_proximity;
   std::vector<collision::PositionSource> sources;
   BroadPhase broadphase = BroadPhase::kBvh;
   std::string notice;

@@ -10,7 +10,25 @@ namespace deformcd::cpu {
 CpuProximity::CpuProximity(const collision::CollisionData& data, std::shared_ptr<Executor> executor)
     : data_(data),
       owners_(collision::primitive_owners(data.faces)),
-      executor_(std::move(executor)) {}
+      executor_(std::move(executor)) {
+  // Each vertex's faces (layout indices, ascending), for widen().
+  vertex_first_.assign(data_.mesh_count() + 1u, 0u);
+  for (std::uint32_t m = 0; m < data_.mesh_count(); ++m)
+    vertex_first_[m + 1u] = vertex_first_[m] + data_.meshes[m].vertex_count;
+  vertex_face_offset_.assign(vertex_first_.back() + 1u, 0u);
+  for (const gpu::Face& f : data_.faces)
+    for (std::uint32_t k = 0; k < 3u; ++k)
+      ++vertex_face_offset_[vertex_first_[f.body] + collision::face_corner(f, k) + 1u];
+  for (std::size_t v = 1; v < vertex_face_offset_.size(); ++v)
+    vertex_face_offset_[v] += vertex_face_offset_[v - 1u];
+  vertex_faces_.resize(vertex_face_offset_.back());
+  std::vector<std::uint32_t> cursor(vertex_face_offset_.begin(), vertex_face_offset_.end() - 1);
+  for (std::uint32_t i = 0; i < data_.faces.size(); ++i) {
+    const gpu::Face& f = data_.faces[i];
+    for (std::uint32_t k = 0; k < 3u; ++k)
+      vertex_faces_[cursor[vertex_first_[f.body] + collision::face_corner(f, k)]++] = i;
+  }
+}
 
 void CpuProximity::refit(collision::VertexPositions positions, collision::VertexPositions motion,
                          collision::VertexReach reach) {
@@ -18,6 +36,7 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
     collision::build_hierarchies(data_, positions);
     upkeep_.reset(data_, positions);
     boxes_.assign(upkeep_.nodes().size(), gpu::Box{});
+    leaf_of_.assign(data_.faces.size(), 0u);
     built_ = true;
   }
   // The upkeep rule judges each tree on the period's start, as the detector's trees are judged;
@@ -36,6 +55,7 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
         float corner[3];
         collision::swept_face_vertices(positions, motion, f, x);
         boxes_[i] = collision::reach_box(x, 6u, collision::face_reaches(reach, f, corner));
+        leaf_of_[n.face] = i;
       } else {
         const gpu::Box& l = boxes_[n.left];
         const gpu::Box& r = boxes_[n.right];
@@ -108,6 +128,98 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
     }
   });
   return all;
+}
+
+std::vector<collision::ProximityCandidate> CpuProximity::widen(
+    collision::VertexPositions positions, collision::VertexPositions motion,
+    collision::VertexReach reach, std::span<const std::array<std::uint32_t, 2>> widened,
+    bool boxes_current, std::vector<float>& distances) {
+  std::vector<collision::ProximityCandidate> out;
+  distances.clear();
+  executor_->run([&] {
+    if (!boxes_current || !built_) refit(positions, motion, reach);
+    // The faces with a widened corner: their leaves swept again with the raised reaches, then
+    // every tree's parents in reverse preorder (unions only).
+    std::vector<std::uint8_t> is_widened(vertex_first_.back(), 0u);
+    std::vector<std::uint32_t> faces;
+    for (const auto& [mesh, vertex] : widened) {
+      const std::uint32_t v = vertex_first_[mesh] + vertex;
+      is_widened[v] = 1u;
+      faces.insert(faces.end(), vertex_faces_.begin() + vertex_face_offset_[v],
+                   vertex_faces_.begin() + vertex_face_offset_[v + 1u]);
+    }
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    const std::vector<gpu::BvhNode>& nodes = upkeep_.nodes();
+    for (const std::uint32_t face : faces) {
+      const gpu::Face& f = data_.faces[face];
+      glm::vec3 x[6];
+      float corner[3];
+      collision::swept_face_vertices(positions, motion, f, x);
+      boxes_[leaf_of_[face]] =
+          collision::reach_box(x, 6u, collision::face_reaches(reach, f, corner));
+    }
+    for (std::uint32_t m = 0; m < data_.mesh_count(); ++m) {
+      const gpu::BodyBvh& tree = upkeep_.tree(m);
+      for (std::uint32_t i = tree.root + tree.node_count; i-- > tree.root;) {
+        const gpu::BvhNode& n = nodes[i];
+        if (n.face != gpu::kBvhInternal) continue;
+        const gpu::Box& l = boxes_[n.left];
+        const gpu::Box& r = boxes_[n.right];
+        boxes_[i] = {glm::min(l.min, r.min), glm::max(l.max, r.max)};
+      }
+    }
+    // The face pairs with a widened face, as find() orders each pair's faces (the first mesh's
+    // face first; within one mesh the lower face first), sorted.
+    struct FacePair {
+      std::uint32_t mesh_pair, a, b;
+      auto operator<=>(const FacePair&) const = default;
+    };
+    std::vector<FacePair> pairs;
+    for (std::uint32_t p = 0; p < data_.mesh_pairs.size(); ++p) {
+      const gpu::BodyPair& mp = data_.mesh_pairs[p];
+      for (const std::uint32_t face : faces) {
+        const std::uint32_t mesh = data_.faces[face].body;
+        if (mesh != mp.a && mesh != mp.b) continue;
+        const gpu::Box& box = boxes_[leaf_of_[face]];
+        if (mp.a == mp.b) {
+          collision::query_bvh(
+              nodes.data(), boxes_.data(), upkeep_.tree(mp.b).root, box, [&](std::uint32_t other) {
+                if (other != face)
+                  pairs.push_back({p, std::min(face, other), std::max(face, other)});
+              });
+        } else if (mesh == mp.a) {
+          collision::query_bvh(nodes.data(), boxes_.data(), upkeep_.tree(mp.b).root, box,
+                               [&](std::uint32_t other) {
+                                 pairs.push_back({p, face, other});
+                               });
+        } else {
+          collision::query_bvh(nodes.data(), boxes_.data(), upkeep_.tree(mp.a).root, box,
+                               [&](std::uint32_t other) {
+                                 pairs.push_back({p, other, face});
+                               });
+        }
+      }
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    for (const FacePair& fp : pairs) {
+      collision::emit_face_pair_candidates(
+          positions, motion, reach, data_.faces[fp.a], fp.a, owners_[fp.a], data_.faces[fp.b], fp.b,
+          owners_[fp.b], [&](const collision::ProximityCandidate& c, float distance) {
+            const std::uint32_t first_b = c.kind == gpu::kContactEdgeEdge ? 2u : 1u;
+            bool involved = false;
+            for (std::uint32_t k = 0; k < 4u; ++k) {
+              const std::uint32_t mesh = k < first_b ? c.mesh_a : c.mesh_b;
+              involved = involved || is_widened[vertex_first_[mesh] + c.vertices[k]] != 0u;
+            }
+            if (!involved) return;
+            out.push_back(c);
+            distances.push_back(distance);
+          });
+    }
+  });
+  return out;
 }
 
 }  // namespace deformcd::cpu

@@ -6,6 +6,8 @@
 // run in parallel, each into its own list in its traversal order; the lists are joined in face
 // order, so the result does not depend on the thread count (and is the GL search's order).
 
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
@@ -30,6 +32,17 @@ class CpuProximity {
   [[nodiscard]] std::vector<collision::ProximityCandidate> find(
       collision::VertexPositions positions, collision::VertexPositions motion,
       collision::VertexReach reach, std::vector<float>* distances = nullptr);
+  /// After a search over the same positions and motion, whose reaches have since been raised
+  /// for the vertices of `widened` (mesh, vertex): the candidates find() would now give that
+  /// involve one of them, with their distances in `distances`. Only the faces that have one of
+  /// them as a corner are swept again and query the trees. Ordered by face pair (mesh pair by
+  /// mesh pair, then by the pair's two faces), whatever the thread count. `boxes_current`:
+  /// the trees' boxes are from that search (a find() on the CPU); else (the search ran on
+  /// GL) they are refitted first.
+  [[nodiscard]] std::vector<collision::ProximityCandidate> widen(
+      collision::VertexPositions positions, collision::VertexPositions motion,
+      collision::VertexReach reach, std::span<const std::array<std::uint32_t, 2>> widened,
+      bool boxes_current, std::vector<float>& distances);
 
  private:
   void refit(collision::VertexPositions positions, collision::VertexPositions motion,
@@ -38,7 +51,12 @@ class CpuProximity {
   collision::CollisionData data_;
   std::vector<std::uint32_t> owners_;
   collision::BvhUpkeep upkeep_;
-  std::vector<gpu::Box> boxes_;  // per node: swept over the period, grown by the reaches
+  std::vector<gpu::Box> boxes_;           // per node: swept over the period, grown by the reaches
+  std::vector<std::uint32_t> leaf_of_;    // per face (layout order): its tree's leaf node
+  std::vector<std::uint32_t> face_mesh_;  // per face: its mesh's index in mesh_pairs' terms
+  std::vector<std::uint32_t> vertex_faces_;  // per mesh vertex (vertex_first_ order): CSR faces
+  std::vector<std::uint32_t> vertex_face_offset_;
+  std::vector<std::uint32_t> vertex_first_;  // per mesh: its first vertex in that order
   bool built_ = false;
   std::shared_ptr<Executor> executor_;
 };

@@ -326,6 +326,73 @@ std::set<PairKey> found_keys(const std::vector<ProximityPair>& found) {
   return got;
 }
 
+// Whether pair key k names a vertex of `widened` (mesh, vertex).
+bool involves(const PairKey& k, const std::set<std::pair<std::uint32_t, std::uint32_t>>& widened) {
+  const auto& [kind, mesh_a, mesh_b, v] = k;
+  const std::uint32_t first_b = kind == 1 ? 2u : 1u;
+  for (std::uint32_t i = 0; i < 4u; ++i)
+    if (widened.count({i < first_b ? mesh_a : mesh_b, v[i]}) != 0) return true;
+  return false;
+}
+
+// After detector.find_proximity() on w (meshes a and b): every 23rd vertex's reach tripled by
+// widen_proximity(), with the meshes moved away since, gives exactly the brute-force pairs of
+// the raised reaches that involve those vertices; with the last search's other pairs, all of
+// them.
+void expect_widening_equals_brute_force(Detector& detector, ProximityWorld& w, std::uint32_t a,
+                                        std::uint32_t b,
+                                        const std::vector<ProximityPair>& searched) {
+  std::vector<std::uint32_t> vertices;
+  std::vector<float> raised;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> widened;
+  std::uint32_t first = 0;
+  for (std::uint32_t m = 0; m < w.meshes.size(); ++m) {
+    for (std::uint32_t v = 0; v < w.positions[m].size(); v += 23u) {
+      vertices.push_back(first + v);
+      w.reach_of[m][v] *= 3.0f;
+      raised.push_back(w.reach_of[m][v]);
+      widened.insert({m, v});
+    }
+    first += static_cast<std::uint32_t>(w.positions[m].size());
+  }
+  // The detector searched the positions it had then: moving the meshes changes nothing.
+  std::vector<std::vector<glm::vec3>> moved = w.positions;
+  for (std::uint32_t m = 0; m < w.meshes.size(); ++m) {
+    for (glm::vec3& x : moved[m])
+      x += glm::vec3(0.5f, -0.25f, 0.125f);
+    detector.set_positions(m, std::span<const glm::vec3>(moved[m]));
+  }
+  const std::set<PairKey> expected = brute_force_proximity(w, a, b);
+  std::set<PairKey> expected_widened, kept;
+  for (const PairKey& k : expected)
+    if (involves(k, widened)) expected_widened.insert(k);
+  const std::vector<ProximityPair> found = detector.widen_proximity(vertices, raised);
+  const std::set<PairKey> got = found_keys(found);
+  EXPECT_GT(expected_widened.size(), 10u);
+  EXPECT_EQ(got.size(), expected_widened.size());
+  EXPECT_TRUE(got == expected_widened);
+  std::set<PairKey> all = got;
+  for (const PairKey& k : found_keys(searched))
+    if (!involves(k, widened)) all.insert(k);
+  EXPECT_TRUE(all == expected) << "the search's other pairs with the widened ones";
+  // Each pair's distance is its primitives' on the searched positions.
+  for (const ProximityPair& p : found) {
+    const std::uint32_t first_b = p.kind == ProximityPair::Kind::kEdgeEdge ? 2u : 1u;
+    glm::vec3 x[4];
+    for (std::uint32_t k = 0; k < 4u; ++k)
+      x[k] = w.positions[k < first_b ? p.mesh_a : p.mesh_b][p.vertices[k]];
+    const std::uint32_t kind =
+        p.kind == ProximityPair::Kind::kEdgeEdge ? gpu::kContactEdgeEdge : gpu::kContactVertexFace;
+    EXPECT_EQ(p.distance, collision::primitive_distance(kind, x));
+  }
+  EXPECT_THROW(
+      (void)detector.widen_proximity(std::vector<std::uint32_t>{first}, std::vector<float>{0.01f}),
+      InputError);
+  EXPECT_THROW(
+      (void)detector.widen_proximity(std::vector<std::uint32_t>{0u}, std::vector<float>{-1.0f}),
+      InputError);
+}
+
 // A world's meshes and current positions, for a detector of their own.
 ProximityWorld proximity_world(const SceneWorld& s, bool self_collision) {
   ProximityWorld w;
@@ -382,10 +449,22 @@ TEST(ContactResponse, ProximityEqualsBruteForce) {
     }
   }
   const std::set<PairKey> expected = brute_force_proximity(w, 0, 1);
-  const std::set<PairKey> got = found_keys(detector.find_proximity(reach, motion));
+  const std::vector<ProximityPair> searched = detector.find_proximity(reach, motion);
+  const std::set<PairKey> got = found_keys(searched);
   EXPECT_GT(expected.size(), 100u) << "the models should be within reach";
   EXPECT_EQ(got.size(), expected.size());
   EXPECT_TRUE(got == expected);
+  {
+    Detector widening(w.meshes, {.backend = BackendKind::kCpu});
+    for (std::size_t b = 0; b < 2; ++b)
+      widening.set_positions(b, std::span<const glm::vec3>(w.positions[b]));
+    EXPECT_THROW(
+        (void)widening.widen_proximity(std::vector<std::uint32_t>{0u}, std::vector<float>{0.01f}),
+        Error);
+    const std::vector<ProximityPair> first = widening.find_proximity(reach, motion);
+    ProximityWorld raised = w;
+    expect_widening_equals_brute_force(widening, raised, 0, 1, first);
+  }
 
   std::vector<float> spread;
   for (std::size_t b = 0; b < 2; ++b)
@@ -426,10 +505,15 @@ TEST(ContactResponse, SelfProximityEqualsBruteForce) {
     w.ends[0][v] += motion.back();
   }
   const std::set<PairKey> expected = brute_force_proximity(w, 0, 0);
-  const std::set<PairKey> got = found_keys(detector.find_proximity(w.reach_of[0], motion));
+  const std::vector<ProximityPair> searched = detector.find_proximity(w.reach_of[0], motion);
+  const std::set<PairKey> got = found_keys(searched);
   EXPECT_GT(expected.size(), 1000u) << "the plate should be folded onto itself";
   EXPECT_EQ(got.size(), expected.size());
   EXPECT_TRUE(got == expected);
+  {
+    ProximityWorld raised = w;
+    expect_widening_equals_brute_force(detector, raised, 0, 0, searched);
+  }
   // Vertex-triangle pairs whose vertex is one edge from a corner of the triangle: a triangle of
   // the vertex shares that corner with the triangle, so the search once left the pair out.
   std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
