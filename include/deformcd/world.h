@@ -80,6 +80,9 @@ struct ResponseCounts {
   /// Proximity searches in the frame: one, plus one each time a node strayed beyond the reach
   /// the last one assumed.
   std::uint64_t searches = 0;
+  /// Times in the frame a search was widened instead: around the nodes that strayed, only
+  /// their pairs found again with larger reaches (Detector::widen_proximity).
+  std::uint64_t widenings = 0;
 };
 
 /// The simulation blew up: a state became NaN/Inf or a node moved implausibly far in a step.

@@ -28,6 +28,15 @@ void CpuContactResponse::begin_frame(response::FrameConstraints constraints) {
   });
 }
 
+void CpuContactResponse::update_frame(response::FrameConstraints constraints) {
+  constraints_ = std::move(constraints);
+  corrections_.resize(8u * constraints_.pairs.size());
+  active_.assign(constraints_.pairs.size(), 0u);
+  acting_.clear();
+  for (std::size_t i = 0; i < frame_start_.size(); ++i)
+    frame_start_[i].w = constraints_.node_motion[i].w;
+}
+
 bool CpuContactResponse::project(const response::ContactConstants& k, int iterations) {
   std::atomic<bool> strayed{false};  // an OR: the same whatever the order
   const std::vector<gpu::ContactPair>& pairs = constraints_.pairs;

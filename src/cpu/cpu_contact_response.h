@@ -24,6 +24,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor);
 
   void begin_frame(response::FrameConstraints constraints) override;
+  void update_frame(response::FrameConstraints constraints) override;
   [[nodiscard]] bool project(const response::ContactConstants& constants, int iterations) override;
 
  private:

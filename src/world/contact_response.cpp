@@ -23,6 +23,8 @@ void check_value(const char* name, float value, float high = INFINITY) {
   }
 }
 
+}  // namespace
+
 // The primitive pairs of the faces the last exact pass found intersecting: each vertex of one
 // face against the other face, each edge of one against each edge of the other (global nodes).
 // Their proximity constraints are left out: across an intersection their directions point the
@@ -81,8 +83,6 @@ class TangledPrimitives {
 
   std::vector<std::array<std::uint32_t, 4>> keys_;
 };
-
-}  // namespace
 
 void check_response_settings(const ResponseSettings& s) {
   if (s.thickness.has_value()) {
@@ -246,6 +246,7 @@ void ContactResponse::begin_frame(Detector& detector, std::vector<Contact> inter
   frame_time_ = 0.0f;
   substep_ = 0;
   intersections_ = std::move(intersections);
+  tangled_ = std::make_unique<TangledPrimitives>(intersections_, objects_);
   counts_ = {};
   search();
 }
@@ -279,39 +280,20 @@ void ContactResponse::search() {
     reach[i] =
         0.5f * thickness_[node_body_[i]] + (on_surface_[i] != 0u ? c.node_motion[i].w : 0.0f);
   }
+  const std::uint64_t widenings = counts_.widenings;
   counts_ = {};
   counts_.searches = searches;
-  const TangledPrimitives tangled(intersections, objects_);
-  // The positions now, for the side each vertex-face pair's vertex starts on.
+  counts_.widenings = widenings;
+  // The positions now: the window's start, kept for the side each vertex-face pair's vertex
+  // starts on (also for pairs a widening finds later in the window).
   const SimulationState* state = simulation_.host_state();
   if (state == nullptr) simulation_.download_positions(positions_);
   const std::vector<glm::vec4>& x = state != nullptr ? state->positions : positions_;
-  for (const ProximityPair& p : detector.find_proximity(reach, motion)) {
-    gpu::ContactPair pair{};
-    const std::uint32_t first_a = objects_[p.mesh_a].node_offset;
-    const std::uint32_t first_b = objects_[p.mesh_b].node_offset;
-    const bool edges = p.kind == ProximityPair::Kind::kEdgeEdge;
-    pair.nodes[0] = first_a + p.vertices[0];
-    pair.nodes[1] = (edges ? first_a : first_b) + p.vertices[1];
-    pair.nodes[2] = first_b + p.vertices[2];
-    pair.nodes[3] = first_b + p.vertices[3];
-    pair.kind = edges ? gpu::kContactEdgeEdge : gpu::kContactVertexFace;
-    if (tangled.holds(pair)) continue;
-    pair.thickness = 0.5f * (thickness_[p.mesh_a] + thickness_[p.mesh_b]);
-    if (p.mesh_a == p.mesh_b) pair.thickness = self_thickness(pair);
-    pair.gap = p.distance - pair.thickness;
-    const glm::vec3 velocity[4] = {
-        glm::vec3(c.node_motion[pair.nodes[0]]), glm::vec3(c.node_motion[pair.nodes[1]]),
-        glm::vec3(c.node_motion[pair.nodes[2]]), glm::vec3(c.node_motion[pair.nodes[3]])};
-    pair.closing_speed = collision::closing_speed(pair.kind, velocity);
-    if (!edges) {
-      const glm::vec3 corners[4] = {glm::vec3(x[pair.nodes[0]]), glm::vec3(x[pair.nodes[1]]),
-                                    glm::vec3(x[pair.nodes[2]]), glm::vec3(x[pair.nodes[3]])};
-      pair.side = response::vertex_face_side(corners);
-    }
-    c.pairs.push_back(pair);
-    ++(edges ? counts_.edge_edge : counts_.vertex_face);
-  }
+  window_start_.resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i)
+    window_start_[i] = glm::vec3(x[i]);
+  for (const ProximityPair& p : detector.find_proximity(reach, motion))
+    add_proximity_pair(p, c);
   // Untangling: each vertex of an intersecting face against the other face, unless it is one
   // of that face's own corners (self-intersections of faces sharing a node).
   for (const Contact& contact : intersections) {
@@ -338,7 +320,80 @@ void ContactResponse::search() {
     }
   }
   response::index_constraints_by_node(static_cast<std::uint32_t>(node_body_.size()), c);
+  constraints_ = c;
   backend_->begin_frame(std::move(c));
+}
+
+ContactResponse::~ContactResponse() = default;
+
+void ContactResponse::add_proximity_pair(const ProximityPair& p, response::FrameConstraints& c) {
+  gpu::ContactPair pair{};
+  const std::uint32_t first_a = objects_[p.mesh_a].node_offset;
+  const std::uint32_t first_b = objects_[p.mesh_b].node_offset;
+  const bool edges = p.kind == ProximityPair::Kind::kEdgeEdge;
+  pair.nodes[0] = first_a + p.vertices[0];
+  pair.nodes[1] = (edges ? first_a : first_b) + p.vertices[1];
+  pair.nodes[2] = first_b + p.vertices[2];
+  pair.nodes[3] = first_b + p.vertices[3];
+  pair.kind = edges ? gpu::kContactEdgeEdge : gpu::kContactVertexFace;
+  if (tangled_->holds(pair)) return;
+  pair.thickness = 0.5f * (thickness_[p.mesh_a] + thickness_[p.mesh_b]);
+  if (p.mesh_a == p.mesh_b) pair.thickness = self_thickness(pair);
+  pair.gap = p.distance - pair.thickness;
+  const glm::vec3 velocity[4] = {
+      glm::vec3(c.node_motion[pair.nodes[0]]), glm::vec3(c.node_motion[pair.nodes[1]]),
+      glm::vec3(c.node_motion[pair.nodes[2]]), glm::vec3(c.node_motion[pair.nodes[3]])};
+  pair.closing_speed = collision::closing_speed(pair.kind, velocity);
+  if (!edges) {
+    const glm::vec3 corners[4] = {window_start_[pair.nodes[0]], window_start_[pair.nodes[1]],
+                                  window_start_[pair.nodes[2]], window_start_[pair.nodes[3]]};
+    pair.side = response::vertex_face_side(corners);
+  }
+  c.pairs.push_back(pair);
+  ++(edges ? counts_.edge_edge : counts_.vertex_face);
+}
+
+void ContactResponse::widen() {
+  // The nodes beyond their reach, as the backend judged them (apply_correction, on the same
+  // floats): the positions now against the window's start carried along each node's path.
+  const SimulationState* state = simulation_.host_state();
+  if (state == nullptr) simulation_.download_positions(positions_);
+  const std::vector<glm::vec4>& x = state != nullptr ? state->positions : positions_;
+  std::vector<glm::vec4>& node_motion = constraints_.node_motion;
+  std::vector<std::uint32_t> strays;
+  std::vector<float> reach;
+  std::vector<std::uint8_t> strayed(x.size(), 0u);
+  for (std::uint32_t i = 0; i < x.size(); ++i) {
+    if (!(x[i].w > 0.0f)) continue;  // fixed: never strays
+    const float old_reach = node_motion[i].w;
+    const float deviation = response::path_deviation(
+        glm::vec3(x[i]), glm::vec4(window_start_[i], old_reach), node_motion[i], elapsed_);
+    if (!(deviation > old_reach)) continue;
+    // Room for its deviation to double before it strays again.
+    node_motion[i].w = 2.0f * deviation;
+    strays.push_back(i);
+    reach.push_back(0.5f * thickness_[node_body_[i]] + node_motion[i].w);
+    strayed[i] = 1u;
+  }
+  if (strays.empty()) {  // not expected: the backend said a node strayed
+    search();
+    return;
+  }
+  // Their old pairs go; the widened search's come instead. The others' pairs, and the
+  // untangling constraints, stand.
+  std::vector<gpu::ContactPair>& pairs = constraints_.pairs;
+  std::erase_if(pairs, [&](const gpu::ContactPair& p) {
+    if (p.kind == gpu::kContactUntangle) return false;
+    const bool gone = strayed[p.nodes[0]] != 0u || strayed[p.nodes[1]] != 0u ||
+                      strayed[p.nodes[2]] != 0u || strayed[p.nodes[3]] != 0u;
+    if (gone) --(p.kind == gpu::kContactEdgeEdge ? counts_.edge_edge : counts_.vertex_face);
+    return gone;
+  });
+  for (const ProximityPair& p : detector_->widen_proximity(strays, reach))
+    add_proximity_pair(p, constraints_);
+  ++counts_.widenings;
+  response::index_constraints_by_node(static_cast<std::uint32_t>(node_body_.size()), constraints_);
+  backend_->update_frame(constraints_);
 }
 
 void ContactResponse::project(float h, bool more_substeps) {
@@ -354,7 +409,12 @@ void ContactResponse::project(float h, bool more_substeps) {
   k.max_untangle_step = max_untangle_step_ / static_cast<float>(settings_.iterations);
   ++substep_;
   const bool strayed = backend_->project(k, settings_.iterations);
-  if ((strayed || substep_ >= window_end_) && more_substeps) search();
+  if (!more_substeps) return;  // the next begin_frame() searches
+  if (substep_ >= window_end_) {
+    search();
+  } else if (strayed) {
+    widen();
+  }
 }
 
 }  // namespace deformcd

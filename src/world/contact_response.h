@@ -17,6 +17,8 @@
 
 namespace deformcd {
 
+class TangledPrimitives;
+
 class ContactResponse {
  public:
   /// The surfaces' relative motion over a search window: about this many of the smallest
@@ -29,6 +31,9 @@ class ContactResponse {
                   const SimulationState& state, const StepSettings& step,
                   sim::SimulationBackend& simulation,
                   std::unique_ptr<response::ResponseBackend> backend);
+  ~ContactResponse();
+  ContactResponse(const ContactResponse&) = delete;
+  ContactResponse& operator=(const ContactResponse&) = delete;
 
   /// Starts a frame: the constraints on the current positions are every proximity pair
   /// `detector` finds within each body's thickness and reach, and for each intersecting face
@@ -53,7 +58,13 @@ class ContactResponse {
   /// Each node's path velocity and reach over a search window of `window` seconds, the nodes
   /// at velocities v.
   [[nodiscard]] std::vector<glm::vec4> node_motion(const std::vector<glm::vec4>& v, float window);
+  /// A new search window from the positions now.
   void search();
+  /// Within the window: the nodes that strayed get twice their deviation as reach, and their
+  /// pairs are found again by widening the window's search (Detector::widen_proximity).
+  void widen();
+  /// Appends proximity pair p as a constraint of c (unless its primitives are tangled).
+  void add_proximity_pair(const ProximityPair& p, response::FrameConstraints& c);
   /// A self-contact pair's thickness: the body's, or half the pair's distance in the pose the
   /// body was given in (its rest shape), whichever is less.
   [[nodiscard]] float self_thickness(const gpu::ContactPair& pair) const;
@@ -73,13 +84,16 @@ class ContactResponse {
   std::vector<glm::vec4> positions_;        // read back from a GL simulation
   std::vector<glm::vec4> last_velocities_;  // per node, at the last search
   float max_untangle_step_ = 0.0f;
-  Detector* detector_ = nullptr;        // of the frame
-  std::vector<Contact> intersections_;  // of the frame
-  float elapsed_ = 0.0f;                // since the window began (the last search)
-  float frame_time_ = 0.0f;             // since the frame began
-  int substep_ = 0;                     // substeps projected in the frame
-  int window_end_ = 0;                  // the substep the window ends after
-  float smallest_edge_ = 0.0f;          // the smallest body's mean surface edge
+  Detector* detector_ = nullptr;                // of the frame
+  std::vector<Contact> intersections_;          // of the frame
+  std::unique_ptr<TangledPrimitives> tangled_;  // of the frame's intersections
+  response::FrameConstraints constraints_;      // of the window, as the backend has them
+  std::vector<glm::vec3> window_start_;         // per node: where the window began
+  float elapsed_ = 0.0f;                        // since the window began (the last search)
+  float frame_time_ = 0.0f;                     // since the frame began
+  int substep_ = 0;                             // substeps projected in the frame
+  int window_end_ = 0;                          // the substep the window ends after
+  float smallest_edge_ = 0.0f;                  // the smallest body's mean surface edge
   ResponseCounts counts_;
 };
 

@@ -120,6 +120,43 @@ TEST_F(GlContactResponseTest, HandMadeCasesEqualTheCpuBitForBit) {
   }
 }
 
+// Within a window the constraints are replaced (update_frame, as a widened search does: some
+// pairs gone, others new, the reaches raised): the window's starts stay, the reaches change,
+// and GL still equals the CPU bit for bit.
+TEST_F(GlContactResponseTest, ConstraintsReplacedWithinAWindowEqualTheCpuBitForBit) {
+  const test::RandomContacts set = test::random_contacts(5, 300, 1500);
+  const test::RandomContacts other = test::random_contacts(6, 300, 1500);
+  SideBySide both(context(), set.world);
+  both.begin_frame(set.constraints);
+  for (std::size_t s = 0; s < 3; ++s) {
+    both.project(kSchedule[s], kScheduleIterations[s]);
+    both.expect_equal("before the update, projection " + std::to_string(s + 1));
+  }
+  const std::vector<glm::vec4> starts = both.gl.download_frame_start();
+  // Every third pair dropped, the other set's first 200 added, every reach doubled.
+  FrameConstraints replaced = set.constraints;
+  replaced.pairs.clear();
+  for (std::size_t p = 0; p < set.constraints.pairs.size(); ++p)
+    if (p % 3 != 0) replaced.pairs.push_back(set.constraints.pairs[p]);
+  replaced.pairs.insert(replaced.pairs.end(), other.constraints.pairs.begin(),
+                        other.constraints.pairs.begin() + 200);
+  for (glm::vec4& m : replaced.node_motion)
+    m.w *= 2.0f;
+  response::index_constraints_by_node(static_cast<std::uint32_t>(set.world.node_count()), replaced);
+  both.gl.update_frame(replaced);
+  both.cpu.update_frame(replaced);
+  const std::vector<glm::vec4> kept = both.gl.download_frame_start();
+  ASSERT_EQ(kept.size(), starts.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    EXPECT_EQ(glm::vec3(kept[i]), glm::vec3(starts[i])) << "node " << i << "'s start moved";
+    EXPECT_EQ(kept[i].w, replaced.node_motion[i].w) << "node " << i << "'s reach";
+  }
+  for (std::size_t s = 3; s < kSchedule.size(); ++s) {
+    both.project(kSchedule[s], kScheduleIterations[s % 3]);
+    both.expect_equal("after the update, projection " + std::to_string(s + 1));
+  }
+}
+
 TEST_F(GlContactResponseTest, RandomDenseConstraintSetsEqualTheCpuBitForBit) {
   for (std::uint32_t seed : {1u, 2u, 3u}) {
     const test::RandomContacts set = test::random_contacts(seed, 300, 1500);

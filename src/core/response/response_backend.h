@@ -19,6 +19,10 @@ class ResponseBackend {
   /// them without a copy) and records the current positions as its start (w = the node's
   /// reach, node_motion[n].w).
   virtual void begin_frame(FrameConstraints constraints) = 0;
+  /// Replaces the constraints of the window begin_frame() started (a widened search's: the
+  /// pairs of the nodes that strayed found again with larger reaches): the window's start
+  /// positions stay, and each node's reach becomes node_motion[n].w of the new constraints.
+  virtual void update_frame(FrameConstraints constraints) = 0;
   /// The projection after a substep, on the current positions and velocities: the deviation,
   /// activity and count passes once, then `iterations` (>= 1) Jacobi projections of the active
   /// constraints, each a solve and a node pass (see contact_constraints.h). Returns whether a

@@ -66,6 +66,21 @@ GlContactResponse::GlContactResponse(const DeviceInfo& device, GlSimulation& sim
       apply_("response/contact_apply.comp") {}
 
 void GlContactResponse::begin_frame(response::FrameConstraints constraints) {
+  upload(constraints, false);
+}
+
+void GlContactResponse::update_frame(response::FrameConstraints constraints) {
+  if (!frame_ready_) throw Error("GlContactResponse::update_frame before begin_frame()");
+  const SimulationBuffers& sim = simulation_.state_buffers();
+  if (sim.node_count != node_count_ || sim.positions.name() != frame_positions_) {
+    throw Error(
+        "GlContactResponse::update_frame: the simulation was uploaded again since "
+        "begin_frame()");
+  }
+  upload(constraints, true);
+}
+
+void GlContactResponse::upload(const response::FrameConstraints& constraints, bool keep_positions) {
   // Everything is checked, and every buffer that must grow allocated, before the first change:
   // a failure keeps the previous frame's constraints.
   const SimulationBuffers& sim = simulation_.state_buffers();
@@ -116,6 +131,7 @@ void GlContactResponse::begin_frame(response::FrameConstraints constraints) {
   count_.set_uniform("u_node_count", node_count_);
   apply_.set_uniform("u_node_count", node_count_);
   frame_start_.set_uniform("u_node_count", node_count_);
+  frame_start_.set_uniform("u_keep_positions", keep_positions ? 1u : 0u);
   deviation_.set_uniform("u_node_count", node_count_);
 
   sim.positions.bind(gpu::kNodePosition);

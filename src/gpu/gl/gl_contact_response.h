@@ -73,6 +73,7 @@ class GlContactResponse final : public response::ResponseBackend {
   // kept then), uploads them, and records every node's frame start on the GPU. Throws Error
   // before the simulation's upload().
   void begin_frame(response::FrameConstraints constraints) override;
+  void update_frame(response::FrameConstraints constraints) override;
   // The pair, count and node passes with storage barriers between them, ending with a barrier so
   // that the next substep, the collision shaders and renderers see the corrected nodes. Throws
   // Error before begin_frame(), or when the simulation was uploaded again since.
@@ -89,6 +90,10 @@ class GlContactResponse final : public response::ResponseBackend {
   std::uint64_t max_buffer_bytes_ = 0;
   bool limit_is_device_ = true;  // whether max_buffer_bytes_ is the device's, for messages
   std::uint32_t max_work_groups_x_ = 0;
+  // Uploads `constraints`, then records the frame starts: the positions now and each node's
+  // reach, or (keep_positions, within a window) only the new reaches.
+  void upload(const response::FrameConstraints& constraints, bool keep_positions);
+
   ComputeProgram frame_start_;
   ComputeProgram deviation_;
   ComputeProgram activity_;
