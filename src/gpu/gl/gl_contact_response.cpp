@@ -70,13 +70,7 @@ void GlContactResponse::begin_frame(response::FrameConstraints constraints) {
 }
 
 void GlContactResponse::update_frame(response::FrameConstraints constraints) {
-  if (!frame_ready_) throw Error("GlContactResponse::update_frame before begin_frame()");
-  const SimulationBuffers& sim = simulation_.state_buffers();
-  if (sim.node_count != node_count_ || sim.positions.name() != frame_positions_) {
-    throw Error(
-        "GlContactResponse::update_frame: the simulation was uploaded again since "
-        "begin_frame()");
-  }
+  check_frame("update_frame");
   upload(constraints, true);
 }
 
@@ -143,16 +137,22 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   frame_ready_ = true;
 }
 
-bool GlContactResponse::project(const response::ContactConstants& k, int iterations) {
-  if (!frame_ready_) throw Error("GlContactResponse::project before begin_frame()");
+void GlContactResponse::check_frame(const char* caller) const {
+  if (!frame_ready_)
+    throw Error(std::string("GlContactResponse::") + caller + " before begin_frame()");
   const SimulationBuffers& sim = simulation_.state_buffers();
   // A new upload allocates new buffers before releasing the old ones, so its positions buffer
   // has another name, and the frame starts recorded from the old one do not apply.
   if (sim.node_count != node_count_ || sim.positions.name() != frame_positions_) {
-    throw Error(
-        "GlContactResponse::project: the simulation was uploaded again since begin_frame(); "
-        "begin a frame with constraints for its nodes first");
+    throw Error(std::string("GlContactResponse::") + caller +
+                ": the simulation was uploaded again since begin_frame(); begin a frame with "
+                "constraints for its nodes first");
   }
+}
+
+bool GlContactResponse::project(const response::ContactConstants& k, int iterations) {
+  check_frame("project");
+  const SimulationBuffers& sim = simulation_.state_buffers();
   // Bound on every call: other passes (the simulation, the collision detector) may have rebound
   // the points since.
   sim.positions.bind(gpu::kNodePosition);

@@ -93,6 +93,9 @@ class GlContactResponse final : public response::ResponseBackend {
   // Uploads `constraints`, then records the frame starts: the positions now and each node's
   // reach, or (keep_positions, within a window) only the new reaches.
   void upload(const response::FrameConstraints& constraints, bool keep_positions);
+  // Error (naming `caller`) before begin_frame(), or when the simulation was uploaded again
+  // since.
+  void check_frame(const char* caller) const;
 
   ComputeProgram frame_start_;
   ComputeProgram deviation_;
