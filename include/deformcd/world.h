@@ -72,7 +72,8 @@ struct FrameTimes {
   double response_s = 0.0;    ///< the contact response's projections (after every substep)
 };
 
-/// The contact constraints of the last frame's last search (all 0 without response).
+/// The contact constraints at the end of the last frame: its last search's, with the pairs of
+/// the widenings since (all 0 without response).
 struct ResponseCounts {
   std::uint64_t vertex_face = 0;  ///< vertex-triangle proximity pairs
   std::uint64_t edge_edge = 0;    ///< edge-edge proximity pairs

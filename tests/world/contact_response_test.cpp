@@ -53,7 +53,7 @@ SceneWorld open_scene(const std::string& name, int frames, int threads = 0, floa
 
 // Steps `frames` frames, expecting no intersecting face pair after any of them (the exact
 // detector), and calls each_frame() after each; returns the proximity constraints (vertex-face
-// and edge-edge) of each frame's last search, summed.
+// and edge-edge) at the end of each frame, summed.
 template <class EachFrame>
 std::uint64_t step_without_intersections(World& world, int frames, const EachFrame& each_frame) {
   std::uint64_t constraints = 0;
