@@ -1,7 +1,9 @@
 #pragma once
-// The world's contact response stage (issue 12): once a frame it gathers the constraints
+// The world's contact response stage (issue 12): at the start of each search window (the
+// frame's, and more within it while the surfaces move fast) it gathers the constraints
 // (proximity pairs from the detector, untangling pairs from the last exact intersections) and
-// hands them to a response backend; after every substep it has the backend project them.
+// hands them to a response backend; after every substep it has the backend project them, and
+// widens the window's search around the nodes that strayed beyond their reach.
 
 #include <cstdint>
 #include <memory>
@@ -40,9 +42,10 @@ class ContactResponse {
   /// pair of `intersections` (the last exact pass) its vertices against the other face.
   /// `detector` must outlive the frame.
   void begin_frame(Detector& detector, std::vector<Contact> intersections);
-  /// One projection after a substep of length h. When a node has strayed beyond its reach and
-  /// `more_substeps` follow in the frame, the search runs again on the positions now (a new
-  /// window), so no pair is missed; after the frame's last substep, the next begin_frame()
+  /// One projection after a substep of length h. When `more_substeps` follow in the frame: if
+  /// the window has ended, a new search begins the next one on the positions now; else, if a
+  /// node has strayed beyond its reach, the window's search is widened around the strays
+  /// (widen()), so no pair is missed. After the frame's last substep, the next begin_frame()
   /// searches anyway.
   void project(float h, bool more_substeps);
 
