@@ -129,7 +129,16 @@ void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results
             << std::setprecision(2) << "simulation " << 1e3 * simulation / frames << ", proximity "
             << 1e3 * r.total_proximity_s() / frames << ", response "
             << 1e3 * r.total_response_s() / frames << " (proximity + response = "
-            << (r.total_proximity_s() + r.total_response_s()) / simulation << " x the simulation)\n"
+            << (r.total_proximity_s() + r.total_response_s()) / simulation
+            << " x the simulation); searches "
+            << static_cast<double>(
+                   std::accumulate(r.searches.begin(), r.searches.end(), std::uint64_t{0})) /
+                   frames
+            << ", widenings "
+            << static_cast<double>(
+                   std::accumulate(r.widenings.begin(), r.widenings.end(), std::uint64_t{0})) /
+                   frames
+            << " a frame\n"
             << std::defaultfloat;
       }
     }
@@ -161,6 +170,8 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
       if (!r.proximity_s.empty()) {
         per_frame["proximity_ms"] = milliseconds(r.proximity_s);
         per_frame["response_ms"] = milliseconds(r.response_s);
+        per_frame["searches"] = r.searches;
+        per_frame["widenings"] = r.widenings;
       }
       methods[name] = {{"total_s", r.total_s()},
                        {"simulation_s", r.total_simulation_s()},

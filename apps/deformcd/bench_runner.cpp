@@ -51,6 +51,8 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
     if (world.responds()) {
       run.proximity_s.push_back(world.last_frame_times().proximity_s);
       run.response_s.push_back(world.last_frame_times().response_s);
+      run.searches.push_back(world.response_counts().searches);
+      run.widenings.push_back(world.response_counts().widenings);
     }
 
     world.set_broadphase(method);

@@ -36,6 +36,10 @@ struct MethodRun {
   /// the projections, included in simulation_s (the stage step() runs). Empty without.
   std::vector<double> proximity_s;
   std::vector<double> response_s;
+  /// Per frame 1..N with contact response: the proximity searches and the widenings around
+  /// nodes that strayed (World::response_counts()). Empty without.
+  std::vector<std::uint64_t> searches;
+  std::vector<std::uint64_t> widenings;
 
   [[nodiscard]] double total_simulation_s() const;
   [[nodiscard]] double total_collision_s() const;

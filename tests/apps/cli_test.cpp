@@ -139,6 +139,26 @@ TEST_F(CliTest, RunWritesThePositionsOfTheLastOrOfEveryFrame) {
   EXPECT_EQ(line + "\n", last);  // the last line is the file without --every-frame
 }
 
+// With a scene's `response`, bench reports the response's stages and its searches and
+// widenings a frame: two cubes falling side by side, never near, one search a frame and no
+// widening.
+TEST_F(CliTest, BenchReportsTheResponsesSearchesAndWidenings) {
+  deformcd::write_tetgen(deformcd::test::unit_cube(), path("cube"));
+  write("two.json", R"({"settings": {"frames": 3}, "response": {},
+                        "bodies": [{"model": "cube"}, {"model": "cube", "position": [3, 0, 0]}]})");
+  const CliRun r =
+      run_cli("bench " + path("two.json") + " --backend cpu --methods bvh --frames 3 " + "--json " +
+              path("bench.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("x the simulation); searches 1.00, widenings 0.00 a frame"),
+            std::string::npos)
+      << r.output;
+  std::string json = lines_of(path("bench.json"));
+  std::erase_if(json, [](char c) { return c == ' ' || c == '\n'; });
+  EXPECT_NE(json.find("\"searches\":[1,1,1]"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"widenings\":[0,0,0]"), std::string::npos) << json;
+}
+
 TEST_F(CliTest, OutputPathsAreCheckedBeforeAnyWorkAndNamedAsGiven) {
   const std::string scene = cube_scene();
   std::ofstream(path("a_file")) << "in the way";
