@@ -3,8 +3,10 @@
 // vertex-face and edge-edge pairs whose swept boxes come within the two meshes' reaches, found
 // through a BVH per mesh of its own (built on the first search, refitted on every one to the
 // faces' swept boxes, rebuilt by the shared upkeep rule when deformation has loosened it). Faces
-// run in parallel, each into its own list in its traversal order; the lists are joined in face
-// order, so the result does not depend on the thread count (and is the GL search's order).
+// run in parallel in fixed chunks, each face's candidates in its traversal order; the chunks'
+// lists are joined in face order, so the result does not depend on the thread count (and is
+// the GL search's order). A search can then be widened (widen()): some vertices' reaches
+// raised, only the faces at them swept again and queried.
 
 #include <array>
 #include <cstdint>
