@@ -160,6 +160,13 @@ const std::vector<glm::vec4>& ContactResponse::velocities() {
   return velocities_;
 }
 
+const std::vector<glm::vec4>& ContactResponse::positions() {
+  const SimulationState* state = simulation_.host_state();
+  if (state != nullptr) return state->positions;
+  simulation_.download_positions(positions_);
+  return positions_;
+}
+
 int ContactResponse::window_substeps(const std::vector<glm::vec4>& v) const {
   // The window is as long as the surfaces' relative motion covers at most about a mean edge:
   // every pair that can close over the window is a candidate, and the candidates (their search
@@ -286,9 +293,7 @@ void ContactResponse::search() {
   counts_.widenings = widenings;
   // The positions now: the window's start, kept for the side each vertex-face pair's vertex
   // starts on (also for pairs a widening finds later in the window).
-  const SimulationState* state = simulation_.host_state();
-  if (state == nullptr) simulation_.download_positions(positions_);
-  const std::vector<glm::vec4>& x = state != nullptr ? state->positions : positions_;
+  const std::vector<glm::vec4>& x = positions();
   window_start_.resize(x.size());
   for (std::size_t i = 0; i < x.size(); ++i)
     window_start_[i] = glm::vec3(x[i]);
@@ -356,9 +361,7 @@ void ContactResponse::add_proximity_pair(const ProximityPair& p, response::Frame
 void ContactResponse::widen() {
   // The nodes beyond their reach, as the backend judged them (apply_correction, on the same
   // floats): the positions now against the window's start carried along each node's path.
-  const SimulationState* state = simulation_.host_state();
-  if (state == nullptr) simulation_.download_positions(positions_);
-  const std::vector<glm::vec4>& x = state != nullptr ? state->positions : positions_;
+  const std::vector<glm::vec4>& x = positions();
   std::vector<glm::vec4>& node_motion = constraints_.node_motion;
   std::vector<std::uint32_t> strays;
   std::vector<float> reach;

@@ -56,6 +56,8 @@ class ContactResponse {
  private:
   /// The nodes' velocities now (the CPU state's, or read back from GL).
   [[nodiscard]] const std::vector<glm::vec4>& velocities();
+  /// The nodes' positions now (the CPU state's, or read back from GL).
+  [[nodiscard]] const std::vector<glm::vec4>& positions();
   /// How many substeps a search window starting now lasts, the nodes at velocities v.
   [[nodiscard]] int window_substeps(const std::vector<glm::vec4>& v) const;
   /// Each node's path velocity and reach over a search window of `window` seconds, the nodes
