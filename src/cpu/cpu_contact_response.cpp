@@ -11,16 +11,20 @@ namespace deformcd::cpu {
 CpuContactResponse::CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor)
     : state_(state), executor_(std::move(executor)) {}
 
-void CpuContactResponse::begin_frame(response::FrameConstraints constraints) {
+void CpuContactResponse::take(response::FrameConstraints constraints) {
   constraints_ = std::move(constraints);
-  const std::size_t nodes = state_.positions.size();
-  frame_start_.resize(nodes);
-  deviation_.assign(nodes, 0.0f);
-  counts_.assign(nodes, 0u);
   // Not cleared: a projection writes every slot of the constraints it solves and reads no other.
   corrections_.resize(8u * constraints_.pairs.size());
   active_.assign(constraints_.pairs.size(), 0u);
   acting_.clear();
+}
+
+void CpuContactResponse::begin_frame(response::FrameConstraints constraints) {
+  take(std::move(constraints));
+  const std::size_t nodes = state_.positions.size();
+  frame_start_.resize(nodes);
+  deviation_.assign(nodes, 0.0f);
+  counts_.assign(nodes, 0u);
   executor_->run([&] {
     parallel_for(nodes, [&](std::size_t i) {
       frame_start_[i] = glm::vec4(glm::vec3(state_.positions[i]), constraints_.node_motion[i].w);
@@ -29,10 +33,7 @@ void CpuContactResponse::begin_frame(response::FrameConstraints constraints) {
 }
 
 void CpuContactResponse::update_frame(response::FrameConstraints constraints) {
-  constraints_ = std::move(constraints);
-  corrections_.resize(8u * constraints_.pairs.size());
-  active_.assign(constraints_.pairs.size(), 0u);
-  acting_.clear();
+  take(std::move(constraints));
   for (std::size_t i = 0; i < frame_start_.size(); ++i)
     frame_start_[i].w = constraints_.node_motion[i].w;
 }

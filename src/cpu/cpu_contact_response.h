@@ -28,6 +28,9 @@ class CpuContactResponse final : public response::ResponseBackend {
   [[nodiscard]] bool project(const response::ContactConstants& constants, int iterations) override;
 
  private:
+  // Keeps `constraints` and sizes the per-constraint arrays for them.
+  void take(response::FrameConstraints constraints);
+
   SimulationState& state_;
   std::shared_ptr<Executor> executor_;
   response::FrameConstraints constraints_;
