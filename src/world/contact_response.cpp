@@ -134,6 +134,7 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
   check_response_settings(settings);
   float smallest_edge = INFINITY;
   for (const BodyInit& b : bodies) {
+    names_.push_back(b.name);
     const float edge = mean_surface_edge(b.body);
     mean_edge_.push_back(edge);
     smallest_edge = std::min(smallest_edge, edge);
@@ -151,6 +152,15 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
   }
   max_untangle_step_ = settings.untangle_step * smallest_edge;
   smallest_edge_ = smallest_edge;
+}
+
+void ContactResponse::unstable(std::uint32_t node, const char* what) const {
+  const std::uint32_t b = node_body_[node];
+  throw SimulationError("the simulation became unstable: body " + std::to_string(b) + " ('" +
+                        names_[b] + "') node " + std::to_string(node - objects_[b].node_offset) +
+                        " has " + what + " in the contact response, frame time " +
+                        std::to_string(frame_time_) +
+                        " s. Use a smaller dt, more substeps or softer springs");
 }
 
 const std::vector<glm::vec4>& ContactResponse::velocities() {
@@ -222,12 +232,8 @@ std::vector<glm::vec4> ContactResponse::node_motion(const std::vector<glm::vec4>
     const float most = 0.5f * mean_edge_[b];
     for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
       const glm::vec3 velocity = glm::vec3(v[i]) + carry_[b];
-      if (!std::isfinite(velocity.x + velocity.y + velocity.z)) {
-        throw SimulationError("the simulation became unstable: body " + std::to_string(b) +
-                              " node " + std::to_string(i - o.node_offset) +
-                              " has a non-finite velocity. Use a smaller dt, more substeps or "
-                              "softer springs");
-      }
+      if (!std::isfinite(velocity.x + velocity.y + velocity.z))
+        unstable(i, "a non-finite velocity");
       const float change = 0.5f * glm::length(glm::vec3(v[i]) - glm::vec3(last_velocities_[i])) *
                            change_rate * window * window;
       const float reach = base + std::min(change, most);
@@ -295,8 +301,10 @@ void ContactResponse::search() {
   // starts on (also for pairs a widening finds later in the window).
   const std::vector<glm::vec4>& x = positions();
   window_start_.resize(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i)
+  for (std::uint32_t i = 0; i < x.size(); ++i) {
     window_start_[i] = glm::vec3(x[i]);
+    if (!std::isfinite(x[i].x + x[i].y + x[i].z)) unstable(i, "a non-finite position");
+  }
   for (const ProximityPair& p : detector.find_proximity(reach, motion))
     add_proximity_pair(p, c);
   // Untangling: each vertex of an intersecting face against the other face, unless it is one
@@ -372,6 +380,7 @@ void ContactResponse::widen() {
     const float deviation = response::path_deviation(
         glm::vec3(x[i]), glm::vec4(window_start_[i], old_reach), node_motion[i], elapsed_);
     if (!(deviation > old_reach)) continue;
+    if (!std::isfinite(2.0f * deviation)) unstable(i, "a non-finite position");
     // Room for its deviation to double before it strays again.
     node_motion[i].w = 2.0f * deviation;
     strays.push_back(i);

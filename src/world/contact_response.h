@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/response/response_backend.h"
@@ -54,6 +55,8 @@ class ContactResponse {
   [[nodiscard]] const ResponseCounts& counts() const { return counts_; }
 
  private:
+  /// Throws the SimulationError of a blow-up: node `node` (global) has `what`.
+  [[noreturn]] void unstable(std::uint32_t node, const char* what) const;
   /// The nodes' velocities now (the CPU state's, or read back from GL).
   [[nodiscard]] const std::vector<glm::vec4>& velocities();
   /// The nodes' positions now (the CPU state's, or read back from GL).
@@ -80,6 +83,7 @@ class ContactResponse {
   std::unique_ptr<response::ResponseBackend> backend_;
   std::vector<gpu::ObjectInfo> objects_;
   std::vector<std::uint32_t> node_body_;
+  std::vector<std::string> names_;  // per body
   std::vector<glm::vec3> carry_;
   std::vector<glm::vec3> rest_;             // per node: where the body was given (at rest)
   std::vector<std::uint8_t> on_surface_;    // per node: a vertex of its body's collision surface

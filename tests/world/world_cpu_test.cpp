@@ -81,6 +81,41 @@ TEST(WorldCpu, BlowUpStopsWithTheBodyFrameAndAdvice) {
   }
 }
 
+// With contact response, a blow-up inside a frame (the positions turn to inf or NaN between
+// substeps, before the world's own check at the frame's end) stops with the same kind of error,
+// naming the body, not with the detector's complaint about the reaches it was handed.
+TEST(WorldCpu, BlowUpUnderContactResponseStopsWithTheBodyAndAdvice) {
+  std::vector<BodyInit> bodies(2);
+  for (int b = 0; b < 2; ++b) {
+    bodies[b].name = b == 0 ? "jelly" : "block";
+    BodyOptions options;
+    options.stiffness = b == 0 ? 1.0e15 : 1.0e4;  // the jelly far too stiff for the step below
+    bodies[b].body = build_body(test::tet_grid(3, 3, 3, 0.1), options);
+    for (glm::vec4& x : bodies[b].body.positions)
+      x.y += b == 0 ? 0.0f : 0.302f;  // the block rests just above the jelly
+  }
+  bodies[0].body.positions[5].y += 0.03f;
+  StepSettings settings;
+  settings.dt = 0.05f;
+  settings.substeps = 8;
+  WorldOptions options;
+  options.backend = BackendKind::kCpu;
+  options.stability_check_interval = 1000;  // the response meets the blow-up first
+  options.response = ResponseSettings{};
+  World world(bodies, settings, options);
+  try {
+    for (int f = 0; f < 50; ++f)
+      world.step();
+    FAIL() << "expected SimulationError";
+  } catch (const SimulationError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("became unstable"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("in the contact response"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("'jelly'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("smaller dt, more substeps"), std::string::npos) << msg;
+  }
+}
+
 TEST(WorldCpu, RejectsABodyWithoutSurfaceFaces) {
   BodyInit init;
   init.name = "hollow";
