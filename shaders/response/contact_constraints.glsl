@@ -136,18 +136,22 @@ bool contact_active(ContactPair pair, vec4 position[4]) {
 
 // solve_contact, line for line: corrections of the four nodes into correction[2 k] (position
 // change) and correction[2 k + 1] (velocity change), the nodes weighing by mass splitting
-// (count[k] x inverse mass). The approach velocity is cancelled (restitution x it given back),
-// moving the nodes by that change x h; the depth left is removed by position alone (an
-// untangling constraint by at most max_untangle_step); Coulomb friction on the tangential
-// relative velocity.
+// (count[k] x inverse mass). The approach velocity is cancelled (restitution x the first
+// iteration's approach given back), moving the nodes by that change x h; the depth left is
+// removed by position alone (an untangling constraint by at most max_untangle_step per
+// iteration); Coulomb friction on the tangential relative velocity. `given` carries the normal
+// speed (x) and push (y) given over the substep's iterations so far and the first iteration's
+// approach (z); each iteration corrects the totals, clamped at zero.
 void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
-                   ContactConstants k, out vec4 correction[8]) {
+                   ContactConstants k, bool first_iteration, inout vec4 given,
+                   out vec4 correction[8]) {
   for (int i = 0; i < 8; ++i) correction[i] = vec4(0.0);
+  if (first_iteration) given = vec4(0.0);
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
   float c = 0.0;
-  if (!contact_geometry(pair, x, n, b, c) || !(c < 0.0)) return;
+  if (!contact_geometry(pair, x, n, b, c)) return;
   precise float weight = 0.0;
   precise vec3 relative_velocity = vec3(0.0);
   for (int i = 0; i < 4; ++i) {
@@ -155,26 +159,34 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
     relative_velocity += b[i] * velocity[i].xyz;
   }
   if (!(weight > 0.0)) return;  // every node fixed
-  precise float approach = distance_max(-exact_dot(relative_velocity, n), 0.0);
-  precise float normal_speed = (1.0 + k.restitution) * approach;
-  precise float push = distance_max(-c - approach * k.h, 0.0);
-  if (pair.kind == CONTACT_UNTANGLE) push = distance_min(push, k.max_untangle_step);
-  precise vec3 tangential = relative_velocity - exact_dot(relative_velocity, n) * n;
-  precise float slip = sqrt(exact_dot(tangential, tangential));
-  precise float keep = 0.0;  // the share of the tangential velocity friction leaves
-  precise float static_limit = k.friction_static * normal_speed;
-  if (slip > static_limit) {
-    keep = distance_max(1.0 - k.friction_dynamic * normal_speed / slip, 0.0);
-  }
-  precise vec3 dv = (normal_speed * n - (1.0 - keep) * tangential) / weight;
-  precise vec3 dx = dv * k.h + (push / weight) * n;
   precise float reduce = 1.0;  // no node moves more than 10 x its share of the correction
   for (int i = 0; i < 4; ++i) {
     precise float lever = float(count[i]) * position[i].w * abs(b[i]);
     if (lever > 10.0 * weight) reduce = distance_min(reduce, 10.0 * weight / lever);
   }
+  precise float normal_velocity = exact_dot(relative_velocity, n);
+  if (first_iteration) given.z = distance_max(-normal_velocity, 0.0);
+  precise float total_speed =
+      distance_max(given.x + (k.restitution * given.z - normal_velocity) * reduce, 0.0);
+  precise float normal_speed = total_speed - given.x;
+  given.x = total_speed;
+  precise float total_push = distance_max(given.y - (c + normal_speed * k.h) * reduce, 0.0);
+  if (pair.kind == CONTACT_UNTANGLE)
+    total_push = distance_min(total_push, given.y + k.max_untangle_step);
+  precise float push = total_push - given.y;
+  given.y = total_push;
+  precise vec3 tangential = relative_velocity - normal_velocity * n;
+  precise float slip = sqrt(exact_dot(tangential, tangential));
+  precise float pressing = distance_max(normal_speed, 0.0);  // this iteration's normal change
+  precise float keep = 0.0;  // the share of the tangential velocity friction leaves
+  precise float static_limit = k.friction_static * pressing;
+  if (slip > static_limit) {
+    keep = distance_max(1.0 - k.friction_dynamic * pressing / slip, 0.0);
+  }
+  precise vec3 dv = (normal_speed * n - (1.0 - keep) * reduce * tangential) / weight;
+  precise vec3 dx = dv * k.h + (push / weight) * n;
   for (int i = 0; i < 4; ++i) {
-    precise float scale = position[i].w * b[i] * reduce;
+    precise float scale = position[i].w * b[i];
     precise vec3 move = scale * dx;
     precise vec3 speed = scale * dv;
     correction[2 * i] = vec4(move, 0.0);

@@ -3,9 +3,10 @@
 // iteration): one invocation per constraint p that the activity pass found acting (the flag in
 // the w of its first slot, 8 p) reads its four nodes' positions and velocities and writes their
 // corrections to the constraint's own slots: corner 4 p + k's at 2 (4 p + k) (position) and
-// 2 (4 p + k) + 1 (velocity) (solve_contact), the flag kept for the next iteration. An inactive
-// constraint is left alone, as the CPU backend leaves it: the node pass skips its slots. No two
-// invocations write the same slot, and nothing here writes a node.
+// 2 (4 p + k) + 1 (velocity) (solve_contact), the flag kept for the next iteration, and what it
+// has given over the substep's iterations to its own impulse slot p. An inactive constraint is
+// left alone, as the CPU backend leaves it: the node pass skips its slots. No two invocations
+// write the same slot, and nothing here writes a node.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
 
@@ -26,6 +27,9 @@ layout(std430, binding = BINDING_CONTACT_CORRECTION) buffer ContactCorrections {
 layout(std430, binding = BINDING_NODE_CONTACT_COUNT) readonly buffer NodeContactCounts {
   uint node_contact_count[];
 };
+layout(std430, binding = BINDING_CONTACT_IMPULSE) buffer ContactImpulses {
+  vec4 impulses[];
+};
 
 uniform uint u_pair_count;
 uniform float u_h;
@@ -33,6 +37,7 @@ uniform float u_friction_static;
 uniform float u_friction_dynamic;
 uniform float u_restitution;
 uniform float u_max_untangle_step;
+uniform bool u_first_iteration;
 
 void main() {
   const uint p = gl_GlobalInvocationID.x;
@@ -47,10 +52,12 @@ void main() {
   uint count[4];
   for (uint i = 0u; i < 4u; ++i) count[i] = node_contact_count[pair.nodes[i]];
   vec4 correction[8];
+  vec4 given = impulses[p];
   solve_contact(pair, x, v, count,
                 ContactConstants(u_h, u_friction_static, u_friction_dynamic, u_restitution,
                                  u_max_untangle_step, 0.0),
-                correction);
+                u_first_iteration, given, correction);
   correction[0].w = 1.0;  // the activity flag, for the next iteration's solve and node passes
   for (uint k = 0u; k < 8u; ++k) corrections[8u * p + k] = correction[k];
+  impulses[p] = given;
 }

@@ -15,6 +15,7 @@ void CpuContactResponse::take(response::FrameConstraints constraints) {
   constraints_ = std::move(constraints);
   // Not cleared: a projection writes every slot of the constraints it solves and reads no other.
   corrections_.resize(8u * constraints_.pairs.size());
+  impulses_.resize(constraints_.pairs.size());  // reset by each substep's first iteration
   active_.assign(constraints_.pairs.size(), 0u);
   acting_.clear();
 }
@@ -105,7 +106,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
             }
             const std::uint32_t count[4] = {counts_[pair.nodes[0]], counts_[pair.nodes[1]],
                                             counts_[pair.nodes[2]], counts_[pair.nodes[3]]};
-            response::solve_contact(pair, x, v, count, k, &corrections_[8u * p]);
+            response::solve_contact(pair, x, v, count, k, iteration == 0, impulses_[p],
+                                    &corrections_[8u * p]);
           },
           256);
       const bool last = iteration + 1 == iterations;

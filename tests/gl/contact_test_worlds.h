@@ -170,6 +170,25 @@ inline HandMadeContacts hand_made_contacts() {
        {vf, {6, 1, 2, 3}},
        {un, {0, 2, 3, 4}}},
       true);
+  // An edge-edge constraint over-corrects the light end of an edge whose heavy end a vertex-face
+  // constraint also stops: the later iterations take the excess back (solve_contact's totals).
+  add("lever, a light node's edge on a fixed edge, its heavy end on a fixed face",
+      {{0.0f, 0.02f, 0.009f},
+       {0.0f, -0.06f, 0.009f},
+       {-0.1f, 0.0f, 0.0f},
+       {0.1f, 0.0f, 0.0f},
+       {-0.1f, -0.12f, 0.0f},
+       {0.1f, -0.12f, 0.0f},
+       {0.0f, 0.0f, 0.0f}},
+      {100.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f},
+      {{0.0f, 0.0f, -1.0f},
+       {0.0f, 0.0f, -1.0f},
+       {0.0f, 0.0f, 0.0f},
+       {0.0f, 0.0f, 0.0f},
+       {0.0f, 0.0f, 0.0f},
+       {0.0f, 0.0f, 0.0f},
+       {0.0f, 0.0f, 0.0f}},
+      {{ee, {0, 1, 2, 3}}, {vf, {1, 4, 5, 6}}}, true);
   // Friction: the same approach with a small slip (static: the tangential velocity is taken
   // out entirely) and a large one (dynamic: reduced by friction_dynamic x the normal speed).
   add("friction, static", {{0.0f, 0.0f, 0.005f}, f0, f1, f2}, free4,

@@ -13,7 +13,9 @@
 // a sub-node of 1/n its mass, each constraint is solved with those, and the node takes the mean
 // of its sub-nodes' moves, i.e. the sum of w_k b_k lambda n over its constraints. That conserves
 // momentum exactly, does not overshoot where constraints pile up on a node, and solves in one
-// step the constraints that agree (ten vertices resting on one face).
+// step the constraints that agree (ten vertices resting on one face). Each constraint keeps
+// what it has given over a substep's iterations and corrects that total, clamped at zero, so
+// that a correction its neighbours made too much of is taken back (solve_contact).
 
 #include <algorithm>
 #include <cmath>
@@ -147,24 +149,37 @@ inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 positio
 /// (position change) and correction[2 k + 1] (velocity change), from the current positions
 /// (w = inverse mass), velocities and the nodes' active counts (mass splitting: node k weighs
 /// as if its inverse mass were count[k] x w). Along the normal, the approach velocity is
-/// cancelled (and restitution x it given back), which also moves the nodes by that velocity
-/// change x h; depth left after that is removed by position alone, without adding velocity (so
-/// a deep start or a tunnel does not turn into a launch), an untangling constraint by at most
-/// max_untangle_step per substep. Tangentially, Coulomb friction on the relative velocity:
-/// static while it is within friction_static x the normal velocity change, else reduced by
-/// friction_dynamic x it. All along the constraint's weights, so momentum is conserved; a node
-/// moves at most its share of the whole correction (see the loop).
+/// cancelled (and restitution x the first iteration's approach given back), which also moves
+/// the nodes by that velocity change x h; depth left after that is removed by position alone,
+/// without adding velocity (so a deep start or a tunnel does not turn into a launch), an
+/// untangling constraint by at most max_untangle_step per iteration. Tangentially, Coulomb
+/// friction on the relative velocity: static while it is within friction_static x the normal
+/// velocity change, else reduced by friction_dynamic x it. All along the constraint's weights,
+/// so momentum is conserved; a node moves at most its share of the whole correction (see
+/// `reduce`).
+///
+/// `given` (ContactImpulse, one per constraint) carries what the constraint has given over the
+/// substep's iterations so far: x the normal speed, y the push, z the first iteration's
+/// approach; the first iteration resets it. Each iteration corrects the totals, which never go
+/// below zero (a projected Jacobi solve on accumulated corrections, as sequential impulses clamp
+/// theirs): a constraint that an earlier iteration over-corrected, because its nodes' other
+/// constraints then moved them too, takes the excess back instead of leaving it. Without that,
+/// a light node on an edge whose heavier end another constraint also stops was thrown off the
+/// surface every substep (the rigid-lever correction of the edge-edge constraint, never undone
+/// once the contact point separated), the main source of the stack scene's resting jitter.
 inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position[4],
                           const glm::vec4 velocity[4], const std::uint32_t count[4],
-                          const ContactConstants& k, glm::vec4 correction[8]) {
+                          const ContactConstants& k, bool first_iteration, glm::vec4& given,
+                          glm::vec4 correction[8]) {
   for (int i = 0; i < 8; ++i)
     correction[i] = glm::vec4(0.0f);
+  if (first_iteration) given = glm::vec4(0.0f);
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
                           glm::vec3(position[3])};
   glm::vec3 n(0.0f);
   float b[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   float c = 0.0f;
-  if (!contact_geometry(pair, x, n, b, c) || !(c < 0.0f)) return;
+  if (!contact_geometry(pair, x, n, b, c)) return;
   float weight = 0.0f;
   glm::vec3 relative_velocity(0.0f);
   for (int i = 0; i < 4; ++i) {
@@ -172,31 +187,40 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
     relative_velocity += b[i] * glm::vec3(velocity[i]);
   }
   if (!(weight > 0.0f)) return;  // every node fixed
-  const float approach = glm::max(-glm::dot(relative_velocity, n), 0.0f);
-  const float normal_speed = (1.0f + k.restitution) * approach;
-  float push = glm::max(-c - approach * k.h, 0.0f);
-  if (pair.kind == gpu::kContactUntangle) push = glm::min(push, k.max_untangle_step);
-  const glm::vec3 tangential = relative_velocity - glm::dot(relative_velocity, n) * n;
-  const float slip = std::sqrt(glm::dot(tangential, tangential));
-  float keep = 0.0f;  // the share of the tangential velocity friction leaves
-  if (slip > k.friction_static * normal_speed) {
-    keep = glm::max(1.0f - k.friction_dynamic * normal_speed / slip, 0.0f);
-  }
-  const glm::vec3 dv = (normal_speed * n - (1.0f - keep) * tangential) / weight;
-  const glm::vec3 dx = dv * k.h + (push / weight) * n;
   // No node moves more than 10 x its share (1 / its count) of the whole correction: a node
   // with little leverage on the contact point (a small barycentric weight) whose partners are
   // fixed or much heavier would otherwise be thrown by 1 / that weight x it (hundreds of metres
-  // in one projection at the folding plate's fixed hinge, and the springs then blew up). The
-  // whole constraint is scaled down, so that momentum stays conserved. A tighter bound weakens
-  // ordinary contacts: at 4 x the impact scene intersects in 1 frame of 120, at 2 x in 22.
+  // in one projection at the folding plate's fixed hinge, and the springs then blew up). Every
+  // part of the correction is scaled down alike, so that momentum stays conserved. A tighter
+  // bound weakens ordinary contacts: at 4 x the impact scene intersects in 1 frame of 120, at
+  // 2 x in 22.
   float reduce = 1.0f;
   for (int i = 0; i < 4; ++i) {
     const float lever = static_cast<float>(count[i]) * position[i].w * std::abs(b[i]);
     if (lever > 10.0f * weight) reduce = std::min(reduce, 10.0f * weight / lever);
   }
+  const float normal_velocity = glm::dot(relative_velocity, n);
+  if (first_iteration) given.z = glm::max(-normal_velocity, 0.0f);
+  const float total_speed =
+      glm::max(given.x + (k.restitution * given.z - normal_velocity) * reduce, 0.0f);
+  const float normal_speed = total_speed - given.x;
+  given.x = total_speed;
+  float total_push = glm::max(given.y - (c + normal_speed * k.h) * reduce, 0.0f);
+  if (pair.kind == gpu::kContactUntangle)
+    total_push = glm::min(total_push, given.y + k.max_untangle_step);
+  const float push = total_push - given.y;
+  given.y = total_push;
+  const glm::vec3 tangential = relative_velocity - normal_velocity * n;
+  const float slip = std::sqrt(glm::dot(tangential, tangential));
+  const float pressing = glm::max(normal_speed, 0.0f);  // this iteration's normal change
+  float keep = 0.0f;  // the share of the tangential velocity friction leaves
+  if (slip > k.friction_static * pressing) {
+    keep = glm::max(1.0f - k.friction_dynamic * pressing / slip, 0.0f);
+  }
+  const glm::vec3 dv = (normal_speed * n - (1.0f - keep) * reduce * tangential) / weight;
+  const glm::vec3 dx = dv * k.h + (push / weight) * n;
   for (int i = 0; i < 4; ++i) {
-    const float scale = position[i].w * b[i] * reduce;
+    const float scale = position[i].w * b[i];
     correction[2 * i] = glm::vec4(scale * dx, 0.0f);
     correction[2 * i + 1] = glm::vec4(scale * dv, 0.0f);
   }

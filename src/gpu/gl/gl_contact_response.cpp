@@ -101,6 +101,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
   auto new_motion = grow(buffers_.node_motion, nodes, gpu::kNodeMotion);
   auto new_deviation = grow(buffers_.node_deviation, nodes, gpu::kNodeDeviation);
+  auto new_impulses = grow(buffers_.impulses, pairs, gpu::kContactImpulse);
 
   frame_ready_ = false;  // until the upload below has completed
   adopt(buffers_.pairs, new_pairs);
@@ -111,7 +112,9 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   adopt(buffers_.frame_start, new_start);
   adopt(buffers_.node_motion, new_motion);
   adopt(buffers_.node_deviation, new_deviation);
-  // Corrections and counts need no initial values: each projection writes all it reads.
+  adopt(buffers_.impulses, new_impulses);
+  // Corrections, impulses and counts need no initial values: each projection writes all it
+  // reads (a substep's first iteration resets the impulses).
   buffers_.pairs->upload(std::span<const gpu::ContactPair>(constraints.pairs));
   buffers_.node_offset->upload(std::span<const std::uint32_t>(constraints.node_offset));
   buffers_.node_list->upload(std::span<const std::uint32_t>(constraints.node_list));
@@ -165,6 +168,7 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   buffers_.frame_start->bind(gpu::kFrameStart);
   buffers_.node_motion->bind(gpu::kNodeMotion);
   buffers_.node_deviation->bind(gpu::kNodeDeviation);
+  buffers_.impulses->bind(gpu::kContactImpulse);
 
   // Deviation, activity, count, solve, node pass (contact_constraints.h), each reading what the
   // one before wrote. With no constraints the node passes still run: the node pass watches
@@ -187,6 +191,7 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   apply_.set_uniform("u_elapsed", k.elapsed);
   for (int iteration = 0; iteration < iterations; ++iteration) {
     if (pair_count_ > 0) {
+      pairs_.set_uniform("u_first_iteration", static_cast<std::uint32_t>(iteration == 0));
       pairs_.dispatch_covering(pair_count_);
       storage_barrier();  // the node pass reads the corrections
     }
