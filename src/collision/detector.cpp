@@ -52,6 +52,7 @@ std::unique_ptr<Detector::Impl> Detector::Impl::create(std::vector<CollisionMesh
   auto impl = std::make_unique<Impl>();
   impl->data = collision::lay_out_meshes(
       meshes, options.mesh_pairs.has_value() ? &*options.mesh_pairs : nullptr);
+  impl->vertex_first = collision::vertex_firsts(impl->data);
   impl->meshes = std::move(meshes);
   impl->broadphase = options.broadphase;
   impl->check_positions = check_positions;
@@ -334,9 +335,7 @@ static std::vector<ProximityPair> to_proximity_pairs(
 std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach,
                                                     std::span<const glm::vec3> motion) {
   Impl& d = *impl_;
-  std::size_t vertices = 0;
-  for (const CollisionMesh& mesh : d.meshes)
-    vertices += mesh.vertex_count;
+  const std::size_t vertices = d.vertex_first.back();
   // One reach per mesh, or one per vertex: per vertex from here on.
   if (reach.size() != d.meshes.size() && reach.size() != vertices) {
     throw InputError("find_proximity",
@@ -353,7 +352,8 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
       vertex_reach.insert(vertex_reach.end(), d.meshes[m].vertex_count, reach[m]);
     reach = vertex_reach;
   }
-  for (std::size_t m = 0, first = 0; m < d.meshes.size(); first += d.meshes[m++].vertex_count) {
+  for (std::size_t m = 0; m < d.meshes.size(); ++m) {
+    const std::uint32_t first = d.vertex_first[m];
     reach_of[m] = reach.data() + first;
     for (std::uint32_t v = 0; v < d.meshes[m].vertex_count; ++v) {
       const float r = reach[first + v];
@@ -371,7 +371,8 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
                                            std::to_string(motion.size()) + " given");
   }
   std::vector<collision::MeshVertices> motion_of(motion.empty() ? 0u : d.meshes.size());
-  for (std::size_t m = 0, first = 0; m < motion_of.size(); first += d.meshes[m++].vertex_count) {
+  for (std::size_t m = 0; m < motion_of.size(); ++m) {
+    const std::uint32_t first = d.vertex_first[m];
     motion_of[m] = {&motion[first].x, 3u};
     for (std::uint32_t v = 0; v < d.meshes[m].vertex_count; ++v) {
       const glm::vec3& mv = motion[first + v];
@@ -436,9 +437,7 @@ std::vector<ProximityPair> Detector::widen_proximity(std::span<const std::uint32
                      "takes one reach per vertex named: " + std::to_string(vertices.size()) +
                          " vertices, " + std::to_string(reach.size()) + " reaches");
   }
-  std::vector<std::uint32_t> first(d.meshes.size() + 1u, 0u);
-  for (std::size_t m = 0; m < d.meshes.size(); ++m)
-    first[m + 1u] = first[m] + d.meshes[m].vertex_count;
+  const std::vector<std::uint32_t>& first = d.vertex_first;
   std::vector<std::array<std::uint32_t, 2>> widened(vertices.size());
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     const std::uint32_t v = vertices[i];

@@ -34,6 +34,9 @@ struct Detector::Impl {
 
   std::vector<CollisionMesh> meshes;
   collision::CollisionData data;
+  /// Per mesh + 1: where its vertices start in find_proximity's per-vertex arrays, then their
+  /// total (collision::vertex_firsts).
+  std::vector<std::uint32_t> vertex_first;
   std::unique_ptr<gl::Context> owned_context;  // before the backend: destroyed after it
   gl::Context* context = nullptr;
   std::unique_ptr<collision::CollisionBackend> backend;

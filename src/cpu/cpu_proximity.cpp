@@ -12,9 +12,7 @@ CpuProximity::CpuProximity(const collision::CollisionData& data, std::shared_ptr
       owners_(collision::primitive_owners(data.faces)),
       executor_(std::move(executor)) {
   // Each vertex's faces (layout indices, ascending), for widen().
-  vertex_first_.assign(data_.mesh_count() + 1u, 0u);
-  for (std::uint32_t m = 0; m < data_.mesh_count(); ++m)
-    vertex_first_[m + 1u] = vertex_first_[m] + data_.meshes[m].vertex_count;
+  vertex_first_ = collision::vertex_firsts(data_);
   vertex_face_offset_.assign(vertex_first_.back() + 1u, 0u);
   for (const gpu::Face& f : data_.faces)
     for (std::uint32_t k = 0; k < 3u; ++k)

@@ -122,4 +122,11 @@ void build_hierarchies(CollisionData& data, VertexPositions pose) {
   }
 }
 
+std::vector<std::uint32_t> vertex_firsts(const CollisionData& data) {
+  std::vector<std::uint32_t> first(data.mesh_count() + 1u, 0u);
+  for (std::size_t m = 0; m < data.mesh_count(); ++m)
+    first[m + 1u] = first[m] + data.meshes[m].vertex_count;
+  return first;
+}
+
 }  // namespace deformcd::collision

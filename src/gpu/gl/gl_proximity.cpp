@@ -16,24 +16,6 @@ namespace {
 static_assert(sizeof(collision::ProximityCandidate) == 32,
               "ProximityCandidate is read back as the GLSL struct (proximity.glsl)");
 
-// Where each mesh's vertices start in the per-vertex lists (mesh 0's first).
-std::vector<std::uint32_t> vertex_firsts(const collision::CollisionData& data) {
-  std::vector<std::uint32_t> first;
-  std::uint32_t next = 0;
-  for (const gpu::MeshInfo& mesh : data.meshes) {
-    first.push_back(next);
-    next += mesh.vertex_count;
-  }
-  return first;
-}
-
-std::uint32_t vertex_total(const collision::CollisionData& data) {
-  std::uint32_t total = 0;
-  for (const gpu::MeshInfo& mesh : data.meshes)
-    total += mesh.vertex_count;
-  return total;
-}
-
 // Every mesh's tree has 2 x faces - 1 nodes (collision::build_hierarchies; rebuilds keep it).
 std::uint32_t node_total(const collision::CollisionData& data) {
   std::uint32_t total = 0;
@@ -68,7 +50,7 @@ GlProximity::GlProximity(Context& context, const collision::CollisionData& data)
 
 GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionData& data)
     : max_buffer_bytes_(device.max_ssbo_block_bytes),
-      vertex_count_(vertex_total(data)),
+      vertex_count_(collision::vertex_firsts(data).back()),
       node_count_(node_total(data)),
       pair_count_(static_cast<std::uint32_t>(data.mesh_pairs.size())),
       item_count_(pair_first_items(data).back()),
@@ -80,7 +62,7 @@ GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionDat
       owners_(at_least_one(collision::primitive_owners(data.faces))),
       mesh_pairs_(at_least_one(data.mesh_pairs)),
       pair_first_(at_least_one(pair_first_items(data))),
-      vertex_first_(at_least_one(vertex_firsts(data))),
+      vertex_first_(collision::vertex_firsts(data)),
       motion_(std::max<std::uint32_t>(vertex_count_, 1u)),
       boxes_(std::max<std::uint32_t>(node_count_, 1u)),
       counts_(std::max<std::uint32_t>(item_count_, 1u)),
