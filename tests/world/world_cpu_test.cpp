@@ -18,6 +18,19 @@ fs::path scene_path(const char* name) {
   return fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (std::string(name) + ".json");
 }
 
+// Steps `world` up to `frames` frames and returns the message of the SimulationError that must
+// stop it (a failure, and "", when none does).
+std::string blow_up_message(World& world, int frames) {
+  try {
+    for (int f = 0; f < frames; ++f)
+      world.step();
+  } catch (const SimulationError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected SimulationError within " << frames << " frames";
+  return "";
+}
+
 double kinetic_energy(const World& world, const std::vector<BodyInit>& bodies) {
   double e = 0.0;
   for (std::size_t b = 0; b < world.body_count(); ++b) {
@@ -69,16 +82,10 @@ TEST(WorldCpu, BlowUpStopsWithTheBodyFrameAndAdvice) {
   world_options.backend = BackendKind::kCpu;
   world_options.stability_check_interval = 1;
   World world({init}, settings, world_options);
-  try {
-    for (int f = 0; f < 50; ++f)
-      world.step();
-    FAIL() << "expected SimulationError";
-  } catch (const SimulationError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("'jelly'"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("by frame"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("smaller dt or more substeps"), std::string::npos) << msg;
-  }
+  const std::string msg = blow_up_message(world, 50);
+  EXPECT_NE(msg.find("'jelly'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("by frame"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("smaller dt or more substeps"), std::string::npos) << msg;
 }
 
 // With contact response, a blow-up inside a frame (the positions turn to inf or NaN between
@@ -103,17 +110,11 @@ TEST(WorldCpu, BlowUpUnderContactResponseStopsWithTheBodyAndAdvice) {
   options.stability_check_interval = 1000;  // the response meets the blow-up first
   options.response = ResponseSettings{};
   World world(bodies, settings, options);
-  try {
-    for (int f = 0; f < 50; ++f)
-      world.step();
-    FAIL() << "expected SimulationError";
-  } catch (const SimulationError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("became unstable"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("in the contact response"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("'jelly'"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("smaller dt, more substeps"), std::string::npos) << msg;
-  }
+  const std::string msg = blow_up_message(world, 50);
+  EXPECT_NE(msg.find("became unstable"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("in the contact response"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'jelly'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("smaller dt, more substeps"), std::string::npos) << msg;
 }
 
 TEST(WorldCpu, RejectsABodyWithoutSurfaceFaces) {
