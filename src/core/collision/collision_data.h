@@ -37,12 +37,12 @@ struct CollisionData {
 /// every pair of different meshes, plus (m, m) for each mesh with self_collision. Throws
 /// InputError naming the mesh and the triangle (index out of range), a mesh without triangles,
 /// or the pair naming a mesh that does not exist.
+[[nodiscard]] CollisionData lay_out_meshes(const std::vector<CollisionMesh>& meshes,
+                                           const std::vector<MeshPair>* pairs);
+
 /// Where each mesh's vertices start in the per-vertex arrays of a proximity search (every
 /// mesh's vertices, mesh after mesh), then their total: mesh_count() + 1 entries.
 [[nodiscard]] std::vector<std::uint32_t> vertex_firsts(const CollisionData& data);
-
-[[nodiscard]] CollisionData lay_out_meshes(const std::vector<CollisionMesh>& meshes,
-                                           const std::vector<MeshPair>* pairs);
 
 /// Builds the leaf-box lists and the BVHs of every mesh on `pose`.
 void build_hierarchies(CollisionData& data, VertexPositions pose);
