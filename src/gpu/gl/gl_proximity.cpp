@@ -49,11 +49,16 @@ GlProximity::GlProximity(Context& context, const collision::CollisionData& data)
     : GlProximity(query_device_info(context), data) {}
 
 GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionData& data)
+    : GlProximity(device, data, collision::vertex_firsts(data), pair_first_items(data)) {}
+
+GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionData& data,
+                         const std::vector<std::uint32_t>& vertex_first,
+                         const std::vector<std::uint32_t>& pair_first)
     : max_buffer_bytes_(device.max_ssbo_block_bytes),
-      vertex_count_(collision::vertex_firsts(data).back()),
+      vertex_count_(vertex_first.back()),
       node_count_(node_total(data)),
       pair_count_(static_cast<std::uint32_t>(data.mesh_pairs.size())),
-      item_count_(pair_first_items(data).back()),
+      item_count_(pair_first.back()),
       refit_("proximity/proximity_refit.comp"),
       refit_level_("proximity/proximity_refit_level.comp"),
       count_("proximity/proximity_count.comp"),
@@ -61,8 +66,8 @@ GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionDat
       emit_("proximity/proximity_emit.comp"),
       owners_(at_least_one(collision::primitive_owners(data.faces))),
       mesh_pairs_(at_least_one(data.mesh_pairs)),
-      pair_first_(at_least_one(pair_first_items(data))),
-      vertex_first_(collision::vertex_firsts(data)),
+      pair_first_(at_least_one(pair_first)),
+      vertex_first_(vertex_first),
       motion_(std::max<std::uint32_t>(vertex_count_, 1u)),
       boxes_(std::max<std::uint32_t>(node_count_, 1u)),
       counts_(std::max<std::uint32_t>(item_count_, 1u)),

@@ -91,6 +91,11 @@ class GlProximity {
 
  private:
   GlProximity(const DeviceInfo& device, const collision::CollisionData& data);
+  // `vertex_first`: collision::vertex_firsts(data); `pair_first`: each mesh pair's first work
+  // item, then their total. Each is made once and read twice here (a count and a buffer).
+  GlProximity(const DeviceInfo& device, const collision::CollisionData& data,
+              const std::vector<std::uint32_t>& vertex_first,
+              const std::vector<std::uint32_t>& pair_first);
   void check_lists(std::span<const float> reach, std::span<const glm::vec3> motion) const;
   // Uploads the vertices' motion and reach and refits the search's boxes in `order`.
   void refit(const ProximityRefitOrder& order, std::span<const float> reach,
