@@ -172,8 +172,17 @@ class World {
   [[nodiscard]] std::uint32_t gl_position_buffer() const;
 
  private:
-  void check_stability();
+  /// Throws a SimulationError naming the first node (by body) whose position or velocity is
+  /// not finite or would cross half its body in a substep, `frame` the frame it is found in and
+  /// `where` (may be empty) where it was met, with the suggested substeps.
+  void check_stability(int frame, const char* where);
+  /// Runs a step of the contact response; a blow-up it meets (a SimulationError) is reported
+  /// with the world's check, which knows the frame and the suggested substeps.
+  template <class Stage>
+  void run_response(const Stage& stage);
   [[nodiscard]] int suggested_substeps() const;
+  /// What to change after a blow-up: the step's settings and the suggested substeps.
+  [[nodiscard]] std::string advice() const;
 
   // Destroyed last to first: the detector and the simulation before the context they run in.
   std::unique_ptr<gl::Context> owned_context_;

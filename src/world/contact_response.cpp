@@ -156,11 +156,11 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
 
 void ContactResponse::unstable(std::uint32_t node, const char* what) const {
   const std::uint32_t b = node_body_[node];
-  throw SimulationError("the simulation became unstable: body " + std::to_string(b) + " ('" +
-                        names_[b] + "') node " + std::to_string(node - objects_[b].node_offset) +
-                        " has " + what + " in the contact response, frame time " +
-                        std::to_string(frame_time_) +
-                        " s. Use a smaller dt, more substeps or softer springs");
+  // The world adds the frame and what to change (World::run_response).
+  throw SimulationError("body " + std::to_string(b) + " ('" + names_[b] + "') node " +
+                        std::to_string(node - objects_[b].node_offset) + " has " + what +
+                        " in the contact response, " + std::to_string(frame_time_) +
+                        " s into the frame");
 }
 
 const std::vector<glm::vec4>& ContactResponse::velocities() {

@@ -55,7 +55,8 @@ class ContactResponse {
   [[nodiscard]] const ResponseCounts& counts() const { return counts_; }
 
  private:
-  /// Throws the SimulationError of a blow-up: node `node` (global) has `what`.
+  /// Throws a SimulationError naming node `node` (global), its body and `what` it has; the world
+  /// reports it with its own check (World::run_response).
   [[noreturn]] void unstable(std::uint32_t node, const char* what) const;
   /// The nodes' velocities now (the CPU state's, or read back from GL).
   [[nodiscard]] const std::vector<glm::vec4>& velocities();

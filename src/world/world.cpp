@@ -102,6 +102,19 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
 
 World::~World() = default;
 
+template <class Stage>
+void World::run_response(const Stage& stage) {
+  try {
+    stage();
+  } catch (const SimulationError& e) {
+    // The world's check names the frame and the suggested substeps; it finds the same node
+    // unless the response met a position too large to subtract (finite, moving slowly).
+    check_stability(frame_ + 1, " in the contact response");
+    throw SimulationError("the simulation became unstable by frame " + std::to_string(frame_ + 1) +
+                          ": " + e.what() + ". " + advice());
+  }
+}
+
 void World::step() {
   using Clock = std::chrono::steady_clock;
   using Seconds = std::chrono::duration<double>;
@@ -111,7 +124,10 @@ void World::step() {
     // Untangling starts from the exact intersections of the pose the frame starts from.
     if (!detected_ && broadphase_ != BroadPhase::kNone) detect_collisions();
     const auto begin = Clock::now();
-    response_->begin_frame(*detector_, detected_ ? detector_->contacts() : std::vector<Contact>{});
+    run_response([&] {
+      response_->begin_frame(*detector_,
+                             detected_ ? detector_->contacts() : std::vector<Contact>{});
+    });
     proximity_s = Seconds(Clock::now() - begin).count();
   }
   detector_->complete();  // before the positions move (a GL pass may rerun on them)
@@ -124,14 +140,14 @@ void World::step() {
     if (!response_) continue;
     if (measure_stage_times_) backend_->finish();
     const auto begin = Clock::now();
-    response_->project(h, s + 1 < settings_.substeps);
+    run_response([&] { response_->project(h, s + 1 < settings_.substeps); });
     if (measure_stage_times_) {
       backend_->finish();
       response_s += Seconds(Clock::now() - begin).count();
     }
   }
   ++frame_;
-  if (frame_ % check_interval_ == 0 || frame_ == 1) check_stability();
+  if (frame_ % check_interval_ == 0 || frame_ == 1) check_stability(frame_, "");
   if (measure_stage_times_) backend_->finish();
   const auto simulated = Clock::now();
   if (broadphase_ != BroadPhase::kNone) {
@@ -197,7 +213,16 @@ int World::suggested_substeps() const {
   return static_cast<int>(std::ceil(settings_.dt / max_stable_substep_));
 }
 
-void World::check_stability() {
+std::string World::advice() const {
+  std::ostringstream msg;
+  msg << "Use a smaller dt or more substeps (now dt = " << settings_.dt
+      << " s, substeps = " << settings_.substeps << "; the estimated stable substep is "
+      << max_stable_substep_ << " s, i.e. substeps >= " << suggested_substeps()
+      << "), or softer springs";
+  return msg.str();
+}
+
+void World::check_stability(int frame, const char* where) {
   std::vector<glm::vec4> positions, velocities;
   backend_->download_positions(positions);
   backend_->download_velocities(velocities);
@@ -212,17 +237,14 @@ void World::check_stability() {
       if (finite && travel <= 0.5f * body_sizes_[b]) continue;
       std::ostringstream msg;
       msg << "the simulation became unstable: body " << b << " ('" << names_[b] << "') by frame "
-          << frame_ << ": node " << i - o.node_offset;
+          << frame << ": node " << i - o.node_offset;
       if (!finite) {
         msg << " has a non-finite position or velocity";
       } else {
         msg << " moves " << travel << " per substep, more than half the body's size ("
             << body_sizes_[b] << ")";
       }
-      msg << ". Use a smaller dt or more substeps (now dt = " << settings_.dt
-          << " s, substeps = " << settings_.substeps << "; the estimated stable substep is "
-          << max_stable_substep_ << " s, i.e. substeps >= " << suggested_substeps()
-          << "), or softer springs";
+      msg << where << ". " << advice();
       throw SimulationError(msg.str());
     }
   }
