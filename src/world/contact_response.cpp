@@ -361,6 +361,10 @@ void ContactResponse::add_proximity_pair(const ProximityPair& p, response::Frame
     const glm::vec3 corners[4] = {window_start_[pair.nodes[0]], window_start_[pair.nodes[1]],
                                   window_start_[pair.nodes[2]], window_start_[pair.nodes[3]]};
     pair.side = response::vertex_face_side(corners);
+    // A vertex that starts the window behind the face never acts on it (contact_geometry): the
+    // constraint would only cost its activity pass every substep (about a tenth of the impact
+    // scene's vertex-face candidates).
+    if (!(pair.side > 0.0f)) return;
   }
   c.pairs.push_back(pair);
   ++(edges ? counts_.edge_edge : counts_.vertex_face);
