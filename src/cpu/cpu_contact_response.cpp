@@ -4,6 +4,7 @@
 #include <atomic>
 #include <utility>
 
+#include "deformcd/error.h"
 #include "parallel_for.h"
 
 namespace deformcd::cpu {
@@ -11,37 +12,38 @@ namespace deformcd::cpu {
 CpuContactResponse::CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor)
     : state_(state), executor_(std::move(executor)) {}
 
-void CpuContactResponse::take(response::FrameConstraints constraints) {
-  constraints_ = std::move(constraints);
+void CpuContactResponse::take(const response::FrameConstraints& constraints) {
+  constraints_ = &constraints;
   // Not cleared: a projection writes every slot of the constraints it solves and reads no other.
-  corrections_.resize(8u * constraints_.pairs.size());
-  impulses_.resize(constraints_.pairs.size());  // reset by each substep's first iteration
-  active_.assign(constraints_.pairs.size(), 0u);
+  corrections_.resize(8u * constraints_->pairs.size());
+  impulses_.resize(constraints_->pairs.size());  // reset by each substep's first iteration
+  active_.assign(constraints_->pairs.size(), 0u);
   acting_.clear();
 }
 
-void CpuContactResponse::begin_frame(response::FrameConstraints constraints) {
-  take(std::move(constraints));
+void CpuContactResponse::begin_frame(const response::FrameConstraints& constraints) {
+  take(constraints);
   const std::size_t nodes = state_.positions.size();
   frame_start_.resize(nodes);
   deviation_.assign(nodes, 0.0f);
   counts_.assign(nodes, 0u);
   executor_->run([&] {
     parallel_for(nodes, [&](std::size_t i) {
-      frame_start_[i] = glm::vec4(glm::vec3(state_.positions[i]), constraints_.node_motion[i].w);
+      frame_start_[i] = glm::vec4(glm::vec3(state_.positions[i]), constraints_->node_motion[i].w);
     });
   });
 }
 
-void CpuContactResponse::update_frame(response::FrameConstraints constraints) {
-  take(std::move(constraints));
+void CpuContactResponse::update_frame(const response::FrameConstraints& constraints) {
+  take(constraints);
   for (std::size_t i = 0; i < frame_start_.size(); ++i)
-    frame_start_[i].w = constraints_.node_motion[i].w;
+    frame_start_[i].w = constraints_->node_motion[i].w;
 }
 
 bool CpuContactResponse::project(const response::ContactConstants& k, int iterations) {
+  if (constraints_ == nullptr) throw Error("CpuContactResponse::project before begin_frame()");
   std::atomic<bool> strayed{false};  // an OR: the same whatever the order
-  const std::vector<gpu::ContactPair>& pairs = constraints_.pairs;
+  const std::vector<gpu::ContactPair>& pairs = constraints_->pairs;
   const std::size_t nodes = state_.positions.size();
   executor_->run([&] {
     // Deviation pass, activity pass (only awake constraints look at their geometry), count,
@@ -49,7 +51,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
     // and each node reads its own list in order.
     parallel_for(nodes, [&](std::size_t i) {
       deviation_[i] = response::path_deviation(glm::vec3(state_.positions[i]), frame_start_[i],
-                                               constraints_.node_motion[i], k.elapsed);
+                                               constraints_->node_motion[i], k.elapsed);
     });
     parallel_for(
         pairs.size(),
@@ -119,7 +121,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
                                       dx, dv);
         }
         if (response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv,
-                                       frame_start_[i], constraints_.node_motion[i], k.elapsed) &&
+                                       frame_start_[i], constraints_->node_motion[i], k.elapsed) &&
             last) {
           strayed.store(true, std::memory_order_relaxed);
         }

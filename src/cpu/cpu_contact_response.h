@@ -23,19 +23,19 @@ class CpuContactResponse final : public response::ResponseBackend {
   /// Corrects `state` (a CPU simulation's, which must outlive this) on `executor`'s threads.
   CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor);
 
-  void begin_frame(response::FrameConstraints constraints) override;
-  void update_frame(response::FrameConstraints constraints) override;
+  void begin_frame(const response::FrameConstraints& constraints) override;
+  void update_frame(const response::FrameConstraints& constraints) override;
   [[nodiscard]] bool project(const response::ContactConstants& constants, int iterations) override;
 
  private:
-  // Keeps `constraints` and sizes the per-constraint arrays for them.
-  void take(response::FrameConstraints constraints);
+  // Points at `constraints` (the caller keeps them) and sizes the per-constraint arrays.
+  void take(const response::FrameConstraints& constraints);
 
   SimulationState& state_;
   std::shared_ptr<Executor> executor_;
-  response::FrameConstraints constraints_;
-  std::vector<glm::vec4> frame_start_;  // SSBO 34
-  std::vector<glm::vec4> corrections_;  // SSBO 30
+  const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
+  std::vector<glm::vec4> frame_start_;                       // SSBO 34
+  std::vector<glm::vec4> corrections_;                       // SSBO 30
   std::vector<glm::vec4> impulses_;     // SSBO 37: per constraint, what it gave this substep
   std::vector<std::uint32_t> counts_;   // SSBO 33
   std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep

@@ -333,8 +333,8 @@ void ContactResponse::search() {
     }
   }
   response::index_constraints_by_node(static_cast<std::uint32_t>(node_body_.size()), c);
-  constraints_ = c;
-  backend_->begin_frame(std::move(c));
+  constraints_ = std::move(c);
+  backend_->begin_frame(constraints_);
 }
 
 ContactResponse::~ContactResponse() = default;

@@ -97,7 +97,7 @@ class ContactResponse {
   Detector* detector_ = nullptr;                // of the frame
   std::vector<Contact> intersections_;          // of the frame
   std::unique_ptr<TangledPrimitives> tangled_;  // of the frame's intersections
-  response::FrameConstraints constraints_;      // of the window, as the backend has them
+  response::FrameConstraints constraints_;      // of the window; the backend reads them
   std::vector<glm::vec3> window_start_;         // per node: where the window began
   float elapsed_ = 0.0f;                        // since the window began (the last search)
   float frame_time_ = 0.0f;                     // since the frame began

@@ -15,14 +15,16 @@ class ResponseBackend {
   ResponseBackend(const ResponseBackend&) = delete;
   ResponseBackend& operator=(const ResponseBackend&) = delete;
 
-  /// Takes a search window's constraints (by value: the world moves them in, a backend may keep
-  /// them without a copy) and records the current positions as its start (w = the node's
-  /// reach, node_motion[n].w).
-  virtual void begin_frame(FrameConstraints constraints) = 0;
+  /// Takes a search window's constraints and records the current positions as its start (w =
+  /// the node's reach, node_motion[n].w). A backend may read `constraints` in every project()
+  /// without a copy of its own (the CPU's does): the caller keeps them alive and unchanged
+  /// until it hands the backend constraints again.
+  virtual void begin_frame(const FrameConstraints& constraints) = 0;
   /// Replaces the constraints of the window begin_frame() started (a widened search's: the
   /// pairs of the nodes that strayed found again with larger reaches): the window's start
   /// positions stay, and each node's reach becomes node_motion[n].w of the new constraints.
-  virtual void update_frame(FrameConstraints constraints) = 0;
+  /// `constraints` may be the same object as before, changed since (kept as begin_frame's).
+  virtual void update_frame(const FrameConstraints& constraints) = 0;
   /// The projection after a substep, on the current positions and velocities: the deviation,
   /// activity and count passes once, then `iterations` (>= 1) Jacobi projections of the active
   /// constraints, each a solve and a node pass (see contact_constraints.h). Returns whether a

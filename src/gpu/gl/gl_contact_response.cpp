@@ -65,11 +65,11 @@ GlContactResponse::GlContactResponse(const DeviceInfo& device, GlSimulation& sim
       count_("response/contact_count.comp"),
       apply_("response/contact_apply.comp") {}
 
-void GlContactResponse::begin_frame(response::FrameConstraints constraints) {
+void GlContactResponse::begin_frame(const response::FrameConstraints& constraints) {
   upload(constraints, false);
 }
 
-void GlContactResponse::update_frame(response::FrameConstraints constraints) {
+void GlContactResponse::update_frame(const response::FrameConstraints& constraints) {
   check_frame("update_frame");
   upload(constraints, true);
 }

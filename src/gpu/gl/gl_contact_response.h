@@ -73,8 +73,8 @@ class GlContactResponse final : public response::ResponseBackend {
   // buffer too large or a driver that refuses the memory; the previous frame's constraints are
   // kept then), uploads them, and records every node's frame start on the GPU. Throws Error
   // before the simulation's upload().
-  void begin_frame(response::FrameConstraints constraints) override;
-  void update_frame(response::FrameConstraints constraints) override;
+  void begin_frame(const response::FrameConstraints& constraints) override;
+  void update_frame(const response::FrameConstraints& constraints) override;
   // The pair, count and node passes with storage barriers between them, ending with a barrier so
   // that the next substep, the collision shaders and renderers see the corrected nodes. Throws
   // Error before begin_frame(), or when the simulation was uploaded again since.
