@@ -52,58 +52,47 @@ void emit_if_within_reach(ProximityCandidate c, vec3 x[4], vec3 end[4], float re
 }
 
 // emit_face_pair_candidates: fa's owned vertices against fb, fb's owned vertices against fa,
-// then fa's owned edges against fb's; each primitive's box swept along its vertices' paths and
-// grown by its reach, each pair whose boxes overlap kept when its primitives can come within
-// the sum of the two reaches.
-void emit_face_pair_candidates(Face fa, uint index_a, uint owners_a, Face fb, uint index_b,
-                               uint owners_b) {
-  vec3 xa[6], xb[6];
-  swept_face_vertices(fa, xa);
-  swept_face_vertices(fb, xb);
-  float ra[3], rb[3];
-  const float face_a = face_reaches(fa, ra);
-  const float face_b = face_reaches(fb, rb);
-  const Box box_a = reach_box6(xa, face_a);
-  const Box box_b = reach_box6(xb, face_b);
+// then fa's owned edges against fb's (fa and fb swept as sa and sb, their primitives' boxes pa
+// and pb: sweep_face, sweep_primitives); each pair
+// whose primitives' boxes overlap kept when its primitives can come within the sum of the two
+// reaches.
+void emit_face_pair_candidates(Face fa, SweptFace sa, SweptPrimitives pa, uint index_a,
+                               uint owners_a, Face fb, SweptFace sb, SweptPrimitives pb,
+                               uint index_b, uint owners_b) {
   for (uint k = 0u; k < 3u; ++k) {
-    const vec3 path[2] = vec3[2](xa[k], xa[3u + k]);
-    if ((owners_a & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(reach_box2(path, ra[k]), box_b)) {
-      precise float reach = ra[k] + face_b;
+    if ((owners_a & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(pa.vertex_box[k], sb.box)) {
+      precise float reach = sa.reach[k] + sb.face_reach;
       emit_if_within_reach(ProximityCandidate(CONTACT_VERTEX_FACE, fa.body, fb.body, index_b,
                                               uvec4(face_corner(fa, k), fb.a, fb.b, fb.c)),
-                           vec3[4](xa[k], xb[0], xb[1], xb[2]),
-                           vec3[4](xa[3u + k], xb[3], xb[4], xb[5]), reach);
+                           vec3[4](sa.x[k], sb.x[0], sb.x[1], sb.x[2]),
+                           vec3[4](sa.x[3u + k], sb.x[3], sb.x[4], sb.x[5]), reach);
     }
   }
   for (uint k = 0u; k < 3u; ++k) {
-    const vec3 path[2] = vec3[2](xb[k], xb[3u + k]);
-    if ((owners_b & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(reach_box2(path, rb[k]), box_a)) {
-      precise float reach = rb[k] + face_a;
+    if ((owners_b & (OWNS_VERTEX0 << k)) != 0u && boxes_overlap(pb.vertex_box[k], sa.box)) {
+      precise float reach = sb.reach[k] + sa.face_reach;
       emit_if_within_reach(ProximityCandidate(CONTACT_VERTEX_FACE, fb.body, fa.body, index_a,
                                               uvec4(face_corner(fb, k), fa.a, fa.b, fa.c)),
-                           vec3[4](xb[k], xa[0], xa[1], xa[2]),
-                           vec3[4](xb[3u + k], xa[3], xa[4], xa[5]), reach);
+                           vec3[4](sb.x[k], sa.x[0], sa.x[1], sa.x[2]),
+                           vec3[4](sb.x[3u + k], sa.x[3], sa.x[4], sa.x[5]), reach);
     }
   }
   for (uint i = 0u; i < 3u; ++i) {
     if ((owners_a & (OWNS_EDGE0 << i)) == 0u) continue;
     const uint i1 = (i + 1u) % 3u;
-    const vec3 edge_a[4] = vec3[4](xa[i], xa[i1], xa[3u + i], xa[3u + i1]);
-    const float reach_a = proximity_max(ra[i], ra[i1]);
-    const Box grown = reach_box4(edge_a, reach_a);
+    const float reach_a = proximity_max(sa.reach[i], sa.reach[i1]);
     for (uint j = 0u; j < 3u; ++j) {
       if ((owners_b & (OWNS_EDGE0 << j)) == 0u) continue;
       const uint j1 = (j + 1u) % 3u;
-      const vec3 edge_b[4] = vec3[4](xb[j], xb[j1], xb[3u + j], xb[3u + j1]);
-      const float reach_b = proximity_max(rb[j], rb[j1]);
-      if (boxes_overlap(grown, reach_box4(edge_b, reach_b))) {
+      const float reach_b = proximity_max(sb.reach[j], sb.reach[j1]);
+      if (boxes_overlap(pa.edge_box[i], pb.edge_box[j])) {
         precise float reach = reach_a + reach_b;
         emit_if_within_reach(
             ProximityCandidate(CONTACT_EDGE_EDGE, fa.body, fb.body, 0u,
                                uvec4(face_corner(fa, i), face_corner(fa, i1), face_corner(fb, j),
                                      face_corner(fb, j1))),
-            vec3[4](xa[i], xa[i1], xb[j], xb[j1]),
-            vec3[4](xa[3u + i], xa[3u + i1], xb[3u + j], xb[3u + j1]), reach);
+            vec3[4](sa.x[i], sa.x[i1], sb.x[j], sb.x[j1]),
+            vec3[4](sa.x[3u + i], sa.x[3u + i1], sb.x[3u + j], sb.x[3u + j1]), reach);
       }
     }
   }

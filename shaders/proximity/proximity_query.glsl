@@ -30,8 +30,10 @@ uniform uint u_item_count;
 // broad_phase.glsl declares it for is_first_box_pair, which the search does not call.
 bool mask_says_overlap(uint mask_slot, uint box_a, uint box_b) { return false; }
 
-// The query's face a and the rules of bvh_visit.
+// The query's face a (swept once: g_sa, g_pa) and the rules of bvh_visit.
 Face g_fa;
+SweptFace g_sa;
+SweptPrimitives g_pa;
 uint g_index_a;
 uint g_owners_a;
 bool g_self;
@@ -40,7 +42,10 @@ bool g_self;
 // the emit leaves out).
 void bvh_visit(uint index_b) {
   if (g_self && index_b <= g_index_a) return;
-  emit_face_pair_candidates(g_fa, g_index_a, g_owners_a, faces[index_b], index_b, owners[index_b]);
+  const Face fb = faces[index_b];
+  const SweptFace sb = sweep_face(fb);
+  emit_face_pair_candidates(g_fa, g_sa, g_pa, g_index_a, g_owners_a, fb, sb, sweep_primitives(sb),
+                            index_b, owners[index_b]);
 }
 
 // Runs work item `item` (< u_item_count).
@@ -61,8 +66,7 @@ void run_proximity_item(uint item) {
   g_fa = faces[g_index_a];
   g_owners_a = owners[g_index_a];
   g_self = pair.a == pair.b;
-  vec3 xa[6];
-  swept_face_vertices(g_fa, xa);
-  float corner[3];
-  query_bvh(mesh_bvhs[pair.b].root, reach_box6(xa, face_reaches(g_fa, corner)));
+  g_sa = sweep_face(g_fa);
+  g_pa = sweep_primitives(g_sa);
+  query_bvh(mesh_bvhs[pair.b].root, g_sa.box);
 }

@@ -2,7 +2,7 @@
 // The proximity search's BVH refit, first step: one invocation per BVH node of every mesh, of
 // which the leaves work: each writes its face's box swept over the period (its corners where
 // the period starts and where their motion takes them) and grown by the face's reach, as
-// CpuProximity::refit does (reach_box of swept_face_vertices, face_reaches).
+// CpuProximity::refit does (sweep_face's box: reach_box of swept_face_vertices, face_reaches).
 // proximity/proximity_refit_level.comp then fills the internal nodes level by level, deepest
 // first. The boxes are the search's own: the collision passes' (refitted on the positions
 // alone) are left as they are.

@@ -1,8 +1,8 @@
 // The vertices of the proximity search, mirroring src/core/collision/proximity.h line for line:
 // each vertex's motion and reach (per vertex, mesh by mesh, found through vertex_first[mesh]),
-// vertex_motion, swept_face_vertices, face_reaches and reach_box. Only exact operations happen
-// here (min / max as glm's, one addition per swept corner, one subtraction or addition per
-// grown bound), so the boxes are the CPU's bit for bit. Change both files together.
+// vertex_motion, swept_face_vertices, face_reaches, reach_box and sweep_face. Only exact
+// operations happen here (min / max as glm's, one addition per swept corner, one subtraction or
+// addition per grown bound), so the boxes are the CPU's bit for bit. Change both files together.
 #include "collision/surface.glsl"
 #include "common/layout.glsl"
 #include "proximity/proximity_buffers.glsl"
@@ -72,4 +72,46 @@ float face_reaches(Face f, out float r[3]) {
   r[1] = vertex_motion_and_reach(f.body, f.b).w;
   r[2] = vertex_motion_and_reach(f.body, f.c).w;
   return proximity_max(r[0], proximity_max(r[1], r[2]));
+}
+
+// SweptFace: a face over the period (its corners at the period's start and end, their
+// reaches, its box grown by the largest).
+struct SweptFace {
+  vec3 x[6];         // corners a, b, c at the period's start, then at its end
+  float reach[3];    // the corners' reaches
+  float face_reach;  // the largest of them
+  Box box;           // x[0..5] grown by face_reach
+};
+
+// sweep_face: face f swept over the period.
+SweptFace sweep_face(Face f) {
+  SweptFace s;
+  swept_face_vertices(f, s.x);
+  s.face_reach = face_reaches(f, s.reach);
+  s.box = reach_box6(s.x, s.face_reach);
+  return s;
+}
+
+// SweptPrimitives: the boxes of a swept face's primitives.
+struct SweptPrimitives {
+  Box vertex_box[3];  // corner k's path (x[k], x[3 + k]) grown by its reach
+  Box edge_box[3];    // edge k (corner k to (k + 1) % 3): its corners' paths, grown by the larger
+};
+
+// sweep_primitives: the primitive boxes of swept face s.
+SweptPrimitives sweep_primitives(SweptFace s) {
+  SweptPrimitives p;
+  vec3 lo[3], hi[3];
+  for (uint k = 0u; k < 3u; ++k) {
+    lo[k] = proximity_min(s.x[k], s.x[3u + k]);
+    hi[k] = proximity_max(s.x[k], s.x[3u + k]);
+    p.vertex_box[k] = Box(vec4(lo[k] - s.reach[k], 0.0), vec4(hi[k] + s.reach[k], 0.0));
+  }
+  for (uint k = 0u; k < 3u; ++k) {
+    const uint k1 = (k + 1u) % 3u;
+    const float r = proximity_max(s.reach[k], s.reach[k1]);
+    p.edge_box[k] = Box(vec4(proximity_min(lo[k], lo[k1]) - r, 0.0),
+                        vec4(proximity_max(hi[k], hi[k1]) + r, 0.0));
+  }
+  return p;
 }

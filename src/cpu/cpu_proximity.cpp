@@ -37,6 +37,13 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
     leaf_of_.assign(data_.faces.size(), 0u);
     built_ = true;
   }
+  // Every face swept once (each face pair it meets reads it), in parallel: pure per face.
+  swept_.resize(data_.faces.size());
+  primitives_.resize(data_.faces.size());
+  primitives_state_.assign(data_.faces.size(), kPrimitivesStale);
+  parallel_for(data_.faces.size(), [&](std::size_t i) {
+    swept_[i] = collision::sweep_face(positions, motion, reach, data_.faces[i]);
+  });
   // The upkeep rule judges each tree on the period's start, as the detector's trees are judged;
   // the search then refits the boxes it queries: each leaf its face's swept box grown by the
   // face's reach, each parent the union of its children, in reverse preorder.
@@ -48,11 +55,7 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
     for (std::uint32_t i = tree.root + tree.node_count; i-- > tree.root;) {
       const gpu::BvhNode& n = nodes[i];
       if (n.face != gpu::kBvhInternal) {
-        const gpu::Face& f = data_.faces[n.face];
-        glm::vec3 x[6];
-        float corner[3];
-        collision::swept_face_vertices(positions, motion, f, x);
-        boxes_[i] = collision::reach_box(x, 6u, collision::face_reaches(reach, f, corner));
+        boxes_[i] = swept_[n.face].box;
         leaf_of_[n.face] = i;
       } else {
         const gpu::Box& l = boxes_[n.left];
@@ -63,6 +66,14 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
   }
 }
 
+void CpuProximity::sweep_primitives_of_met_faces() {
+  parallel_for(data_.faces.size(), [&](std::size_t i) {
+    if (primitives_state_[i] != kPrimitivesWanted) return;
+    primitives_[i] = collision::sweep_primitives(swept_[i]);
+    primitives_state_[i] = kPrimitivesSwept;
+  });
+}
+
 std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexPositions positions,
                                                               collision::VertexPositions motion,
                                                               collision::VertexReach reach,
@@ -71,58 +82,74 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
   if (distances != nullptr) distances->clear();
   executor_->run([&] {
     refit(positions, motion, reach);
-    for (const gpu::BodyPair& pair : data_.mesh_pairs) {
-      const gpu::MeshInfo& mesh_a = data_.meshes[pair.a];
-      const gpu::BodyBvh& tree_b = upkeep_.tree(pair.b);
-      const bool self = pair.a == pair.b;
-      // Fixed chunks of faces, each with its own lists, joined in chunk order: the order does
-      // not depend on the schedule, and a face costs no allocation of its own.
-      constexpr std::size_t kChunk = 64;
-      const std::size_t chunks = (mesh_a.face_count + kChunk - 1) / kChunk;
-      std::vector<std::vector<collision::ProximityCandidate>> per_chunk(chunks);
-      std::vector<std::vector<float>> per_chunk_distance(chunks);
-      parallel_for(
-          chunks,
-          [&](std::size_t chunk) {
-            auto& out = per_chunk[chunk];
-            auto& out_distance = per_chunk_distance[chunk];
-            const std::size_t end = std::min<std::size_t>((chunk + 1) * kChunk, mesh_a.face_count);
-            for (std::size_t i = chunk * kChunk; i < end; ++i) {
-              const std::uint32_t index_a = mesh_a.face_offset + static_cast<std::uint32_t>(i);
-              const gpu::Face& fa = data_.faces[index_a];
-              glm::vec3 xa[6];
-              float corner[3];
-              collision::swept_face_vertices(positions, motion, fa, xa);
-              const gpu::Box query =
-                  collision::reach_box(xa, 6u, collision::face_reaches(reach, fa, corner));
-              // Within one mesh each face pair once (a face with itself pairs only surface
-              // neighbours, which the emit leaves out).
-              collision::query_bvh(
-                  upkeep_.nodes().data(), boxes_.data(), tree_b.root, query,
-                  [&](std::uint32_t index_b) {
-                    if (self && index_b <= index_a) return;
-                    collision::emit_face_pair_candidates(
-                        positions, motion, reach, fa, index_a, owners_[index_a],
-                        data_.faces[index_b], index_b, owners_[index_b],
-                        [&](const collision::ProximityCandidate& c, float distance) {
-                          out.push_back(c);
-                          out_distance.push_back(distance);
-                        });
-                  });
-            }
-          },
-          1);
-      std::size_t total = all.size();
-      for (const auto& list : per_chunk)
-        total += list.size();
-      all.reserve(total);
-      for (const auto& list : per_chunk)
-        all.insert(all.end(), list.begin(), list.end());
-      if (distances != nullptr) {
-        distances->reserve(total);
-        for (const auto& list : per_chunk_distance)
-          distances->insert(distances->end(), list.begin(), list.end());
+    // Fixed chunks of each mesh pair's first mesh's faces, each with its own lists, joined in
+    // chunk order: the order does not depend on the schedule, and a face costs no allocation of
+    // its own. First every chunk's face pairs (its faces in order, each one's in its traversal
+    // order), marking the faces met; then the primitive boxes of those faces alone (most faces
+    // meet none); then each chunk's candidates from its face pairs, in their order.
+    constexpr std::size_t kChunk = 64;
+    struct Chunk {
+      std::uint32_t mesh_pair, first, end;  // faces [first, end) of the pair's mesh a
+    };
+    std::vector<Chunk> chunks;
+    for (std::uint32_t p = 0; p < data_.mesh_pairs.size(); ++p) {
+      const gpu::MeshInfo& mesh_a = data_.meshes[data_.mesh_pairs[p].a];
+      for (std::uint32_t first = 0; first < mesh_a.face_count; first += kChunk) {
+        chunks.push_back(
+            {p, mesh_a.face_offset + first,
+             mesh_a.face_offset + std::min<std::uint32_t>(first + kChunk, mesh_a.face_count)});
       }
+    }
+    std::vector<std::vector<std::array<std::uint32_t, 2>>> met(chunks.size());
+    parallel_for(
+        chunks.size(),
+        [&](std::size_t c) {
+          const Chunk& chunk = chunks[c];
+          const gpu::BodyPair& pair = data_.mesh_pairs[chunk.mesh_pair];
+          const gpu::BodyBvh& tree_b = upkeep_.tree(pair.b);
+          const bool self = pair.a == pair.b;
+          for (std::uint32_t index_a = chunk.first; index_a < chunk.end; ++index_a) {
+            // Within one mesh each face pair once (a face with itself pairs only surface
+            // neighbours, which the emit leaves out).
+            collision::query_bvh(upkeep_.nodes().data(), boxes_.data(), tree_b.root,
+                                 swept_[index_a].box, [&](std::uint32_t index_b) {
+                                   if (self && index_b <= index_a) return;
+                                   met[c].push_back({index_a, index_b});
+                                   want_primitives(index_a);
+                                   want_primitives(index_b);
+                                 });
+          }
+        },
+        1);
+    sweep_primitives_of_met_faces();
+    std::vector<std::vector<collision::ProximityCandidate>> per_chunk(chunks.size());
+    std::vector<std::vector<float>> per_chunk_distance(chunks.size());
+    parallel_for(
+        chunks.size(),
+        [&](std::size_t c) {
+          auto& out = per_chunk[c];
+          auto& out_distance = per_chunk_distance[c];
+          for (const auto& [a, b] : met[c]) {
+            collision::emit_face_pair_candidates(
+                data_.faces[a], swept_[a], primitives_[a], a, owners_[a], data_.faces[b], swept_[b],
+                primitives_[b], b, owners_[b],
+                [&](const collision::ProximityCandidate& candidate, float distance) {
+                  out.push_back(candidate);
+                  out_distance.push_back(distance);
+                });
+          }
+        },
+        1);
+    std::size_t total = 0;
+    for (const auto& list : per_chunk)
+      total += list.size();
+    all.reserve(total);
+    for (const auto& list : per_chunk)
+      all.insert(all.end(), list.begin(), list.end());
+    if (distances != nullptr) {
+      distances->reserve(total);
+      for (const auto& list : per_chunk_distance)
+        distances->insert(distances->end(), list.begin(), list.end());
     }
   });
   return all;
@@ -150,12 +177,9 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
     const std::vector<gpu::BvhNode>& nodes = upkeep_.nodes();
     for (const std::uint32_t face : faces) {
-      const gpu::Face& f = data_.faces[face];
-      glm::vec3 x[6];
-      float corner[3];
-      collision::swept_face_vertices(positions, motion, f, x);
-      boxes_[leaf_of_[face]] =
-          collision::reach_box(x, 6u, collision::face_reaches(reach, f, corner));
+      swept_[face] = collision::sweep_face(positions, motion, reach, data_.faces[face]);
+      primitives_state_[face] = kPrimitivesStale;
+      boxes_[leaf_of_[face]] = swept_[face].box;
     }
     for (std::uint32_t m = 0; m < data_.mesh_count(); ++m) {
       const gpu::BodyBvh& tree = upkeep_.tree(m);
@@ -205,9 +229,15 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
     for (const FacePair& fp : pairs) {
+      want_primitives(fp.a);
+      want_primitives(fp.b);
+    }
+    sweep_primitives_of_met_faces();
+    for (const FacePair& fp : pairs) {
       collision::emit_face_pair_candidates(
-          positions, motion, reach, data_.faces[fp.a], fp.a, owners_[fp.a], data_.faces[fp.b], fp.b,
-          owners_[fp.b], [&](const collision::ProximityCandidate& c, float distance) {
+          data_.faces[fp.a], swept_[fp.a], primitives_[fp.a], fp.a, owners_[fp.a],
+          data_.faces[fp.b], swept_[fp.b], primitives_[fp.b], fp.b, owners_[fp.b],
+          [&](const collision::ProximityCandidate& c, float distance) {
             const std::uint32_t first_b = c.kind == gpu::kContactEdgeEdge ? 2u : 1u;
             bool involved = false;
             for (std::uint32_t k = 0; k < 4u; ++k) {

@@ -9,6 +9,7 @@
 // raised, only the faces at them swept again and queried.
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -49,13 +50,28 @@ class CpuProximity {
  private:
   void refit(collision::VertexPositions positions, collision::VertexPositions motion,
              collision::VertexReach reach);
+  /// Face `face` meets another face's box: its primitive boxes are needed. Any thread may call
+  /// it, for any face, at once (each stores the same value).
+  void want_primitives(std::uint32_t face) {
+    std::atomic_ref<std::uint8_t> state(primitives_state_[face]);
+    if (state.load(std::memory_order_relaxed) == kPrimitivesStale)
+      state.store(kPrimitivesWanted, std::memory_order_relaxed);
+  }
+  /// Sweeps the primitives of the faces wanted since the last call (sweep_primitives).
+  void sweep_primitives_of_met_faces();
+
+  // primitives_state_: a face's primitives_ entry is from before its last sweep, is wanted by
+  // a face pair of the search, or is swept from its swept_ entry.
+  static constexpr std::uint8_t kPrimitivesStale = 0, kPrimitivesWanted = 1, kPrimitivesSwept = 2;
 
   collision::CollisionData data_;
   std::vector<std::uint32_t> owners_;
   collision::BvhUpkeep upkeep_;
-  std::vector<gpu::Box> boxes_;           // per node: swept over the period, grown by the reaches
-  std::vector<std::uint32_t> leaf_of_;    // per face (layout order): its tree's leaf node
-  std::vector<std::uint32_t> face_mesh_;  // per face: its mesh's index in mesh_pairs' terms
+  std::vector<gpu::Box> boxes_;         // per node: swept over the period, grown by the reaches
+  std::vector<std::uint32_t> leaf_of_;  // per face (layout order): its tree's leaf node
+  std::vector<collision::SweptFace> swept_;  // per face (layout order): of the last search
+  std::vector<collision::SweptPrimitives> primitives_;  // per face: of the faces met (state)
+  std::vector<std::uint8_t> primitives_state_;          // per face: kPrimitives*
   std::vector<std::uint32_t> vertex_faces_;  // per mesh vertex (vertex_first_ order): CSR faces
   std::vector<std::uint32_t> vertex_face_offset_;
   std::vector<std::uint32_t> vertex_first_;  // per mesh: its first vertex in that order

@@ -114,65 +114,101 @@ inline float face_reaches(VertexReach reach, const gpu::Face& f, float out[3]) {
   return glm::max(out[0], glm::max(out[1], out[2]));
 }
 
-/// The candidates of one face pair (fa of mesh a, fb of mesh b, whose swept boxes, each grown
-/// by its face's reach, overlap; for one mesh, fa < fb, and pairs of surface neighbours are
-/// left out, so that two faces sharing a corner still give their other primitives' pairs) in a
-/// fixed order: fa's owned vertices against fb, fb's owned vertices against fa, then fa's owned
-/// edges against fb's. Each vertex moves linearly by its motion over the period and may stray
-/// from that path by its reach: a primitive's box spans both ends of its path (swept) and is
-/// grown by its reach (a vertex's own, the largest of an edge's or a face's vertices'); a pair
-/// whose boxes overlap is kept unless its distance where the period starts, less what the
-/// motions can close of it (closing_speed), exceeds the sum of the two reaches. A pair that
-/// comes within that sum at some moment of the period is always emitted.
-template <class Emit>
-void emit_face_pair_candidates(VertexPositions positions, VertexPositions motion, VertexReach reach,
-                               const gpu::Face& fa, std::uint32_t index_a, std::uint32_t owners_a,
-                               const gpu::Face& fb, std::uint32_t index_b, std::uint32_t owners_b,
-                               const Emit& emit) {
-  glm::vec3 xa[6], xb[6];
-  swept_face_vertices(positions, motion, fa, xa);
-  swept_face_vertices(positions, motion, fb, xb);
-  float ra[3], rb[3];
-  const float face_a = face_reaches(reach, fa, ra);
-  const float face_b = face_reaches(reach, fb, rb);
-  const gpu::Box box_a = reach_box(xa, 6u, face_a);
-  const gpu::Box box_b = reach_box(xb, 6u, face_b);
+/// A face over the period: its corners where the period starts and where their motion takes
+/// them (swept_face_vertices), their reaches, and its box grown by the largest (the box its
+/// tree's leaf and its queries use). A search sweeps each face once, not once per face pair.
+struct SweptFace {
+  glm::vec3 x[6];    ///< corners a, b, c at the period's start, then at its end
+  float reach[3];    ///< the corners' reaches
+  float face_reach;  ///< the largest of them
+  gpu::Box box;      ///< x[0..5] grown by face_reach
+};
+
+/// Face f swept over the period (SweptFace).
+inline SweptFace sweep_face(VertexPositions positions, VertexPositions motion, VertexReach reach,
+                            const gpu::Face& f) {
+  SweptFace s;
+  swept_face_vertices(positions, motion, f, s.x);
+  s.face_reach = face_reaches(reach, f, s.reach);
+  s.box = reach_box(s.x, 6u, s.face_reach);
+  return s;
+}
+
+/// The boxes of a swept face's primitives: each corner's path grown by its reach, each edge's
+/// sweep (the union of its corners' paths) grown by the larger of its corners' reaches. Only
+/// the faces that meet another face's box need them (the search sweeps those once).
+struct SweptPrimitives {
+  gpu::Box vertex_box[3];  ///< corner k's path (x[k], x[3 + k])
+  gpu::Box edge_box[3];    ///< edge k, from corner k to corner (k + 1) % 3
+};
+
+/// The primitive boxes of swept face s (SweptPrimitives). The bounds are min / max of the
+/// corners and one addition or subtraction of a reach, exact operations.
+inline SweptPrimitives sweep_primitives(const SweptFace& s) {
+  SweptPrimitives p;
+  glm::vec3 lo[3], hi[3];
   for (std::uint32_t k = 0; k < 3u; ++k) {
-    const glm::vec3 path[2] = {xa[k], xa[3u + k]};
-    if ((owners_a & (kOwnsVertex0 << k)) != 0u && boxes_overlap(reach_box(path, 2u, ra[k]), box_b))
+    lo[k] = glm::min(s.x[k], s.x[3u + k]);
+    hi[k] = glm::max(s.x[k], s.x[3u + k]);
+    p.vertex_box[k] = {glm::vec4(lo[k] - s.reach[k], 0.0f), glm::vec4(hi[k] + s.reach[k], 0.0f)};
+  }
+  for (std::uint32_t k = 0; k < 3u; ++k) {
+    const std::uint32_t k1 = (k + 1u) % 3u;
+    const float r = glm::max(s.reach[k], s.reach[k1]);
+    p.edge_box[k] = {glm::vec4(glm::min(lo[k], lo[k1]) - r, 0.0f),
+                     glm::vec4(glm::max(hi[k], hi[k1]) + r, 0.0f)};
+  }
+  return p;
+}
+
+/// The candidates of one face pair (fa of mesh a, fb of mesh b, swept as sa and sb with
+/// primitive boxes pa and pb, whose boxes overlap; for one mesh, fa < fb, and pairs of surface
+/// neighbours are left out, so that two faces sharing a corner still give their other primitives'
+/// pairs) in a fixed order: fa's owned vertices against fb, fb's owned vertices against fa, then
+/// fa's owned edges against fb's. Each vertex moves linearly by its motion over the period and may
+/// stray from that path by its reach: a primitive's box spans both ends of its path (swept) and is
+/// grown by its reach (a vertex's own, the largest of an edge's or a face's vertices'); a pair
+/// whose boxes overlap is kept unless its distance where the period starts, less what the motions
+/// can close of it (closing_speed), exceeds the sum of the two reaches. A pair that comes within
+/// that sum at some moment of the period is always emitted.
+template <class Emit>
+void emit_face_pair_candidates(const gpu::Face& fa, const SweptFace& sa, const SweptPrimitives& pa,
+                               std::uint32_t index_a, std::uint32_t owners_a, const gpu::Face& fb,
+                               const SweptFace& sb, const SweptPrimitives& pb,
+                               std::uint32_t index_b, std::uint32_t owners_b, const Emit& emit) {
+  const glm::vec3* xa = sa.x;
+  const glm::vec3* xb = sb.x;
+  for (std::uint32_t k = 0; k < 3u; ++k) {
+    if ((owners_a & (kOwnsVertex0 << k)) != 0u && boxes_overlap(pa.vertex_box[k], sb.box))
       emit_if_within_reach(ProximityCandidate{gpu::kContactVertexFace,
                                               fa.body,
                                               fb.body,
                                               index_b,
                                               {face_corner(fa, k), fb.a, fb.b, fb.c}},
                            std::array{xa[k], xb[0], xb[1], xb[2]}.data(),
-                           std::array{xa[3u + k], xb[3], xb[4], xb[5]}.data(), ra[k] + face_b,
-                           emit);
+                           std::array{xa[3u + k], xb[3], xb[4], xb[5]}.data(),
+                           sa.reach[k] + sb.face_reach, emit);
   }
   for (std::uint32_t k = 0; k < 3u; ++k) {
-    const glm::vec3 path[2] = {xb[k], xb[3u + k]};
-    if ((owners_b & (kOwnsVertex0 << k)) != 0u && boxes_overlap(reach_box(path, 2u, rb[k]), box_a))
+    if ((owners_b & (kOwnsVertex0 << k)) != 0u && boxes_overlap(pb.vertex_box[k], sa.box))
       emit_if_within_reach(ProximityCandidate{gpu::kContactVertexFace,
                                               fb.body,
                                               fa.body,
                                               index_a,
                                               {face_corner(fb, k), fa.a, fa.b, fa.c}},
                            std::array{xb[k], xa[0], xa[1], xa[2]}.data(),
-                           std::array{xb[3u + k], xa[3], xa[4], xa[5]}.data(), rb[k] + face_a,
-                           emit);
+                           std::array{xb[3u + k], xa[3], xa[4], xa[5]}.data(),
+                           sb.reach[k] + sa.face_reach, emit);
   }
   for (std::uint32_t i = 0; i < 3u; ++i) {
     if ((owners_a & (kOwnsEdge0 << i)) == 0u) continue;
     const std::uint32_t i1 = (i + 1u) % 3u;
-    const glm::vec3 edge_a[4] = {xa[i], xa[i1], xa[3u + i], xa[3u + i1]};
-    const float reach_a = glm::max(ra[i], ra[i1]);
-    const gpu::Box grown = reach_box(edge_a, 4u, reach_a);
+    const float reach_a = glm::max(sa.reach[i], sa.reach[i1]);
     for (std::uint32_t j = 0; j < 3u; ++j) {
       if ((owners_b & (kOwnsEdge0 << j)) == 0u) continue;
       const std::uint32_t j1 = (j + 1u) % 3u;
-      const glm::vec3 edge_b[4] = {xb[j], xb[j1], xb[3u + j], xb[3u + j1]};
-      const float reach_b = glm::max(rb[j], rb[j1]);
-      if (boxes_overlap(grown, reach_box(edge_b, 4u, reach_b)))
+      const float reach_b = glm::max(sb.reach[j], sb.reach[j1]);
+      if (boxes_overlap(pa.edge_box[i], pb.edge_box[j]))
         emit_if_within_reach(ProximityCandidate{gpu::kContactEdgeEdge,
                                                 fa.body,
                                                 fb.body,
