@@ -332,7 +332,6 @@ void ContactResponse::search() {
       }
     }
   }
-  response::index_constraints_by_node(static_cast<std::uint32_t>(node_body_.size()), c);
   constraints_ = std::move(c);
   backend_->begin_frame(constraints_);
 }
@@ -408,7 +407,6 @@ void ContactResponse::widen() {
   for (const ProximityPair& p : detector_->widen_proximity(strays, reach))
     add_proximity_pair(p, constraints_);
   ++counts_.widenings;
-  response::index_constraints_by_node(static_cast<std::uint32_t>(node_body_.size()), constraints_);
   backend_->update_frame(constraints_);
 }
 

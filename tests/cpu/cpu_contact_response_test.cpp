@@ -54,7 +54,6 @@ TEST(CpuContactResponse, ALightNodeIsNotThrownOffWhereItsEdgesHeavyEndIsStopped)
     p.gap = -INFINITY;  // awake
   }
   c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // no stray
-  response::index_constraints_by_node(static_cast<std::uint32_t>(x.size()), c);
 
   cpu::CpuContactResponse response(state, std::make_shared<cpu::Executor>(1));
   response.begin_frame(c);

@@ -208,8 +208,6 @@ inline HandMadeContacts hand_made_contacts() {
   out.constraints.node_motion = node_motion_of_bodies(
       {glm::vec4(0.0f, 0.0f, 0.0f, 0.5f), glm::vec4(0.0f, 0.0f, 0.0f, 0.002f)},
       out.world.node_body);
-  response::index_constraints_by_node(static_cast<std::uint32_t>(out.world.node_count()),
-                                      out.constraints);
   return out;
 }
 
@@ -256,7 +254,6 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes,
       {glm::vec4(0.5f, 0.0f, -0.25f, 0.2f), glm::vec4(0.0f, 0.0f, 0.0f, 0.01f),
        glm::vec4(-1.0f, 2.0f, 0.5f, 0.003f)},
       out.world.node_body);
-  response::index_constraints_by_node(nodes, out.constraints);
   return out;
 }
 

@@ -142,7 +142,6 @@ TEST_F(GlContactResponseTest, ConstraintsReplacedWithinAWindowEqualTheCpuBitForB
                         other.constraints.pairs.begin() + 200);
   for (glm::vec4& m : replaced.node_motion)
     m.w *= 2.0f;
-  response::index_constraints_by_node(static_cast<std::uint32_t>(set.world.node_count()), replaced);
   both.gl.update_frame(replaced);
   both.cpu.update_frame(replaced);
   const std::vector<glm::vec4> kept = both.gl.download_frame_start();
@@ -217,7 +216,6 @@ TEST_F(GlContactResponseTest, AnEmptyFrameOnlyWatchesTheReach) {
   // Body 0 drifts with its carry and stays within its reach; body 1 does not.
   empty.node_motion = test::node_motion_of_bodies(
       {glm::vec4(0.5f, 0.0f, 0.0f, 0.02f), glm::vec4(0.0f, 0.0f, 0.0f, 0.004f)}, world.node_body);
-  response::index_constraints_by_node(static_cast<std::uint32_t>(world.node_count()), empty);
 
   GlSimulation simulation(context());
   simulation.upload(world);
@@ -286,7 +284,6 @@ TEST_F(GlContactResponseTest, ResultsDoNotDependOnTheScheduleOrOnEarlierFrames) 
   FrameConstraints few = test::random_contacts(8, 400, 10).constraints;
   FrameConstraints none;
   none.node_motion = set.constraints.node_motion;
-  response::index_constraints_by_node(400, none);
   for (const FrameConstraints* frame :
        std::initializer_list<const FrameConstraints*>{&few, &set.constraints, &none}) {
     reused.begin_frame(*frame);
@@ -361,7 +358,7 @@ TEST_F(GlContactResponseTest, BuffersBeyondTheLimitAreRefusedByName) {
 }
 
 // The host-side checks, without GL.
-TEST(ContactUploadChecks, AcceptIndexedConstraintsAndNameWhatDoesNotFit) {
+TEST(ContactUploadChecks, AcceptFittingConstraintsAndNameWhatDoesNotFit) {
   const test::RandomContacts set = test::random_contacts(2, 30, 20);
   EXPECT_NO_THROW(check_constraints_fit(set.constraints, 30));
   const auto message = [&](FrameConstraints c, std::uint32_t nodes) {
@@ -372,7 +369,7 @@ TEST(ContactUploadChecks, AcceptIndexedConstraintsAndNameWhatDoesNotFit) {
     }
     return std::string("accepted");
   };
-  EXPECT_NE(message(set.constraints, 31).find("node_offset has 31 entries for 31 nodes"),
+  EXPECT_NE(message(set.constraints, 31).find("node_motion has 30 entries for 31 nodes"),
             std::string::npos);
   FrameConstraints short_motion = set.constraints;
   short_motion.node_motion.pop_back();
@@ -385,15 +382,6 @@ TEST(ContactUploadChecks, AcceptIndexedConstraintsAndNameWhatDoesNotFit) {
   c.pairs[5].nodes[1] = 30;
   EXPECT_NE(message(c, 30).find("constraint 5 has node 30, but there are 30 nodes"),
             std::string::npos);
-  c = set.constraints;
-  c.node_list[4] = 80;
-  EXPECT_NE(message(c, 30).find("node_list[4] = 80 names no constraint corner"), std::string::npos);
-  c = set.constraints;
-  c.node_list.pop_back();
-  EXPECT_NE(message(c, 30).find("node_list has 79 entries"), std::string::npos);
-  c = set.constraints;
-  std::swap(c.node_offset[3], c.node_offset[20]);
-  EXPECT_NE(message(c, 30).find("node_offset decreases"), std::string::npos);
 }
 
 }  // namespace

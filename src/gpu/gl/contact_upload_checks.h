@@ -13,9 +13,8 @@
 namespace deformcd::gl {
 
 // Throws Error naming the first entry that does not fit a simulation of `node_count` nodes: a
-// constraint node out of range or an unknown kind, node_offset not a non-decreasing cover of
-// node_list with node_count + 1 entries, a list entry naming no constraint corner, node_motion
-// not one entry per node, or more corners than 32 bits count.
+// constraint node out of range or an unknown kind, node_motion not one entry per node, or more
+// corners than 32 bits count.
 void check_constraints_fit(const response::FrameConstraints& constraints, std::uint32_t node_count);
 
 // The buffers GlContactResponse needs for `constraints` over `node_count` nodes, in binding

@@ -79,6 +79,8 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   // a failure keeps the previous frame's constraints.
   const SimulationBuffers& sim = simulation_.state_buffers();
   check_constraints_fit(constraints, sim.node_count);
+  const response::NodeContactLists lists =
+      response::index_constraints_by_node(sim.node_count, constraints.pairs);
   const std::vector<BufferSize> sizes = contact_buffer_sizes(constraints, sim.node_count);
   check_buffer_sizes(sizes, max_buffer_bytes_,
                      limit_is_device_ ? "the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE"
@@ -96,7 +98,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   auto new_pairs = grow(buffers_.pairs, pairs, gpu::kContactPair);
   auto new_corrections = grow(buffers_.corrections, 8u * pairs, gpu::kContactCorrection);
   auto new_offset = grow(buffers_.node_offset, nodes + 1u, gpu::kNodeContactOffset);
-  auto new_list = grow(buffers_.node_list, constraints.node_list.size(), gpu::kNodeContactList);
+  auto new_list = grow(buffers_.node_list, lists.list.size(), gpu::kNodeContactList);
   auto new_count = grow(buffers_.node_count, nodes + 1u, gpu::kNodeContactCount);
   auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
   auto new_motion = grow(buffers_.node_motion, nodes, gpu::kNodeMotion);
@@ -116,8 +118,8 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   // Corrections, impulses and counts need no initial values: each projection writes all it
   // reads (a substep's first iteration resets the impulses).
   buffers_.pairs->upload(std::span<const gpu::ContactPair>(constraints.pairs));
-  buffers_.node_offset->upload(std::span<const std::uint32_t>(constraints.node_offset));
-  buffers_.node_list->upload(std::span<const std::uint32_t>(constraints.node_list));
+  buffers_.node_offset->upload(std::span<const std::uint32_t>(lists.offset));
+  buffers_.node_list->upload(std::span<const std::uint32_t>(lists.list));
   buffers_.node_motion->upload(std::span<const glm::vec4>(constraints.node_motion));
 
   pair_count_ = static_cast<std::uint32_t>(pairs);
