@@ -2,8 +2,8 @@
 // The contact response's node pass: one invocation per node sums its constraints' corrections
 // over its CSR list in list order (gather_correction in src/core/response/contact_constraints.h,
 // written out here because GLSL cannot pass a buffer to a function), applies the sums to its
-// own position and velocity and, in a projection's last iteration (u_watch_reach), flags a
-// stray beyond its reach (apply_correction). Slots of constraints that do not act (the flag in
+// own position and velocity (apply_correction) and, in a projection's last iteration
+// (u_watch_reach), flags a stray beyond its reach (strayed). Slots of constraints that do not act (the flag in
 // the w of a constraint's first slot) are skipped, as the CPU skips them.
 // Each invocation reads and writes only its own node's position and velocity.
 #include "common/layout.glsl"
@@ -57,10 +57,9 @@ void main() {
   }
   vec4 position = positions[i];
   vec4 velocity = velocities[i];
+  apply_correction(position, velocity, dx, dv);
   // Every writer writes the same 1, so the flag is the same whatever the order.
-  if (apply_correction(position, velocity, dx, dv, frame_start[i], node_motion[i],
-                       u_elapsed) &&
-      u_watch_reach) {
+  if (u_watch_reach && strayed(position, frame_start[i], node_motion[i], u_elapsed)) {
     node_contact_count[u_node_count] = 1u;
   }
   positions[i] = position;

@@ -194,15 +194,25 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   }
 }
 
-// apply_correction, line for line: the corrections move the position and the velocity; returns
-// whether a free node strayed beyond `reach` (frame_start.w) from its window-start position
-// carried along its straight path (node_motion.xyz x elapsed). Fixed nodes are left alone.
-bool apply_correction(inout vec4 position, inout vec4 velocity, vec3 dx, vec3 dv,
-                      vec4 frame_start, vec4 node_motion, float elapsed) {
-  if (!(position.w > 0.0)) return false;
+// apply_correction, line for line: the corrections move the position and the velocity. Fixed
+// nodes are left alone.
+void apply_correction(inout vec4 position, inout vec4 velocity, vec3 dx, vec3 dv) {
+  if (!(position.w > 0.0)) return;
   precise vec3 p = position.xyz + dx;
   precise vec3 v = velocity.xyz + dv;
   velocity = vec4(v, 0.0);
   position = vec4(p, position.w);
-  return path_deviation(p, frame_start, node_motion, elapsed) > frame_start.w;
+}
+
+// beyond_reach, line for line: a free node `deviation` from its straight path has strayed
+// beyond its reach (frame_start.w).
+bool beyond_reach(float deviation, vec4 position, vec4 frame_start) {
+  return position.w > 0.0 && deviation > frame_start.w;
+}
+
+// strayed, line for line: beyond_reach of a node at `position`, its deviation measured from its
+// window-start position carried along its straight path (node_motion.xyz x elapsed).
+bool strayed(vec4 position, vec4 frame_start, vec4 node_motion, float elapsed) {
+  return beyond_reach(path_deviation(position.xyz, frame_start, node_motion, elapsed), position,
+                      frame_start);
 }

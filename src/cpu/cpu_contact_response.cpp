@@ -42,7 +42,7 @@ void CpuContactResponse::update_frame(const response::FrameConstraints& constrai
 
 bool CpuContactResponse::project(const response::ContactConstants& k, int iterations) {
   if (constraints_ == nullptr) throw Error("CpuContactResponse::project before begin_frame()");
-  std::atomic<bool> strayed{false};  // an OR: the same whatever the order
+  std::atomic<bool> any_strayed{false};  // an OR: the same whatever the order
   const std::vector<gpu::ContactPair>& pairs = constraints_->pairs;
   const std::size_t nodes = state_.positions.size();
   executor_->run([&] {
@@ -112,28 +112,27 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
                                     &corrections_[8u * p]);
           },
           256);
-      const bool last = iteration + 1 == iterations;
-      const auto node_pass = [&](std::uint32_t i) {
+      // The node pass, over the nodes with an active constraint (the others' sums are zero).
+      parallel_for(touched_.size(), [&](std::size_t t) {
+        const std::uint32_t i = touched_[t];
         glm::vec3 dx(0.0f), dv(0.0f);
-        if (counts_[i] != 0u) {
-          response::gather_correction(active_slots_.data(), active_offset_[i],
-                                      active_offset_[i + 1], active_.data(), corrections_.data(),
-                                      dx, dv);
-        }
-        if (response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv,
-                                       frame_start_[i], constraints_->node_motion[i], k.elapsed) &&
-            last) {
-          strayed.store(true, std::memory_order_relaxed);
-        }
-      };
-      if (last) {
-        parallel_for(nodes, [&](std::size_t i) { node_pass(static_cast<std::uint32_t>(i)); });
-      } else {
-        parallel_for(touched_.size(), [&](std::size_t t) { node_pass(touched_[t]); });
-      }
+        response::gather_correction(active_slots_.data(), active_offset_[i], active_offset_[i + 1],
+                                    active_.data(), corrections_.data(), dx, dv);
+        response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv);
+      });
     }
+    // The strays, as GL's last node pass flags them: an untouched node is where the deviation
+    // pass measured it.
+    parallel_for(nodes, [&](std::size_t i) {
+      const glm::vec4& x = state_.positions[i];
+      const bool beyond =
+          counts_[i] != 0u
+              ? response::strayed(x, frame_start_[i], constraints_->node_motion[i], k.elapsed)
+              : response::beyond_reach(deviation_[i], x, frame_start_[i]);
+      if (beyond) any_strayed.store(true, std::memory_order_relaxed);
+    });
   });
-  return strayed.load();
+  return any_strayed.load();
 }
 
 }  // namespace deformcd::cpu

@@ -243,19 +243,30 @@ inline void gather_correction(const std::uint32_t* list, std::uint32_t begin, st
   }
 }
 
-/// Applies a node's corrections to its position and velocity, and says whether a free node
-/// has strayed beyond `reach` (frame_start.w) from where it started the search window
-/// (frame_start.xyz) carried along its straight path (node_motion.xyz x elapsed): beyond the
-/// motion the window's proximity search assumed, so that the search must run again. Fixed
-/// nodes (inverse mass 0) are left alone and never stray (their motion is prescribed).
-inline bool apply_correction(glm::vec4& position, glm::vec4& velocity, const glm::vec3& dx,
-                             const glm::vec3& dv, const glm::vec4& frame_start,
-                             const glm::vec4& node_motion, float elapsed) {
-  if (!(position.w > 0.0f)) return false;
+/// Applies a node's corrections to its position and velocity. Fixed nodes (inverse mass 0)
+/// are left alone (their motion is prescribed).
+inline void apply_correction(glm::vec4& position, glm::vec4& velocity, const glm::vec3& dx,
+                             const glm::vec3& dv) {
+  if (!(position.w > 0.0f)) return;
   const glm::vec3 p = glm::vec3(position) + dx;
   velocity = glm::vec4(glm::vec3(velocity) + dv, 0.0f);
   position = glm::vec4(p, position.w);
-  return path_deviation(p, frame_start, node_motion, elapsed) > frame_start.w;
+}
+
+/// Whether a free node at `position`, `deviation` from its straight path (path_deviation), has
+/// strayed beyond its reach (frame_start.w): beyond the motion the window's proximity search
+/// assumed, so that the search must run again. Fixed nodes never stray (their motion is
+/// prescribed).
+inline bool beyond_reach(float deviation, const glm::vec4& position, const glm::vec4& frame_start) {
+  return position.w > 0.0f && deviation > frame_start.w;
+}
+
+/// beyond_reach of a node at `position`: its deviation from where the window's start
+/// (frame_start.xyz) carried along its path (node_motion.xyz x elapsed) puts it.
+inline bool strayed(const glm::vec4& position, const glm::vec4& frame_start,
+                    const glm::vec4& node_motion, float elapsed) {
+  return beyond_reach(path_deviation(glm::vec3(position), frame_start, node_motion, elapsed),
+                      position, frame_start);
 }
 
 }  // namespace deformcd::response
