@@ -111,6 +111,7 @@ class PyWorld {
   std::string body_name(std::int64_t body) const {
     return world_->body_name(existing_body(body, "body_name"));
   }
+  bool asleep(std::int64_t body) const { return world_->asleep(existing_body(body, "asleep")); }
   std::vector<std::string> body_names() const {
     std::vector<std::string> names;
     for (std::size_t b = 0; b < world_->body_count(); ++b)
@@ -225,6 +226,9 @@ void bind_world(py::module_& m) {
                              "The run length the bodies' paths span (from_scene's frames).")
       .def_property_readonly("body_count", &PyWorld::body_count, "Number of bodies.")
       .def("body_name", &PyWorld::body_name, py::arg("body"), "The body's name in the scene.")
+      .def("asleep", &PyWorld::asleep, py::arg("body"),
+           "Whether the body is asleep after the last step (the scene's response.sleep): its "
+           "nodes hold still until a moving body touches its island.")
       .def_property_readonly("body_names", &PyWorld::body_names, "Every body's name, in order.")
       .def_property("broadphase", &PyWorld::broadphase, &PyWorld::set_broadphase,
                     "The broad phase step() runs after the simulation; may be set between steps.")

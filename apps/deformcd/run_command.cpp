@@ -168,6 +168,18 @@ int run(const RunOptions& o) {
     }
     std::cout << '\n';
   }
+  if (world.responds()) {
+    const ResponseCounts c = world.response_counts();
+    std::cout << "response   "
+              << count_of(c.vertex_face + c.edge_edge, "proximity constraint",
+                          "proximity constraints")
+              << " in the last frame";
+    if (scene.response->sleep.has_value()) {
+      std::cout << ", " << c.asleep << " of " << count_of(world.body_count(), "body", "bodies")
+                << " asleep at the end";
+    }
+    std::cout << '\n';
+  }
   if (!o.positions_out.empty()) {
     std::cout << "positions  " << o.positions_out
               << (o.every_frame ? " (frames 0.." + std::to_string(frames) + ")"

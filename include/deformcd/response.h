@@ -18,6 +18,21 @@ namespace deformcd {
 /// The most Jacobi projections per substep ResponseSettings::iterations may ask for.
 inline constexpr int kMaxResponseIterations = 64;
 
+/// Sleeping (ResponseSettings::sleep), as rigid-body engines let resting bodies sleep (Box2D's
+/// islands, PhysX's sleep threshold): bodies linked by contact constraints form an island; when
+/// every body of an island has moved slowly for `time` seconds, the island falls asleep: its
+/// nodes hold still (velocity 0, and to the contact response they are fixed, immovable
+/// obstacles) until a body that is not asleep comes into contact with one of them, which wakes
+/// the whole island. Bodies with fixed nodes only (a base) join no island and bodies carried
+/// along a path never sleep. A body is slow while the mass-weighted root mean square of its
+/// nodes' speeds stays below `speed` x its mean surface edge length per second.
+struct SleepSettings {
+  /// Mean surface edges per second (> 0).
+  float speed = 0.5f;
+  /// s (> 0): how long an island's bodies must all be slow before it sleeps.
+  float time = 0.25f;
+};
+
 struct ResponseSettings {
   /// m: the gap contacts keep between surfaces, for every body. Unset: each body's
   /// relative_thickness x its mean surface edge length; two bodies keep the mean of theirs.
@@ -46,11 +61,13 @@ struct ResponseSettings {
   /// converge further: resting bodies jitter less (docs/benchmarks.md, "Accumulated
   /// corrections"), at a cost that grows with them.
   int iterations = 8;
+  /// Resting islands of bodies fall asleep (see SleepSettings). Unset: bodies never sleep.
+  std::optional<SleepSettings> sleep;
 };
 
 /// Throws Error naming the field ("friction_static must be >= 0, not -1") when a value is
 /// negative or not finite, friction_dynamic exceeds friction_static, restitution exceeds 1, or
-/// iterations is outside 1 to 64.
+/// iterations is outside 1 to 64, or a sleep setting is not positive and finite.
 void check_response_settings(const ResponseSettings& settings);
 
 }  // namespace deformcd

@@ -84,6 +84,8 @@ struct ResponseCounts {
   /// Times in the frame a search was widened instead: around the nodes that strayed, only
   /// their pairs found again with larger reaches (Detector::widen_proximity).
   std::uint64_t widenings = 0;
+  /// Bodies asleep after the frame (ResponseSettings::sleep).
+  std::uint64_t asleep = 0;
 };
 
 /// The simulation blew up: a state became NaN/Inf or a node moved implausibly far in a step.
@@ -164,6 +166,9 @@ class World {
   [[nodiscard]] float contact_thickness(std::size_t body) const;
   /// The contact constraints of the last step (all 0 without response).
   [[nodiscard]] ResponseCounts response_counts() const;
+  /// Whether body `body` is asleep after the last step (ResponseSettings::sleep): its nodes
+  /// hold still until a moving body touches its island.
+  [[nodiscard]] bool asleep(std::size_t body) const;
   /// Surface faces of all bodies (global node indices), as in the GL face buffer.
   [[nodiscard]] const std::vector<gpu::Face>& faces() const { return faces_; }
 

@@ -31,6 +31,14 @@ void CpuSimulation::upload(const SimulationState& state) {
   corner_forces_.assign(corners_.slot_count, glm::vec4(0.0f));
 }
 
+void CpuSimulation::set_inverse_masses(std::uint32_t first, std::span<const float> inverse_mass) {
+  sim::check_node_range(first, inverse_mass.size(), state_.positions.size());
+  for (std::size_t k = 0; k < inverse_mass.size(); ++k) {
+    state_.positions[first + k].w = inverse_mass[k];
+    state_.velocities[first + k] = glm::vec4(0.0f);
+  }
+}
+
 void CpuSimulation::substep(const sim::SubstepConstants& c) {
   executor_->run([&] { step(c); });
 }

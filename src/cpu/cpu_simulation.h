@@ -28,6 +28,7 @@ class CpuSimulation final : public sim::SimulationBackend {
   void finish() override {}
   void download_positions(std::vector<glm::vec4>& out) override { out = state_.positions; }
   void download_velocities(std::vector<glm::vec4>& out) override { out = state_.velocities; }
+  void set_inverse_masses(std::uint32_t first, std::span<const float> inverse_mass) override;
   [[nodiscard]] const glm::vec4* host_positions() const override { return state_.positions.data(); }
   [[nodiscard]] SimulationState* host_state() override { return &state_; }
 

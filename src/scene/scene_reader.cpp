@@ -107,8 +107,15 @@ ResponseSettings read_response(JsonFields f) {
   if (r.iterations < 1 || r.iterations > kMaxResponseIterations) {
     f.fail("iterations", "must be between 1 and " + std::to_string(kMaxResponseIterations));
   }
+  if (auto sleep = f.object("sleep")) {
+    SleepSettings z;
+    z.speed = static_cast<float>(positive(*sleep, "speed", z.speed));
+    z.time = static_cast<float>(positive(*sleep, "time", z.time));
+    sleep->reject_unknown({"speed", "time"});
+    r.sleep = z;
+  }
   f.reject_unknown({"thickness", "relative_thickness", "friction_static", "friction_dynamic",
-                    "restitution", "untangle_step", "iterations"});
+                    "restitution", "untangle_step", "iterations", "sleep"});
   return r;
 }
 

@@ -7,6 +7,7 @@
 #include <set>
 #include <utility>
 
+#include "body_sleep.h"
 #include "core/collision/primitive_distance.h"
 #include "deformcd/error.h"
 
@@ -106,6 +107,12 @@ void check_response_settings(const ResponseSettings& s) {
     throw Error("response iterations must be between 1 and " +
                 std::to_string(kMaxResponseIterations) + ", not " + std::to_string(s.iterations));
   }
+  if (s.sleep.has_value()) {
+    check_value("sleep speed", s.sleep->speed);
+    check_value("sleep time", s.sleep->time);
+    if (!(s.sleep->speed > 0.0f)) throw Error("response sleep speed must be positive, not 0");
+    if (!(s.sleep->time > 0.0f)) throw Error("response sleep time must be positive, not 0");
+  }
 }
 
 float mean_surface_edge(const Body& body) {
@@ -152,6 +159,17 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
   }
   max_untangle_step_ = settings.untangle_step * smallest_edge;
   smallest_edge_ = smallest_edge;
+  linked_.assign(bodies.size() * bodies.size(), 0u);
+  if (settings.sleep.has_value()) {
+    std::vector<float> inverse_mass(state.positions.size());
+    for (std::size_t i = 0; i < inverse_mass.size(); ++i)
+      inverse_mass[i] = state.positions[i].w;
+    std::vector<std::uint8_t> may_sleep;  // a body carried along a path never rests
+    for (const BodyInit& b : bodies)
+      may_sleep.push_back(b.carry_velocity == glm::vec3(0.0f) ? 1u : 0u);
+    sleep_ = std::make_unique<BodySleep>(*settings.sleep, objects_, std::move(inverse_mass),
+                                         mean_edge_, may_sleep, step.dt);
+  }
 }
 
 void ContactResponse::unstable(std::uint32_t node, const char* what) const {
@@ -261,7 +279,30 @@ void ContactResponse::begin_frame(Detector& detector, std::vector<Contact> inter
   intersections_ = std::move(intersections);
   tangled_ = std::make_unique<TangledPrimitives>(intersections_, objects_);
   counts_ = {};
+  std::fill(linked_.begin(), linked_.end(), std::uint8_t{0});
   search();
+}
+
+void ContactResponse::link(std::uint32_t a, std::uint32_t b) {
+  linked_[std::min(a, b) * objects_.size() + std::max(a, b)] = 1u;
+}
+
+void ContactResponse::end_frame() {
+  if (!sleep_) return;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> links;
+  const auto n = static_cast<std::uint32_t>(objects_.size());
+  for (std::uint32_t a = 0; a < n; ++a)
+    for (std::uint32_t b = a; b < n; ++b)
+      if (linked_[a * n + b] != 0u) links.emplace_back(a, b);
+  for (const std::uint32_t b : sleep_->end_frame(velocities(), links)) {
+    const std::vector<float> inverse_mass = sleep_->inverse_masses(b);
+    simulation_.set_inverse_masses(objects_[b].node_offset, inverse_mass);
+  }
+  counts_.asleep = sleep_->asleep_count();
+}
+
+bool ContactResponse::asleep(std::size_t body) const {
+  return sleep_ && sleep_->asleep(body);
 }
 
 void ContactResponse::search() {
@@ -324,6 +365,7 @@ void ContactResponse::search() {
           pair.nodes[j + 1u] = first_other + other.nodes[j];
         if (v == pair.nodes[1] || v == pair.nodes[2] || v == pair.nodes[3]) continue;
         pair.kind = gpu::kContactUntangle;
+        link(mine.body, other.body);
         pair.thickness = 0.5f * (thickness_[mine.body] + thickness_[other.body]);
         pair.gap = -INFINITY;  // always awake
         pair.closing_speed = 0.0f;
@@ -348,6 +390,7 @@ void ContactResponse::add_proximity_pair(const ProximityPair& p, response::Frame
   pair.nodes[2] = first_b + p.vertices[2];
   pair.nodes[3] = first_b + p.vertices[3];
   pair.kind = edges ? gpu::kContactEdgeEdge : gpu::kContactVertexFace;
+  link(p.mesh_a, p.mesh_b);
   if (tangled_->holds(pair)) return;
   pair.thickness = 0.5f * (thickness_[p.mesh_a] + thickness_[p.mesh_b]);
   if (p.mesh_a == p.mesh_b) pair.thickness = self_thickness(pair);

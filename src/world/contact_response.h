@@ -20,6 +20,7 @@
 
 namespace deformcd {
 
+class BodySleep;
 class TangledPrimitives;
 
 class ContactResponse {
@@ -49,6 +50,12 @@ class ContactResponse {
   /// (widen()), so no pair is missed. After the frame's last substep, the next begin_frame()
   /// searches anyway.
   void project(float h, bool more_substeps);
+  /// Ends a frame (after its last projection): with ResponseSettings::sleep, the islands of
+  /// bodies that have rested long enough fall asleep and those a moving body touched wake
+  /// (BodySleep); their nodes' inverse masses change in the simulation.
+  void end_frame();
+  /// Whether body b is asleep (false without ResponseSettings::sleep).
+  [[nodiscard]] bool asleep(std::size_t body) const;
 
   /// m: body b's contact thickness.
   [[nodiscard]] float thickness(std::size_t body) const { return thickness_[body]; }
@@ -74,6 +81,8 @@ class ContactResponse {
   void widen();
   /// Appends proximity pair p as a constraint of c (unless its primitives are tangled).
   void add_proximity_pair(const ProximityPair& p, response::FrameConstraints& c);
+  /// Notes that a constraint of the frame joins bodies a and b (for the sleeping islands).
+  void link(std::uint32_t a, std::uint32_t b);
   /// A self-contact pair's thickness: the body's, or half the pair's distance in the pose the
   /// body was given in (its rest shape), whichever is less.
   [[nodiscard]] float self_thickness(const gpu::ContactPair& pair) const;
@@ -105,6 +114,8 @@ class ContactResponse {
   int window_end_ = 0;                          // the substep the window ends after
   float smallest_edge_ = 0.0f;                  // the smallest body's mean surface edge
   ResponseCounts counts_;
+  std::unique_ptr<BodySleep> sleep_;  // with ResponseSettings::sleep
+  std::vector<std::uint8_t> linked_;  // bodies x bodies: joined by a constraint in the frame
 };
 
 /// Mean length of a body's surface edges (each edge once).

@@ -146,6 +146,14 @@ void World::step() {
       response_s += Seconds(Clock::now() - begin).count();
     }
   }
+  if (response_) {
+    const auto begin = Clock::now();
+    run_response([&] { response_->end_frame(); });
+    if (measure_stage_times_) {
+      backend_->finish();
+      response_s += Seconds(Clock::now() - begin).count();
+    }
+  }
   ++frame_;
   if (frame_ % check_interval_ == 0 || frame_ == 1) check_stability(frame_, "");
   if (measure_stage_times_) backend_->finish();
@@ -170,6 +178,10 @@ float World::contact_thickness(std::size_t body) const {
 
 ResponseCounts World::response_counts() const {
   return response_ ? response_->counts() : ResponseCounts{};
+}
+
+bool World::asleep(std::size_t body) const {
+  return response_ && response_->asleep(body);
 }
 
 void World::detect_collisions() {

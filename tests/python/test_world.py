@@ -115,6 +115,8 @@ def test_world_errors(tmp_path):
     w = deformcd.World.from_scene(PHASE2, frames=FRAMES, backend="cpu")
     with pytest.raises(IndexError, match="positions: body 2 does not exist"):
         w.positions(2)
+    with pytest.raises(IndexError, match="asleep: body 2 does not exist"):
+        w.asleep(2)
     with pytest.raises(ValueError, match="step: n must be 0 or more"):
         w.step(-1)
     surface_scene = tmp_path / "surface.json"
@@ -123,3 +125,11 @@ def test_world_errors(tmp_path):
     surface_scene.write_text('{"bodies": [{"model": "tri.off"}]}')
     with pytest.raises(deformcd.InputError, match="TetGen"):
         deformcd.World.from_scene(surface_scene)
+
+
+def test_stack_bodies_are_awake_while_they_fall():
+    """The stack scene sleeps its resting bodies (response.sleep); falling, none is asleep (the
+    C++ tests step it until it rests: tests/world/contact_response_test.cpp)."""
+    w = deformcd.World.from_scene(SOURCE_DIR / "scenes" / "stack.json", frames=2, backend="cpu")
+    w.step(2)
+    assert [w.asleep(b) for b in range(len(w.body_names))] == [False] * 5

@@ -233,7 +233,7 @@ TEST_F(SceneReaderTest, ResponseReadsEveryKey) {
   const Scene s = read_scene(write(with_response(
       R"({"thickness": 0.01, "relative_thickness": 0.3, "friction_static": 0.7,
           "friction_dynamic": 0.5, "restitution": 0.25, "untangle_step": 0.05,
-          "iterations": 3})")));
+          "iterations": 3, "sleep": {"speed": 0.2, "time": 1.5}})")));
   ASSERT_TRUE(s.response.has_value());
   EXPECT_FLOAT_EQ(*s.response->thickness, 0.01f);
   EXPECT_FLOAT_EQ(s.response->relative_thickness, 0.3f);
@@ -242,6 +242,18 @@ TEST_F(SceneReaderTest, ResponseReadsEveryKey) {
   EXPECT_FLOAT_EQ(s.response->restitution, 0.25f);
   EXPECT_FLOAT_EQ(s.response->untangle_step, 0.05f);
   EXPECT_EQ(s.response->iterations, 3);
+  ASSERT_TRUE(s.response->sleep.has_value());
+  EXPECT_FLOAT_EQ(s.response->sleep->speed, 0.2f);
+  EXPECT_FLOAT_EQ(s.response->sleep->time, 1.5f);
+}
+
+// Sleeping is off unless asked for; `"sleep": {}` takes every default.
+TEST_F(SceneReaderTest, SleepIsOffByDefaultAndAnEmptyObjectTakesTheDefaults) {
+  EXPECT_FALSE(read_scene(write(with_response("{}"))).response->sleep.has_value());
+  const Scene s = read_scene(write(with_response(R"({"sleep": {}})")));
+  ASSERT_TRUE(s.response->sleep.has_value());
+  EXPECT_EQ(s.response->sleep->speed, SleepSettings{}.speed);
+  EXPECT_EQ(s.response->sleep->time, SleepSettings{}.time);
 }
 
 // Each bad value is named by its JSON pointer.
@@ -264,6 +276,10 @@ TEST_F(SceneReaderTest, BadResponseValuesNameTheirKey) {
       {R"({"iterations": 2.5})", "/response/iterations", ""},
       {R"({"thickness": "thin"})", "/response/thickness", ""},
       {R"({"stiffness": 1})", "/response/stiffness", "unknown"},
+      {R"({"sleep": {"speed": 0}})", "/response/sleep/speed", "positive"},
+      {R"({"sleep": {"time": -1}})", "/response/sleep/time", "positive"},
+      {R"({"sleep": {"after": 1}})", "/response/sleep/after", "unknown"},
+      {R"({"sleep": true})", "/response/sleep", ""},
   };
   for (const auto& c : cases) {
     const std::string message = error_of(with_response(c.response));

@@ -10,6 +10,7 @@
 
 #include "deformcd/body.h"
 #include "deformcd/simulation_state.h"
+#include "deformcd/world.h"
 #include "support/mesh_fixtures.h"
 
 namespace deformcd::test {
@@ -69,6 +70,46 @@ inline SimulationState two_mass_spring(float m1, float m2, float rest, float len
   w.node_tet_offset = {0, 0, 0};
   w.body_names = {"spring"};
   return w;
+}
+
+/// The sleeping tests' world (ResponseSettings::sleep): a fixed slab (body 0, 0.3 m square,
+/// its top at y = 0) and two soft blocks of 0.1 m side over it: block 1 ("lower") 15 mm above
+/// the slab, block 2 ("upper") `lift` m above block 1, both falling from rest.
+inline std::vector<BodyInit> blocks_over_a_slab(double lift) {
+  std::vector<BodyInit> bodies(3);
+  bodies[0].name = "slab";
+  bodies[0].body = build_body(tet_grid(6, 1, 6, 0.05, {-0.15, -0.05, -0.15}));
+  for (std::uint32_t i = 0; i < bodies[0].body.positions.size(); ++i)
+    bodies[0].fixed.push_back(i);
+  BodyOptions soft;
+  soft.stiffness = 1.0e5;
+  for (int b = 1; b < 3; ++b) {
+    const double bottom = b == 1 ? 0.015 : 0.115 + lift;
+    bodies[b].name = b == 1 ? "lower" : "upper";
+    bodies[b].body = build_body(tet_grid(2, 2, 2, 0.05, {-0.05, bottom, -0.05}), soft);
+    bodies[b].damping = 0.0002f;
+    bodies[b].volume_stiffness = 1.0e5f;
+  }
+  return bodies;
+}
+
+/// The sleeping tests' step: 60 frames a second, 10 substeps, velocity damping 4 / s.
+inline StepSettings sleep_step() {
+  StepSettings s;
+  s.dt = 1.0f / 60.0f;
+  s.substeps = 10;
+  s.velocity_damping = 4.0f;
+  return s;
+}
+
+/// Contact response with sleeping (every default), on `backend` with `threads` CPU threads.
+inline WorldOptions sleep_options(BackendKind backend, int threads = 0) {
+  WorldOptions options;
+  options.backend = backend;
+  options.cpu_threads = threads;
+  options.response = ResponseSettings{};
+  options.response->sleep = SleepSettings{};
+  return options;
 }
 
 }  // namespace deformcd::test

@@ -4,6 +4,7 @@
 // the CPU does; a GPU whose division is off by an ulp would agree to rounding only.
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <ostream>
 #include <string>
@@ -15,6 +16,7 @@
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
 #include "support/sanitizers.h"
+#include "support/world_fixtures.h"
 
 namespace fs = std::filesystem;
 
@@ -138,6 +140,41 @@ INSTANTIATE_TEST_SUITE_P(ResponseScenes, ResponseBackendAgreement,
                          [](const ::testing::TestParamInfo<ResponseRun>& param) {
                            return std::string(param.param.scene);
                          });
+
+// Sleeping (ResponseSettings::sleep) on both backends: a resting block falls asleep, a block
+// dropped onto it wakes it, and the two fall asleep together (tests/world/body_sleep_test.cpp
+// asserts that story on the CPU). Each frame the backends agree on who sleeps, and at the end on
+// every position, bit for bit: the GL backend holds a sleeping body's nodes through the same
+// inverse masses, read back and written in place.
+TEST(SleepBackendAgreement, GlEqualsCpuAsBlocksSleepAndWake) {
+  constexpr int kFrames = 240;
+  const std::vector<BodyInit> bodies = test::blocks_over_a_slab(3.0);
+  std::unique_ptr<World> gl_world;
+  try {
+    gl_world =
+        std::make_unique<World>(bodies, test::sleep_step(), test::sleep_options(BackendKind::kGl));
+  } catch (const GlError& e) {
+    if (std::getenv("DEFORMCD_REQUIRE_GL")) FAIL() << e.what();
+    GTEST_SKIP() << "no GL 4.3 context: " << e.what();
+  }
+  World cpu_world(bodies, test::sleep_step(), test::sleep_options(BackendKind::kCpu));
+  int changes = 0;
+  bool lower_was_asleep = false;
+  for (int f = 1; f <= kFrames; ++f) {
+    gl_world->step();
+    cpu_world.step();
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+      ASSERT_EQ(gl_world->asleep(b), cpu_world.asleep(b)) << "body " << b << ", frame " << f;
+    changes += cpu_world.asleep(1) != lower_was_asleep ? 1 : 0;
+    lower_was_asleep = cpu_world.asleep(1);
+  }
+  EXPECT_GE(changes, 3) << "the lower block should sleep, wake and sleep again";
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const std::vector<glm::vec3> g = gl_world->positions(b), c = cpu_world.positions(b);
+    ASSERT_EQ(g.size(), c.size());
+    EXPECT_EQ(std::memcmp(g.data(), c.data(), g.size() * sizeof(glm::vec3)), 0) << "body " << b;
+  }
+}
 
 }  // namespace
 }  // namespace deformcd

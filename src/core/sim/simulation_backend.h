@@ -4,6 +4,7 @@
 // backend (src/cpu) and the GL backend (src/gpu/gl) implement it.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,6 +15,9 @@
 #include "mass_spring.h"
 
 namespace deformcd::sim {
+
+/// Throws Error unless nodes [first, first + count) lie within a state of `node_count` nodes.
+void check_node_range(std::uint32_t first, std::size_t count, std::size_t node_count);
 
 class SimulationBackend {
  public:
@@ -36,6 +40,11 @@ class SimulationBackend {
 
   virtual void download_positions(std::vector<glm::vec4>& out) = 0;
   virtual void download_velocities(std::vector<glm::vec4>& out) = 0;
+  /// Gives nodes [first, first + inverse_mass.size()) those inverse masses (0 holds a node
+  /// still: it keeps velocity 0 and is an immovable obstacle to the contact response) and
+  /// zeroes their velocities; their positions stay. A sleeping body's nodes are held so, and
+  /// given their masses back when it wakes. Throws Error when the range is outside the state.
+  virtual void set_inverse_masses(std::uint32_t first, std::span<const float> inverse_mass) = 0;
 
   /// GL buffer name of the node positions (SSBO 0), or 0 when the backend is not GL.
   [[nodiscard]] virtual std::uint32_t gl_position_buffer() const { return 0; }

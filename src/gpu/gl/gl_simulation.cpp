@@ -131,6 +131,19 @@ void GlSimulation::download_velocities(std::vector<glm::vec4>& out) {
   out = b.velocities.download(0, b.node_count);
 }
 
+void GlSimulation::set_inverse_masses(std::uint32_t first, std::span<const float> inverse_mass) {
+  if (!buffers_) throw Error("GlSimulation::set_inverse_masses before upload()");
+  SimulationBuffers& b = *buffers_;
+  sim::check_node_range(first, inverse_mass.size(), b.node_count);
+  // The positions' xyz go back as they were read: only the w changes.
+  std::vector<glm::vec4> positions = b.positions.download(first, inverse_mass.size());
+  for (std::size_t k = 0; k < inverse_mass.size(); ++k)
+    positions[k].w = inverse_mass[k];
+  b.positions.upload(std::span<const glm::vec4>(positions), first);
+  const std::vector<glm::vec4> still(inverse_mass.size(), glm::vec4(0.0f));
+  b.velocities.upload(std::span<const glm::vec4>(still), first);
+}
+
 void GlSimulation::download_node_forces(std::vector<glm::vec4>& out) {
   const SimulationBuffers& b = buffers("download_node_forces");
   out = b.node_forces.download(0, b.node_count);

@@ -83,6 +83,7 @@ class GlSimulation final : public sim::SimulationBackend {
 
   void download_positions(std::vector<glm::vec4>& out) override;
   void download_velocities(std::vector<glm::vec4>& out) override;
+  void set_inverse_masses(std::uint32_t first, std::span<const float> inverse_mass) override;
   // The node forces (SSBO 3) of the last substep.
   void download_node_forces(std::vector<glm::vec4>& out);
 

@@ -1,0 +1,61 @@
+#pragma once
+// Sleeping bodies (ResponseSettings::sleep): which bodies of a world are asleep, decided after
+// each frame from the bodies' speeds and the contact links between them. It decides only; the
+// contact response holds a sleeping body's nodes still through the simulation backend.
+//
+// As Box2D does for rigid bodies, the unit that falls asleep and wakes is an island: the bodies
+// linked by the frame's contact constraints, through any chain of them. Bodies whose nodes are
+// all fixed (a base) join no island: a stack resting on the floor does not link everything on
+// the floor. An island sleeps once each of its bodies has been slow for the settings' time; a
+// sleeping body is still (velocity 0), so its slow time runs on. An island with a body that is
+// not (a body that comes into contact with a sleeping one) wakes as a whole, and its woken
+// bodies count their slow time from zero again.
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "deformcd/gpu_layout.h"
+#include "deformcd/response.h"
+
+namespace deformcd {
+
+class BodySleep {
+ public:
+  /// Per body: where its nodes lie (objects), its mean surface edge (m), and whether it may
+  /// sleep at all (false for a body carried along a path). `inverse_mass` per node, as the
+  /// bodies were given (0: fixed); `dt` the frame's length (s).
+  BodySleep(const SleepSettings& settings, const std::vector<gpu::ObjectInfo>& objects,
+            std::vector<float> inverse_mass, const std::vector<float>& mean_edge,
+            const std::vector<std::uint8_t>& may_sleep, float dt);
+
+  /// After a frame: `velocity` per node, `links` the body pairs that the frame's contact
+  /// constraints joined. Returns the bodies that fell asleep or woke, ascending.
+  std::vector<std::uint32_t> end_frame(
+      const std::vector<glm::vec4>& velocity,
+      const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links);
+
+  [[nodiscard]] bool asleep(std::size_t body) const { return asleep_[body] != 0u; }
+  [[nodiscard]] std::size_t asleep_count() const;
+  /// Body b's nodes' inverse masses while awake (as given), or zeros while asleep.
+  [[nodiscard]] std::vector<float> inverse_masses(std::size_t body) const;
+
+ private:
+  /// The mass-weighted root mean square of body b's free nodes' speeds (m/s).
+  [[nodiscard]] double rms_speed(std::size_t body, const std::vector<glm::vec4>& velocity) const;
+
+  SleepSettings settings_;
+  std::vector<gpu::ObjectInfo> objects_;
+  std::vector<float> inverse_mass_;      // per node, as given
+  std::vector<float> slow_speed_;        // per body: m/s below which it is slow
+  std::vector<std::uint8_t> may_sleep_;  // per body
+  std::vector<std::uint8_t> fixed_;      // per body: every node fixed (joins no island)
+  std::vector<std::uint8_t> asleep_;     // per body
+  std::vector<float> slow_time_;         // per body: s it has been slow without a break
+  float dt_ = 0.0f;
+};
+
+}  // namespace deformcd

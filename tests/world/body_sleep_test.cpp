@@ -1,0 +1,123 @@
+// Sleeping bodies (ResponseSettings::sleep) on the CPU backend: a block at rest on a fixed slab
+// falls asleep and holds still; a second block dropped onto it wakes it (the island wakes before
+// the blocks touch, when the search first joins them); the two settle and fall asleep together,
+// never intersecting on the way; the same on 1 and 2 threads. (GL equals the CPU bit for bit on
+// this world: tests/world/world_backends_test.cpp. The stack scene: contact_response_test.cpp.)
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "deformcd/error.h"
+#include "deformcd/world.h"
+#include "support/world_fixtures.h"
+
+namespace deformcd {
+namespace {
+
+constexpr int kFrames = 240;
+
+std::vector<glm::vec3> all_positions(const World& world) {
+  std::vector<glm::vec3> out;
+  for (std::size_t b = 0; b < world.body_count(); ++b) {
+    const std::vector<glm::vec3> p = world.positions(b);
+    out.insert(out.end(), p.begin(), p.end());
+  }
+  return out;
+}
+
+float lowest(const World& world, std::size_t body) {
+  float y = INFINITY;
+  for (const glm::vec3& p : world.positions(body))
+    y = std::min(y, p.y);
+  return y;
+}
+
+float highest(const World& world, std::size_t body) {
+  float y = -INFINITY;
+  for (const glm::vec3& p : world.positions(body))
+    y = std::max(y, p.y);
+  return y;
+}
+
+TEST(BodySleep, ARestingBlockSleepsWakesWhenABlockLandsOnItAndBothSleepTogether) {
+  const std::vector<BodyInit> bodies = test::blocks_over_a_slab(3.0);
+  World world(bodies, test::sleep_step(), test::sleep_options(BackendKind::kCpu, 1));
+  int lower_slept = 0, woke = 0, both_slept = 0;
+  std::vector<glm::vec3> held;  // the lower block's nodes while it first sleeps
+  for (int f = 1; f <= kFrames; ++f) {
+    world.step();
+    ASSERT_EQ(world.contacts().size(), 0u) << "intersecting face pairs in frame " << f;
+    const bool lower = world.asleep(1), upper = world.asleep(2);
+    if (lower_slept == 0 && lower) {
+      lower_slept = f;
+      held = world.positions(1);
+      EXPECT_FALSE(upper) << "the upper block is still falling";
+      EXPECT_GT(lowest(world, 2), 1.0f) << "the upper block is still far above";
+    }
+    if (lower_slept != 0 && woke == 0) {
+      if (lower) {
+        // Asleep: its nodes hold still, bit for bit, at velocity 0.
+        const std::vector<glm::vec3> now = world.positions(1);
+        ASSERT_EQ(std::memcmp(now.data(), held.data(), held.size() * sizeof(glm::vec3)), 0)
+            << "frame " << f;
+        for (const glm::vec3& v : world.velocities(1))
+          ASSERT_EQ(v, glm::vec3(0.0f)) << "frame " << f;
+      } else {
+        woke = f;
+        // Woken by the search joining the blocks, before the upper block reaches it.
+        EXPECT_GT(lowest(world, 2), highest(world, 1)) << "frame " << f;
+      }
+    }
+    if (woke != 0) {
+      // Linked by their contact, the blocks are one island: they sleep and wake together.
+      EXPECT_EQ(lower, upper) << "frame " << f;
+      if (both_slept == 0 && lower && upper) both_slept = f;
+    }
+  }
+  EXPECT_GT(lower_slept, 0) << "the lower block never fell asleep";
+  EXPECT_GT(woke, 0) << "the landing never woke the lower block";
+  EXPECT_GT(both_slept, 0) << "the blocks never fell asleep together";
+  EXPECT_TRUE(world.asleep(1) && world.asleep(2));
+  EXPECT_FALSE(world.asleep(0)) << "a fixed body is never counted asleep";
+  EXPECT_EQ(world.response_counts().asleep, 2u);
+  // The upper block rests on the lower one, not beside it.
+  EXPECT_GT(lowest(world, 2), highest(world, 1) - 0.01f);
+  RecordProperty(
+      "frames_lower_asleep_woken_both_asleep",
+      std::to_string(lower_slept) + " " + std::to_string(woke) + " " + std::to_string(both_slept));
+}
+
+TEST(BodySleep, TheSameOnOneAndTwoThreads) {
+  const std::vector<BodyInit> bodies = test::blocks_over_a_slab(3.0);
+  std::vector<glm::vec3> end[2];
+  for (int threads = 1; threads <= 2; ++threads) {
+    World world(bodies, test::sleep_step(), test::sleep_options(BackendKind::kCpu, threads));
+    for (int f = 0; f < kFrames; ++f)
+      world.step();
+    end[threads - 1] = all_positions(world);
+  }
+  ASSERT_EQ(end[0].size(), end[1].size());
+  EXPECT_EQ(std::memcmp(end[0].data(), end[1].data(), end[0].size() * sizeof(glm::vec3)), 0);
+}
+
+TEST(BodySleep, BadSettingsAreErrorsNamingThem) {
+  const std::vector<BodyInit> bodies = test::blocks_over_a_slab(0.0);
+  for (const auto& [speed, time, key] :
+       {std::tuple{0.0f, 0.25f, "sleep speed"}, std::tuple{NAN, 0.25f, "sleep speed"},
+        std::tuple{0.5f, -1.0f, "sleep time"}, std::tuple{0.5f, INFINITY, "sleep time"}}) {
+    WorldOptions options = test::sleep_options(BackendKind::kCpu, 1);
+    options.response->sleep = SleepSettings{speed, time};
+    try {
+      World world(bodies, test::sleep_step(), options);
+      ADD_FAILURE() << "expected an Error for " << key << " " << speed << " " << time;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace deformcd
