@@ -10,6 +10,7 @@
 ///     std::vector<deformcd::Contact> c = world.contacts();  // the last frame's
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -183,8 +184,7 @@ class World {
   void check_stability(int frame, const char* where);
   /// Runs a step of the contact response; a blow-up it meets (a SimulationError) is reported
   /// with the world's check, which knows the frame and the suggested substeps.
-  template <class Stage>
-  void run_response(const Stage& stage);
+  void run_response(const std::function<void()>& stage);
   [[nodiscard]] int suggested_substeps() const;
   /// What to change after a blow-up: the step's settings and the suggested substeps.
   [[nodiscard]] std::string advice() const;

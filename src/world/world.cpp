@@ -102,8 +102,7 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
 
 World::~World() = default;
 
-template <class Stage>
-void World::run_response(const Stage& stage) {
+void World::run_response(const std::function<void()>& stage) {
   try {
     stage();
   } catch (const SimulationError& e) {
