@@ -165,6 +165,7 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
     for (std::size_t i = 0; i < inverse_mass.size(); ++i)
       inverse_mass[i] = state.positions[i].w;
     std::vector<std::uint8_t> may_sleep;  // a body carried along a path never rests
+    may_sleep.reserve(bodies.size());
     for (const BodyInit& b : bodies)
       may_sleep.push_back(b.carry_velocity == glm::vec3(0.0f) ? 1u : 0u);
     sleep_ = std::make_unique<BodySleep>(*settings.sleep, objects_, std::move(inverse_mass),
