@@ -134,25 +134,22 @@ void World::step() {
   const float h = settings_.dt / static_cast<float>(settings_.substeps);
   const sim::SubstepConstants constants{h, settings_.gravity,
                                         std::exp(-settings_.velocity_damping * h)};
-  for (int s = 0; s < settings_.substeps; ++s) {
-    backend_->substep(constants);
-    if (!response_) continue;
+  // A response stage after the substeps, its time (waiting for the backend on both sides)
+  // counted as the response's, not the simulation's.
+  const auto timed_response = [&](const std::function<void()>& stage) {
     if (measure_stage_times_) backend_->finish();
     const auto begin = Clock::now();
-    run_response([&] { response_->project(h, s + 1 < settings_.substeps); });
+    run_response(stage);
     if (measure_stage_times_) {
       backend_->finish();
       response_s += Seconds(Clock::now() - begin).count();
     }
+  };
+  for (int s = 0; s < settings_.substeps; ++s) {
+    backend_->substep(constants);
+    if (response_) timed_response([&] { response_->project(h, s + 1 < settings_.substeps); });
   }
-  if (response_) {
-    const auto begin = Clock::now();
-    run_response([&] { response_->end_frame(); });
-    if (measure_stage_times_) {
-      backend_->finish();
-      response_s += Seconds(Clock::now() - begin).count();
-    }
-  }
+  if (response_) timed_response([&] { response_->end_frame(); });
   ++frame_;
   if (frame_ % check_interval_ == 0 || frame_ == 1) check_stability(frame_, "");
   if (measure_stage_times_) backend_->finish();
