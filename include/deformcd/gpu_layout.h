@@ -270,7 +270,9 @@ static_assert(offsetof(ContactPair, kind) == 16);
 struct BodyParams {
   glm::vec4 carry_velocity;  ///< xyz: velocity of the body's path (m/s), added to every node
   float damping;             ///< s: a spring's damping coefficient is damping x its stiffness
-  float pad0;
+  /// 1 while substeps skip the body, else 0 (the GL backend sets it on its own copy from
+  /// sim::FrozenBodies: every node fixed, no carry velocity; a state's value is not read).
+  float frozen;
   float pad1;
   float pad2;
 };

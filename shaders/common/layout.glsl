@@ -131,7 +131,7 @@ struct ContactPair {
 struct BodyParams {
   vec4 carry_velocity;  // xyz: velocity of the body's path (m/s), added to every node
   float damping;        // s: a spring's damping coefficient is damping x its stiffness
-  float pad0;
+  float frozen;         // 1 while substeps skip the body (sim/frozen_bodies.h), else 0
   float pad1;
   float pad2;
 };

@@ -22,6 +22,12 @@ layout(std430, binding = BINDING_SPRING_EDGE) readonly buffer SpringEdges {
 layout(std430, binding = BINDING_EDGE_STATE) writeonly buffer EdgeStates {
   vec4 edge_states[];
 };
+layout(std430, binding = BINDING_BODY_PARAMS) readonly buffer BodyParameters {
+  BodyParams body_params[];
+};
+layout(std430, binding = BINDING_NODE_BODY) readonly buffer NodeBody {
+  uint node_body[];
+};
 
 uniform uint u_edge_count;
 
@@ -29,6 +35,10 @@ void main() {
   const uint e = gl_GlobalInvocationID.x;
   if (e >= u_edge_count) return;  // the last work group reaches past the end
   const SpringEdge edge = edges[e];
+  // An edge of frozen bodies keeps its state (src/core/sim/frozen_bodies.h; the CPU skips
+  // whole batches of such edges: the values are the same).
+  if (body_params[node_body[edge.a]].frozen != 0.0 && body_params[node_body[edge.b]].frozen != 0.0)
+    return;
   edge_states[e] = spring_edge_state(positions[edge.a].xyz, positions[edge.b].xyz,
                                      velocities[edge.a].xyz, velocities[edge.b].xyz,
                                      edge.rest_length, edge.damping);

@@ -50,6 +50,8 @@ uniform float u_velocity_decay;
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= u_node_count) return;  // the last work group reaches past the end
+  // A frozen body's node stays as the last substep left it (src/core/sim/frozen_bodies.h).
+  if (body_params[node_body[i]].frozen != 0.0) return;
   // The CPU's node pass, line for line: each spring's term (sim::spring_term), then each
   // corner, each summed from zero in list order. precise: no multiply-add may be fused, so
   // that every product is rounded as the CPU rounds it.

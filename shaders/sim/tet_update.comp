@@ -21,6 +21,14 @@ layout(std430, binding = BINDING_TET_CORNER_SLOT) readonly buffer TetCornerSlots
 layout(std430, binding = BINDING_CORNER_FORCE) writeonly buffer CornerForces {
   vec4 corner_forces[];
 };
+layout(std430, binding = BINDING_BODY_PARAMS) readonly buffer BodyParameters {
+  BodyParams body_params[];
+};
+layout(std430, binding = BINDING_NODE_BODY) readonly buffer NodeBody {
+  uint node_body[];
+};
+
+bool frozen_node(uint n) { return body_params[node_body[n]].frozen != 0.0; }
 
 uniform uint u_tet_count;
 
@@ -28,6 +36,8 @@ void main() {
   const uint t = gl_GlobalInvocationID.x;
   if (t >= u_tet_count) return;  // the last work group reaches past the end
   const Tetra tet = tets[t];
+  // A tetrahedron of frozen bodies keeps its corner forces (src/core/sim/frozen_bodies.h).
+  if (frozen_node(tet.a) && frozen_node(tet.b) && frozen_node(tet.c) && frozen_node(tet.d)) return;
   vec3 f0, f1, f2, f3;
   tet_volume_forces(positions[tet.a].xyz, positions[tet.b].xyz, positions[tet.c].xyz,
                     positions[tet.d].xyz, tet.rest_volume, tet.stiffness, f0, f1, f2, f3);

@@ -71,7 +71,7 @@ void main() {
 
   body_params[i].carry_velocity = probe4(i, 0u);
   body_params[i].damping = probef(i, 4u);
-  body_params[i].pad0 = probef(i, 5u);
+  body_params[i].frozen = probef(i, 5u);
   body_params[i].pad1 = probef(i, 6u);
   body_params[i].pad2 = probef(i, 7u);
 

@@ -29,6 +29,27 @@ void CpuSimulation::upload(const SimulationState& state) {
   corners_ = std::move(corners);
   edge_states_.assign(edges_.size(), glm::vec4(0.0f));
   corner_forces_.assign(corners_.slot_count, glm::vec4(0.0f));
+  frozen_ = sim::FrozenBodies(state_);
+  find_frozen_batches();
+}
+
+void CpuSimulation::find_frozen_batches() {
+  const std::vector<std::uint8_t>& frozen = frozen_.frozen();
+  edge_batch_frozen_ = sim::frozen_batches(edges_.size(), kBatch, state_.node_body, frozen,
+                                           [&](std::size_t e, std::uint32_t* n) {
+                                             n[0] = edges_.a[e];
+                                             n[1] = edges_.b[e];
+                                             return 2u;
+                                           });
+  tet_batch_frozen_ = sim::frozen_batches(corners_.tets.size(), kBatch, state_.node_body, frozen,
+                                          [&](std::size_t t, std::uint32_t* n) {
+                                            const gpu::Tetra& tet = corners_.tets[t];
+                                            n[0] = tet.a;
+                                            n[1] = tet.b;
+                                            n[2] = tet.c;
+                                            n[3] = tet.d;
+                                            return 4u;
+                                          });
 }
 
 void CpuSimulation::set_inverse_masses(std::uint32_t first, std::span<const float> inverse_mass) {
@@ -37,10 +58,12 @@ void CpuSimulation::set_inverse_masses(std::uint32_t first, std::span<const floa
     state_.positions[first + k].w = inverse_mass[k];
     state_.velocities[first + k] = glm::vec4(0.0f);
   }
+  if (frozen_.set_inverse_masses(first, inverse_mass)) find_frozen_batches();
 }
 
 void CpuSimulation::substep(const sim::SubstepConstants& c) {
   executor_->run([&] { step(c); });
+  if (frozen_.after_substep()) find_frozen_batches();
 }
 
 void CpuSimulation::step(const sim::SubstepConstants& c) {
@@ -57,6 +80,7 @@ void CpuSimulation::step(const sim::SubstepConstants& c) {
       edge_batches + tet_batches,
       [&](std::size_t batch) {
         if (batch < edge_batches) {
+          if (edge_batch_frozen_[batch] != 0u) return;  // frozen bodies' edges: as they are
           const std::size_t j = batch * kBatch;
           if (j + kBatch <= edge_count) {
             spring_edge_states(w.positions.data(), w.velocities.data(), &e.a[j], &e.b[j],
@@ -71,6 +95,7 @@ void CpuSimulation::step(const sim::SubstepConstants& c) {
           }
           return;
         }
+        if (tet_batch_frozen_[batch - edge_batches] != 0u) return;
         const std::size_t t0 = (batch - edge_batches) * kBatch;
         if (t0 + kBatch <= tet_count) {
           tet_volume_forces(w.positions.data(), &corners_.tets[t0], &corners_.corner_slot[4 * t0],
@@ -88,12 +113,14 @@ void CpuSimulation::step(const sim::SubstepConstants& c) {
         }
       },
       kDefaultGrain / kBatch);
+  const std::vector<std::uint8_t>& frozen = frozen_.frozen();
   // NodeForce: each node sums its springs' terms in its list order, then its tetrahedron
   // corners in theirs; NodeUpdate: integrate it. Both per node, fused on the CPU since nothing
   // reads another node's force.
   parallel_for(
       w.positions.size(),
       [&](std::size_t i) {
+        if (frozen[w.node_body[i]] != 0u) return;  // stays as the last substep left it
         // Summed in 4 SIMD lanes, one vec4 load and one multiply-add pair per term: lanes x, y
         // and z are the vec3 sums of sim::spring_term bit for bit (lanes are independent), lane
         // w is unused.

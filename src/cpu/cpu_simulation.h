@@ -8,6 +8,7 @@
 
 #include <memory>
 
+#include "core/sim/frozen_bodies.h"
 #include "core/sim/node_force_lists.h"
 #include "core/sim/simulation_backend.h"
 #include "executor.h"
@@ -35,9 +36,14 @@ class CpuSimulation final : public sim::SimulationBackend {
   /// The state being stepped (for tests; a World's detector reads its positions in place). Its
   /// spring_forces and tet_forces are not written (the step does not go through them).
   [[nodiscard]] const SimulationState& state() const { return state_; }
+  /// The bodies the step skips now (for tests).
+  [[nodiscard]] const sim::FrozenBodies& frozen_bodies() const { return frozen_; }
 
  private:
   void step(const sim::SubstepConstants& constants);
+  /// Which batches of edges and of stiff tetrahedra lie in frozen bodies alone (after the
+  /// frozen set changed).
+  void find_frozen_batches();
 
   SimulationState state_;
   // Derived from state_ at upload (its springs and tetrahedra do not change afterwards).
@@ -45,6 +51,8 @@ class CpuSimulation final : public sim::SimulationBackend {
   std::vector<glm::vec4> edge_states_;  // per edge: (u, q), sim::spring_edge_state
   sim::TetCorners corners_;
   std::vector<glm::vec4> corner_forces_;  // per corner slot, node-major
+  sim::FrozenBodies frozen_;              // bodies the step skips (sim/frozen_bodies.h)
+  std::vector<std::uint8_t> edge_batch_frozen_, tet_batch_frozen_;  // per kBatch elements
   std::shared_ptr<Executor> executor_;
 };
 

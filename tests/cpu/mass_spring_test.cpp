@@ -290,6 +290,51 @@ TEST(CpuMassSpring, StepEqualsThePerSpringPassesBitForBit) {
   }
 }
 
+// Three bodies: a fixed one (every node fixed, no path; given velocities, which its first
+// substep zeroes, so that it freezes after its second), a free one, and one that sleeps (every
+// inverse mass 0) from substep 20 to 40. The step skips the fixed and the sleeping body once they
+// have been stepped still (frozen bodies, core/sim/frozen_bodies.h), and every position, velocity
+// and force stays the per-spring passes' bit for bit, which step every body always; on 1 and 2
+// threads.
+TEST(CpuMassSpring, FrozenBodiesAreSkippedAndChangeNoBit) {
+  const SimulationState start = test::three_bodies_one_fixed();
+  const gpu::ObjectInfo sleeper = start.objects[2];
+  std::vector<float> masses(sleeper.node_count), none(sleeper.node_count, 0.0f);
+  for (std::uint32_t k = 0; k < sleeper.node_count; ++k)
+    masses[k] = start.positions[sleeper.node_offset + k].w;
+  const sim::SubstepConstants c{1e-3f, glm::vec3(0.0f, -9.81f, 0.0f), 0.999f};
+  const auto same = [](const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& y) {
+    return x.size() == y.size() &&
+           std::memcmp(x.data(), y.data(), x.size() * sizeof(glm::vec4)) == 0;
+  };
+  for (int threads : {1, 2}) {
+    cpu::CpuSimulation sim(threads);
+    sim.upload(start);
+    SimulationState expected = start;
+    const auto set_masses = [&](const std::vector<float>& w) {
+      sim.set_inverse_masses(sleeper.node_offset, w);
+      for (std::uint32_t k = 0; k < sleeper.node_count; ++k) {
+        expected.positions[sleeper.node_offset + k].w = w[k];
+        expected.velocities[sleeper.node_offset + k] = glm::vec4(0.0f);
+      }
+    };
+    EXPECT_FALSE(sim.frozen_bodies().frozen(0)) << "not before its first substep";
+    for (int step = 0; step < 60; ++step) {
+      if (step == 20) set_masses(none);
+      if (step == 40) set_masses(masses);
+      sim.substep(c);
+      reference_substep(expected, c);
+      ASSERT_TRUE(same(sim.state().positions, expected.positions)) << "substep " << step;
+      ASSERT_TRUE(same(sim.state().velocities, expected.velocities)) << "substep " << step;
+      ASSERT_TRUE(same(sim.state().forces, expected.forces)) << "substep " << step;
+      EXPECT_EQ(sim.frozen_bodies().frozen(0), step >= 1) << "substep " << step;
+      EXPECT_FALSE(sim.frozen_bodies().frozen(1)) << "substep " << step;
+      EXPECT_EQ(sim.frozen_bodies().frozen(2), step >= 20 && step < 40) << "substep " << step;
+    }
+    EXPECT_FALSE(same(sim.state().positions, start.positions));
+  }
+}
+
 TEST(CpuMassSpring, FixedNodesStayAndCarryVelocityMovesTheBody) {
   BodyInit init;
   init.body = build_body(test::tet_grid(2, 2, 2, 0.1));

@@ -114,6 +114,42 @@ TEST_F(GlSimulationTest, TwoHundredSubstepsAgreeWithTheCpu) {
   }
 }
 
+// Frozen bodies (core/sim/frozen_bodies.h): the shaders skip a fixed body and a sleeping one
+// element by element, the CPU batch by batch; both freeze and thaw the same bodies at the same
+// substeps and end bit for bit equal (the CPU equals the per-spring passes: test_cpu).
+TEST_F(GlSimulationTest, FrozenBodiesFreezeAndThawAsOnTheCpu) {
+  const SimulationState world = test::three_bodies_one_fixed();
+  const gpu::ObjectInfo sleeper = world.objects[2];
+  std::vector<float> masses(sleeper.node_count), none(sleeper.node_count, 0.0f);
+  for (std::uint32_t k = 0; k < sleeper.node_count; ++k)
+    masses[k] = world.positions[sleeper.node_offset + k].w;
+  const sim::SubstepConstants c = test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}, 0.999f);
+  cpu::CpuSimulation cpu;
+  GlSimulation gl(context());
+  cpu.upload(world);
+  gl.upload(world);
+  for (int step = 0; step < 60; ++step) {
+    for (sim::SimulationBackend* backend :
+         {static_cast<sim::SimulationBackend*>(&cpu), static_cast<sim::SimulationBackend*>(&gl)}) {
+      if (step == 20) backend->set_inverse_masses(sleeper.node_offset, none);
+      if (step == 40) backend->set_inverse_masses(sleeper.node_offset, masses);
+      backend->substep(c);
+    }
+    ASSERT_EQ(gl.frozen_bodies().frozen(), cpu.frozen_bodies().frozen()) << "substep " << step;
+  }
+  EXPECT_TRUE(cpu.frozen_bodies().frozen(0));
+  std::vector<glm::vec4> cpu_x, gl_x, cpu_v, gl_v, gl_f;
+  cpu.download_positions(cpu_x);
+  gl.download_positions(gl_x);
+  cpu.download_velocities(cpu_v);
+  gl.download_velocities(gl_v);
+  gl.download_node_forces(gl_f);
+  ASSERT_GT(test::max_distance(cpu_x, world.positions), 0.01f);
+  EXPECT_EQ(gl_x, cpu_x);
+  EXPECT_EQ(gl_v, cpu_v);
+  EXPECT_EQ(gl_f, cpu.state().forces);
+}
+
 // The per-node gather has a fixed summation order, so two runs are bit-identical.
 TEST_F(GlSimulationTest, RunsAreBitIdentical) {
   const SimulationState world = two_body_world();

@@ -136,7 +136,7 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
     const gpu::BodyParams& p = out.body_params[i];
     EXPECT_EQ(p.carry_velocity, probe4(i, 0));
     EXPECT_EQ(p.damping, probef(i, 4));
-    EXPECT_EQ(p.pad0, probef(i, 5));
+    EXPECT_EQ(p.frozen, probef(i, 5));
     EXPECT_EQ(p.pad1, probef(i, 6));
     EXPECT_EQ(p.pad2, probef(i, 7));
 

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -110,6 +111,28 @@ inline WorldOptions sleep_options(BackendKind backend, int threads = 0) {
   options.response = ResponseSettings{};
   options.response->sleep = SleepSettings{};
   return options;
+}
+
+/// Three jittered grid bodies with random velocities, side by side, for the frozen-body tests
+/// (core/sim/frozen_bodies.h): body 0 has every node fixed and no path (its velocities are
+/// zeroed by its first substep), bodies 1 and 2 are free (the tests put body 2 to sleep).
+inline SimulationState three_bodies_one_fixed() {
+  std::vector<BodyInit> bodies(3);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> jitter(-0.02f, 0.02f), speed(-0.5f, 0.5f);
+  for (std::size_t n = 0; n < bodies.size(); ++n) {
+    bodies[n].body = build_body(tet_grid(6, 5, 4, 0.1, {1.0 * static_cast<double>(n), 0.0, 0.0}),
+                                {.stiffness = 5e4});
+    for (auto& p : bodies[n].body.positions)
+      p += glm::vec4(jitter(rng), jitter(rng), jitter(rng), 0.0f);
+    for (auto& v : bodies[n].body.velocities)
+      v = glm::vec4(speed(rng), speed(rng), speed(rng), 0.0f);
+    bodies[n].damping = 1e-3f;
+    bodies[n].volume_stiffness = 2e4f;
+  }
+  for (std::uint32_t i = 0; i < bodies[0].body.positions.size(); ++i)
+    bodies[0].fixed.push_back(i);
+  return assemble_simulation(bodies);
 }
 
 }  // namespace deformcd::test

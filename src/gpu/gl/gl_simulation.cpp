@@ -69,6 +69,10 @@ void GlSimulation::upload(const SimulationState& state) {
   // Every slot starts at zero; a slot no node lists is written and never read.
   const std::vector<glm::vec4> corner_forces(corners.slot_count, glm::vec4(0.0f));
   const std::vector<glm::vec4> edge_states(edges.size(), glm::vec4(0.0f));
+  // No body is frozen before its first substep (a state's own BodyParams::frozen is not read).
+  std::vector<gpu::BodyParams> body_params = state.body_params;
+  for (gpu::BodyParams& p : body_params)
+    p.frozen = 0.0f;
 
   // The new buffers are all allocated before the old ones are released: if GL runs out of
   // memory, the GlError names the buffer and the previous state stays intact.
@@ -78,7 +82,7 @@ void GlSimulation::upload(const SimulationState& state) {
   buffers_.emplace(SimulationBuffers{
       copy(state.positions, gpu::kNodePosition), copy(state.velocities, gpu::kNodeVelocity),
       copy(edge_info, gpu::kSpringEdge), copy(state.forces, gpu::kNodeForce),
-      copy(state.body_params, gpu::kBodyParams), copy(state.node_body, gpu::kNodeBody),
+      copy(body_params, gpu::kBodyParams), copy(state.node_body, gpu::kNodeBody),
       copy(edge_states, gpu::kEdgeState), copy(edges.node_offset, gpu::kNodeEdgeOffset),
       copy(edges.node_terms, gpu::kNodeEdgeTerm), copy(corners.tets, gpu::kTetInfo),
       copy(corner_forces, gpu::kCornerForce), copy(corners.node_offset, gpu::kNodeCornerOffset),
@@ -88,6 +92,14 @@ void GlSimulation::upload(const SimulationState& state) {
   edge_update_.set_uniform("u_edge_count", buffers_->edge_count);
   tet_update_.set_uniform("u_tet_count", buffers_->tet_count);
   node_update_.set_uniform("u_node_count", buffers_->node_count);
+  frozen_ = sim::FrozenBodies(state);
+  body_params_ = std::move(body_params);
+}
+
+void GlSimulation::upload_frozen() {
+  for (std::size_t b = 0; b < body_params_.size(); ++b)
+    body_params_[b].frozen = frozen_.frozen(static_cast<std::uint32_t>(b)) ? 1.0f : 0.0f;
+  buffers_->body_params.upload(std::span<const gpu::BodyParams>(body_params_), 0);
 }
 
 void GlSimulation::substep(const sim::SubstepConstants& constants) {
@@ -115,6 +127,7 @@ void GlSimulation::substep(const sim::SubstepConstants& constants) {
   node_update_.dispatch_covering(b.node_count);
   // The next substep, the collision shaders and renderers drawing from SSBO 0 read positions.
   memory_barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+  if (frozen_.after_substep()) upload_frozen();
 }
 
 void GlSimulation::finish() {
@@ -142,6 +155,7 @@ void GlSimulation::set_inverse_masses(std::uint32_t first, std::span<const float
   b.positions.upload(std::span<const glm::vec4>(positions), first);
   const std::vector<glm::vec4> still(inverse_mass.size(), glm::vec4(0.0f));
   b.velocities.upload(std::span<const glm::vec4>(still), first);
+  if (frozen_.set_inverse_masses(first, inverse_mass)) upload_frozen();
 }
 
 void GlSimulation::download_node_forces(std::vector<glm::vec4>& out) {

@@ -22,6 +22,7 @@
 #include <glm/vec4.hpp>
 
 #include "compute_program.h"
+#include "core/sim/frozen_bodies.h"
 #include "core/sim/simulation_backend.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/device_info.h"
@@ -95,6 +96,8 @@ class GlSimulation final : public sim::SimulationBackend {
   // SSBO 0's buffer name (0 before upload()).
   [[nodiscard]] std::uint32_t gl_position_buffer() const override;
   [[nodiscard]] std::uint32_t gl_velocity_buffer() const override;
+  // The bodies the shaders skip now (for tests).
+  [[nodiscard]] const sim::FrozenBodies& frozen_bodies() const { return frozen_; }
 
  private:
   GlSimulation(const DeviceInfo& device, const GlSimulationOptions& options);
@@ -108,6 +111,11 @@ class GlSimulation final : public sim::SimulationBackend {
   ComputeProgram tet_update_;
   ComputeProgram node_update_;
   std::optional<SimulationBuffers> buffers_;
+  // The bodies the shaders skip (sim/frozen_bodies.h), and the body parameters as uploaded
+  // (BodyParams::frozen from it): uploaded again when the frozen set changes.
+  sim::FrozenBodies frozen_;
+  std::vector<gpu::BodyParams> body_params_;
+  void upload_frozen();
 };
 
 }  // namespace deformcd::gl
