@@ -160,6 +160,14 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
   max_untangle_step_ = settings.untangle_step * smallest_edge;
   smallest_edge_ = smallest_edge;
   linked_.assign(bodies.size() * bodies.size(), 0u);
+  fixed_body_.assign(bodies.size(), 0u);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const gpu::ObjectInfo& o = objects_[b];
+    bool fixed = bodies[b].carry_velocity == glm::vec3(0.0f);
+    for (std::uint32_t i = o.node_offset; fixed && i < o.node_offset + o.node_count; ++i)
+      fixed = !(state.positions[i].w > 0.0f);
+    fixed_body_[b] = fixed ? 1u : 0u;
+  }
   if (settings.sleep.has_value()) {
     std::vector<float> inverse_mass(state.positions.size());
     for (std::size_t i = 0; i < inverse_mass.size(); ++i)
@@ -306,6 +314,10 @@ bool ContactResponse::asleep(std::size_t body) const {
   return sleep_ && sleep_->asleep(body);
 }
 
+bool ContactResponse::immovable(std::uint32_t body) const {
+  return fixed_body_[body] != 0u || asleep(body);
+}
+
 void ContactResponse::search() {
   Detector& detector = *detector_;
   const std::vector<Contact>& intersections = intersections_;
@@ -367,6 +379,7 @@ void ContactResponse::search() {
         if (v == pair.nodes[1] || v == pair.nodes[2] || v == pair.nodes[3]) continue;
         pair.kind = gpu::kContactUntangle;
         link(mine.body, other.body);
+        if (immovable(mine.body) && immovable(other.body)) continue;
         pair.thickness = 0.5f * (thickness_[mine.body] + thickness_[other.body]);
         pair.gap = -INFINITY;  // always awake
         pair.closing_speed = 0.0f;
@@ -392,6 +405,10 @@ void ContactResponse::add_proximity_pair(const ProximityPair& p, response::Frame
   pair.nodes[3] = first_b + p.vertices[3];
   pair.kind = edges ? gpu::kContactEdgeEdge : gpu::kContactVertexFace;
   link(p.mesh_a, p.mesh_b);
+  // Between a fixed base and a sleeping body, or two sleeping bodies, every node has inverse
+  // mass 0: the constraint would be checked every substep and never correct anything. The
+  // link above still keeps a sleeping island together.
+  if (immovable(p.mesh_a) && immovable(p.mesh_b)) return;
   if (tangled_->holds(pair)) return;
   pair.thickness = 0.5f * (thickness_[p.mesh_a] + thickness_[p.mesh_b]);
   if (p.mesh_a == p.mesh_b) pair.thickness = self_thickness(pair);

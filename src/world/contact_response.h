@@ -116,6 +116,11 @@ class ContactResponse {
   ResponseCounts counts_;
   std::unique_ptr<BodySleep> sleep_;  // with ResponseSettings::sleep
   std::vector<std::uint8_t> linked_;  // bodies x bodies: joined by a constraint in the frame
+  // Per body: every node fixed and no path (a fixed base): it never moves.
+  std::vector<std::uint8_t> fixed_body_;
+  /// Whether body b cannot move now (fixed_body_, or asleep): a constraint between two such
+  /// bodies has only nodes of inverse mass 0, so it never corrects anything.
+  [[nodiscard]] bool immovable(std::uint32_t body) const;
 };
 
 /// Mean length of a body's surface edges (each edge once).
