@@ -299,9 +299,7 @@ TEST(CpuMassSpring, StepEqualsThePerSpringPassesBitForBit) {
 TEST(CpuMassSpring, FrozenBodiesAreSkippedAndChangeNoBit) {
   const SimulationState start = test::three_bodies_one_fixed();
   const gpu::ObjectInfo sleeper = start.objects[2];
-  std::vector<float> masses(sleeper.node_count), none(sleeper.node_count, 0.0f);
-  for (std::uint32_t k = 0; k < sleeper.node_count; ++k)
-    masses[k] = start.positions[sleeper.node_offset + k].w;
+  const std::vector<float> masses = test::inverse_masses(start, 2), none(masses.size(), 0.0f);
   const sim::SubstepConstants c{1e-3f, glm::vec3(0.0f, -9.81f, 0.0f), 0.999f};
   const auto same = [](const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& y) {
     return x.size() == y.size() &&

@@ -120,9 +120,7 @@ TEST_F(GlSimulationTest, TwoHundredSubstepsAgreeWithTheCpu) {
 TEST_F(GlSimulationTest, FrozenBodiesFreezeAndThawAsOnTheCpu) {
   const SimulationState world = test::three_bodies_one_fixed();
   const gpu::ObjectInfo sleeper = world.objects[2];
-  std::vector<float> masses(sleeper.node_count), none(sleeper.node_count, 0.0f);
-  for (std::uint32_t k = 0; k < sleeper.node_count; ++k)
-    masses[k] = world.positions[sleeper.node_offset + k].w;
+  const std::vector<float> masses = test::inverse_masses(world, 2), none(masses.size(), 0.0f);
   const sim::SubstepConstants c = test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}, 0.999f);
   cpu::CpuSimulation cpu;
   GlSimulation gl(context());

@@ -135,4 +135,13 @@ inline SimulationState three_bodies_one_fixed() {
   return assemble_simulation(bodies);
 }
 
+/// Body b's nodes' inverse masses in `state` (positions[i].w), in node order.
+inline std::vector<float> inverse_masses(const SimulationState& state, std::uint32_t b) {
+  const gpu::ObjectInfo& o = state.objects[b];
+  std::vector<float> w(o.node_count);
+  for (std::uint32_t k = 0; k < o.node_count; ++k)
+    w[k] = state.positions[o.node_offset + k].w;
+  return w;
+}
+
 }  // namespace deformcd::test
