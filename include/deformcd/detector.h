@@ -182,15 +182,20 @@ class Detector {
   /// hierarchies are the same (built on the same positions; each backend rebuilds a hierarchy
   /// that deformation has loosened on its own schedule). For a contact response that keeps
   /// bodies `thickness` apart: reach = thickness / 2 + the most a vertex strays from its path.
-  /// Throws InputError for lists of the wrong length, a negative or non-finite reach or a
-  /// non-finite motion.
+  /// `still` (one flag per mesh, or none) names meshes that do not move over the period (a
+  /// fixed base, a sleeping body): the pairs between two of them, and a still mesh's pairs
+  /// with itself, are not searched for (the rest are the same pairs in the same order), since
+  /// no response could move them apart. Throws InputError for lists of the wrong length, a
+  /// negative or non-finite reach or a non-finite motion.
   [[nodiscard]] std::vector<ProximityPair> find_proximity(std::span<const float> reach,
-                                                          std::span<const glm::vec3> motion = {});
+                                                          std::span<const glm::vec3> motion = {},
+                                                          std::span<const std::uint8_t> still = {});
   /// Raises the reach of some vertices in the last find_proximity() (`vertices` numbered as
   /// its motion, mesh 0's first; `reach` one per vertex named, m, >= 0) and returns the pairs
   /// that involve one of them: exactly the pairs involving them that find_proximity() would
-  /// return with those reaches, on the positions and motions it was given (kept from then:
-  /// the meshes may have moved since), in an order of its own (by the pair's triangles). The
+  /// return with those reaches, on the positions, motions and still meshes it was given (kept
+  /// from then: the meshes may have moved since), in an order of its own (by the pair's
+  /// triangles). The
   /// other pairs of the last search stand as they were. For a contact response whose vertex
   /// strayed beyond its reach: only the triangles at those vertices query the hierarchies,
   /// instead of a new search over every triangle. The reaches stay raised for the next call.

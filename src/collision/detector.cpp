@@ -333,7 +333,8 @@ static std::vector<ProximityPair> to_proximity_pairs(
 }
 
 std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach,
-                                                    std::span<const glm::vec3> motion) {
+                                                    std::span<const glm::vec3> motion,
+                                                    std::span<const std::uint8_t> still) {
   Impl& d = *impl_;
   const std::size_t vertices = d.vertex_first.back();
   // One reach per mesh, or one per vertex: per vertex from here on.
@@ -382,6 +383,12 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
       }
     }
   }
+  if (!still.empty() && still.size() != d.meshes.size()) {
+    throw InputError("find_proximity", "takes one still flag per mesh (" +
+                                           std::to_string(d.meshes.size()) + ") or none, not " +
+                                           std::to_string(still.size()));
+  }
+  std::vector<std::uint32_t> mesh_pairs = collision::searched_mesh_pairs(d.data, still);
   d.require_positions();
   d.complete();  // a GL pass may still read the buffers the search and the read-back read
   if (d.check_positions) d.check_finite();
@@ -394,7 +401,7 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
     d.make_current();
     if (!d.gl_proximity) d.gl_proximity.reset(new gl::GlProximity(*d.context, d.data));
     const gl::ProximityRefitOrder order = gl_collision->prepare_proximity();
-    found = d.gl_proximity->find_bound(order, reach, motion);
+    found = d.gl_proximity->find_bound(order, reach, motion, mesh_pairs);
     searched = true;
   }
 #endif
@@ -409,7 +416,7 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
   if (!searched) {
     if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
     found = d.proximity->find(pose.data(), motion_of.empty() ? nullptr : motion_of.data(),
-                              reach_of.data(), &distances);
+                              reach_of.data(), mesh_pairs, &distances);
   }
   // The search's inputs, for widen_proximity(): the pose copied (a host array is read in
   // place and will have moved on).
@@ -422,6 +429,7 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
   }
   last.motion.assign(motion.begin(), motion.end());
   last.reach.assign(reach.begin(), reach.end());
+  last.mesh_pairs = std::move(mesh_pairs);
   last.cpu_boxes = !searched;
   last.valid = true;
   return to_proximity_pairs(d, found, distances, pose);
@@ -469,7 +477,7 @@ std::vector<ProximityPair> Detector::widen_proximity(std::span<const std::uint32
   std::vector<float> distances;
   const std::vector<collision::ProximityCandidate> found =
       d.proximity->widen(pose.data(), motion_of.empty() ? nullptr : motion_of.data(),
-                         reach_of.data(), widened, last.cpu_boxes, distances);
+                         reach_of.data(), last.mesh_pairs, widened, last.cpu_boxes, distances);
   last.cpu_boxes = true;
   return to_proximity_pairs(d, found, distances, pose);
 }

@@ -46,12 +46,14 @@ struct Detector::Impl {
   // the backend (destroyed before it, while the context lives).
   std::unique_ptr<gl::GlProximity, GlProximityDeleter> gl_proximity;
   /// The last find_proximity()'s inputs, for widen_proximity(): the positions it searched (per
-  /// mesh, copied), each vertex's motion and reach (the motion's order), and whether the CPU
-  /// search's boxes are from it (false after a GL search).
+  /// mesh, copied), each vertex's motion and reach (the motion's order), the mesh pairs it
+  /// searched (indices into data.mesh_pairs), and whether the CPU search's boxes are from it
+  /// (false after a GL search).
   struct ProximitySearch {
     std::vector<std::vector<glm::vec3>> pose;
     std::vector<glm::vec3> motion;
     std::vector<float> reach;
+    std::vector<std::uint32_t> mesh_pairs;
     bool cpu_boxes = false;
     bool valid = false;
   } last_proximity;

@@ -74,10 +74,10 @@ void CpuProximity::sweep_primitives_of_met_faces() {
   });
 }
 
-std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexPositions positions,
-                                                              collision::VertexPositions motion,
-                                                              collision::VertexReach reach,
-                                                              std::vector<float>* distances) {
+std::vector<collision::ProximityCandidate> CpuProximity::find(
+    collision::VertexPositions positions, collision::VertexPositions motion,
+    collision::VertexReach reach, std::span<const std::uint32_t> mesh_pairs,
+    std::vector<float>* distances) {
   std::vector<collision::ProximityCandidate> all;
   if (distances != nullptr) distances->clear();
   executor_->run([&] {
@@ -92,7 +92,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
       std::uint32_t mesh_pair, first, end;  // faces [first, end) of the pair's mesh a
     };
     std::vector<Chunk> chunks;
-    for (std::uint32_t p = 0; p < data_.mesh_pairs.size(); ++p) {
+    for (const std::uint32_t p : mesh_pairs) {
       const gpu::MeshInfo& mesh_a = data_.meshes[data_.mesh_pairs[p].a];
       for (std::uint32_t first = 0; first < mesh_a.face_count; first += kChunk) {
         chunks.push_back(
@@ -157,8 +157,9 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(collision::VertexP
 
 std::vector<collision::ProximityCandidate> CpuProximity::widen(
     collision::VertexPositions positions, collision::VertexPositions motion,
-    collision::VertexReach reach, std::span<const std::array<std::uint32_t, 2>> widened,
-    bool boxes_current, std::vector<float>& distances) {
+    collision::VertexReach reach, std::span<const std::uint32_t> mesh_pairs,
+    std::span<const std::array<std::uint32_t, 2>> widened, bool boxes_current,
+    std::vector<float>& distances) {
   std::vector<collision::ProximityCandidate> out;
   distances.clear();
   executor_->run([&] {
@@ -201,7 +202,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
       auto operator<=>(const FacePair&) const = default;
     };
     std::vector<FacePair> pairs;
-    for (std::uint32_t p = 0; p < data_.mesh_pairs.size(); ++p) {
+    for (const std::uint32_t p : mesh_pairs) {
       const gpu::BodyPair& mp = data_.mesh_pairs[p];
       for (const std::uint32_t face : faces) {
         const std::uint32_t mesh = data_.faces[face].body;

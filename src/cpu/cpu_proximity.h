@@ -29,23 +29,26 @@ class CpuProximity {
 
   /// The candidates whose boxes, swept from `positions` along each vertex's `motion` (null: no
   /// motion) and grown by each vertex's reach (>= 0), overlap and whose primitives' distance is
-  /// within the two reaches (emit_face_pair_candidates), mesh pair by mesh pair, then by the
+  /// within the two reaches (emit_face_pair_candidates), over the mesh pairs `mesh_pairs`
+  /// (indices into the data's mesh pairs, ascending), mesh pair by mesh pair, then by the
   /// querying face of the pair's first mesh. With `distances`, each candidate's primitives'
   /// distance on `positions` (primitive_distance) in the same order.
   [[nodiscard]] std::vector<collision::ProximityCandidate> find(
       collision::VertexPositions positions, collision::VertexPositions motion,
-      collision::VertexReach reach, std::vector<float>* distances = nullptr);
-  /// After a search over the same positions and motion, whose reaches have since been raised
-  /// for the vertices of `widened` (mesh, vertex): the candidates find() would now give that
-  /// involve one of them, with their distances in `distances`. Only the faces that have one of
-  /// them as a corner are swept again and query the trees. Ordered by face pair (mesh pair by
-  /// mesh pair, then by the pair's two faces), whatever the thread count. `boxes_current`:
-  /// the trees' boxes are from that search (a find() on the CPU); else (the search ran on
-  /// GL) they are refitted first.
+      collision::VertexReach reach, std::span<const std::uint32_t> mesh_pairs,
+      std::vector<float>* distances = nullptr);
+  /// After a search over the same positions, motion and mesh pairs, whose reaches have since
+  /// been raised for the vertices of `widened` (mesh, vertex): the candidates find() would now
+  /// give that involve one of them, with their distances in `distances`. Only the faces that
+  /// have one of them as a corner are swept again and query the trees. Ordered by face pair
+  /// (mesh pair by mesh pair, then by the pair's two faces), whatever the thread count.
+  /// `boxes_current`: the trees' boxes are from that search (a find() on the CPU); else (the
+  /// search ran on GL) they are refitted first.
   [[nodiscard]] std::vector<collision::ProximityCandidate> widen(
       collision::VertexPositions positions, collision::VertexPositions motion,
-      collision::VertexReach reach, std::span<const std::array<std::uint32_t, 2>> widened,
-      bool boxes_current, std::vector<float>& distances);
+      collision::VertexReach reach, std::span<const std::uint32_t> mesh_pairs,
+      std::span<const std::array<std::uint32_t, 2>> widened, bool boxes_current,
+      std::vector<float>& distances);
 
  private:
   void refit(collision::VertexPositions positions, collision::VertexPositions motion,

@@ -17,6 +17,7 @@ BodySleep::BodySleep(const SleepSettings& settings, const std::vector<gpu::Objec
       may_sleep_(may_sleep),
       fixed_(objects.size(), 1u),
       asleep_(objects.size(), 0u),
+      slept_with_(objects.size(), 0u),
       slow_time_(objects.size(), 0.0f),
       dt_(dt) {
   for (std::size_t b = 0; b < objects_.size(); ++b) {
@@ -62,11 +63,16 @@ std::vector<std::uint32_t> BodySleep::end_frame(
     }
     return b;
   };
-  for (const auto& [a, b] : links) {
-    if (a == b || fixed_[a] != 0u || fixed_[b] != 0u) continue;
+  const auto join = [&](std::uint32_t a, std::uint32_t b) {
     const std::uint32_t ra = find(a), rb = find(b);
     if (ra != rb) root[std::max(ra, rb)] = std::min(ra, rb);
+  };
+  for (const auto& [a, b] : links) {
+    if (a == b || fixed_[a] != 0u || fixed_[b] != 0u) continue;
+    join(a, b);
   }
+  for (std::uint32_t b = 0; b < n; ++b)
+    if (asleep_[b] != 0u) join(b, slept_with_[b]);
   std::vector<std::uint8_t> restful(n, 1u);  // per island root: every body may sleep now
   for (std::uint32_t b = 0; b < n; ++b) {
     if (fixed_[b] != 0u) continue;
@@ -81,6 +87,8 @@ std::vector<std::uint32_t> BodySleep::end_frame(
     if (sleeps == 0u) slow_time_[b] = 0.0f;
     changed.push_back(b);
   }
+  for (std::uint32_t b = 0; b < n; ++b)
+    if (asleep_[b] != 0u) slept_with_[b] = find(b);
   return changed;
 }
 

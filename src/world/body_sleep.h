@@ -9,7 +9,11 @@
 // the floor. An island sleeps once each of its bodies has been slow for the settings' time; a
 // sleeping body is still (velocity 0), so its slow time runs on. An island with a body that is
 // not (a body that comes into contact with a sleeping one) wakes as a whole, and its woken
-// bodies count their slow time from zero again.
+// bodies count their slow time from zero again. Bodies that fell asleep in one island stay
+// one while they sleep, whether or not the frame's constraints still join them: the contact
+// response does not look for constraints between bodies that cannot move (the search would
+// find the same pairs frame after frame and none could act), so a woken body wakes everything
+// that slept with it, as Box2D's sleeping islands do.
 
 #include <cstdint>
 #include <span>
@@ -33,7 +37,9 @@ class BodySleep {
             const std::vector<std::uint8_t>& may_sleep, float dt);
 
   /// After a frame: `velocity` per node, `links` the body pairs that the frame's contact
-  /// constraints joined. Returns the bodies that fell asleep or woke, ascending.
+  /// constraints joined (those between two sleeping bodies may be left out: they are joined
+  /// by the island they fell asleep in). Returns the bodies that fell asleep or woke,
+  /// ascending.
   std::vector<std::uint32_t> end_frame(
       const std::vector<glm::vec4>& velocity,
       const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links);
@@ -49,12 +55,13 @@ class BodySleep {
 
   SleepSettings settings_;
   std::vector<gpu::ObjectInfo> objects_;
-  std::vector<float> inverse_mass_;      // per node, as given
-  std::vector<float> slow_speed_;        // per body: m/s below which it is slow
-  std::vector<std::uint8_t> may_sleep_;  // per body
-  std::vector<std::uint8_t> fixed_;      // per body: every node fixed (joins no island)
-  std::vector<std::uint8_t> asleep_;     // per body
-  std::vector<float> slow_time_;         // per body: s it has been slow without a break
+  std::vector<float> inverse_mass_;        // per node, as given
+  std::vector<float> slow_speed_;          // per body: m/s below which it is slow
+  std::vector<std::uint8_t> may_sleep_;    // per body
+  std::vector<std::uint8_t> fixed_;        // per body: every node fixed (joins no island)
+  std::vector<std::uint8_t> asleep_;       // per body
+  std::vector<std::uint32_t> slept_with_;  // per sleeping body: its island's smallest body
+  std::vector<float> slow_time_;           // per body: s it has been slow without a break
   float dt_ = 0.0f;
 };
 

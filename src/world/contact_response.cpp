@@ -359,7 +359,13 @@ void ContactResponse::search() {
     window_start_[i] = glm::vec3(x[i]);
     if (!std::isfinite(x[i].x + x[i].y + x[i].z)) unstable(i, "a non-finite position");
   }
-  for (const ProximityPair& p : detector.find_proximity(reach, motion))
+  // Bodies that cannot move (a fixed base, a sleeping body) are still: the search leaves out
+  // the pairs between two of them, whose constraints could correct nothing (every node has
+  // inverse mass 0). Their sleeping islands stay whole without those links (BodySleep).
+  std::vector<std::uint8_t> still(objects_.size());
+  for (std::uint32_t b = 0; b < still.size(); ++b)
+    still[b] = immovable(b) ? 1u : 0u;
+  for (const ProximityPair& p : detector.find_proximity(reach, motion, still))
     add_proximity_pair(p, c);
   // Untangling: each vertex of an intersecting face against the other face, unless it is one
   // of that face's own corners (self-intersections of faces sharing a node).
@@ -404,11 +410,8 @@ void ContactResponse::add_proximity_pair(const ProximityPair& p, response::Frame
   pair.nodes[2] = first_b + p.vertices[2];
   pair.nodes[3] = first_b + p.vertices[3];
   pair.kind = edges ? gpu::kContactEdgeEdge : gpu::kContactVertexFace;
+  // (Pairs of two bodies that cannot move are not searched for: search() flags them still.)
   link(p.mesh_a, p.mesh_b);
-  // Between a fixed base and a sleeping body, or two sleeping bodies, every node has inverse
-  // mass 0: the constraint would be checked every substep and never correct anything. The
-  // link above still keeps a sleeping island together.
-  if (immovable(p.mesh_a) && immovable(p.mesh_b)) return;
   if (tangled_->holds(pair)) return;
   pair.thickness = 0.5f * (thickness_[p.mesh_a] + thickness_[p.mesh_b]);
   if (p.mesh_a == p.mesh_b) pair.thickness = self_thickness(pair);

@@ -226,6 +226,7 @@ TEST_F(ProximityAgreement, GlEqualsCpuThroughPhase1) {
   SceneReplay replay(context(), "phase1", kFrames);
   GlProximity gl(context(), replay.fixture.data);
   cpu::CpuProximity cpu(replay.fixture.data, std::make_shared<cpu::Executor>(2));
+  const std::vector<std::uint32_t> pairs = collision::searched_mesh_pairs(replay.fixture.data, {});
   std::size_t longest = 0;
   std::size_t compared = 0;
   for (int f = 0; f <= kFrames; ++f) {
@@ -246,9 +247,9 @@ TEST_F(ProximityAgreement, GlEqualsCpuThroughPhase1) {
           lists.repoint();
         }
         const std::vector<collision::ProximityCandidate> expected =
-            cpu.find(replay.fixture.vertices(), lists.cpu_motion(), lists.cpu_reach());
+            cpu.find(replay.fixture.vertices(), lists.cpu_motion(), lists.cpu_reach(), pairs);
         const std::vector<collision::ProximityCandidate> found =
-            gl.find_bound(order, lists.reach, lists.motion);
+            gl.find_bound(order, lists.reach, lists.motion, pairs);
         const std::string where = "frame " + std::to_string(f) + ", reach " +
                                   std::to_string(reach[0]) + (moving ? ", moving" : "");
         EXPECT_EQ(found.size(), expected.size()) << where;

@@ -88,13 +88,14 @@ class GlProximityTest : public test_support::GlTest {
     const GpuFixture gpu(f);
     GlProximity gl(context(), f.data);
     cpu::CpuProximity cpu(f.data, std::make_shared<cpu::Executor>(2));
+    const std::vector<std::uint32_t> pairs = collision::searched_mesh_pairs(f.data, {});
     std::vector<std::size_t> sizes;
     for (std::size_t i = 0; i < cases.size(); ++i) {
       const VertexLists& lists = cases[i];
       const std::vector<collision::ProximityCandidate> expected =
-          cpu.find(f.vertices(), lists.cpu_motion(), lists.cpu_reach());
+          cpu.find(f.vertices(), lists.cpu_motion(), lists.cpu_reach(), pairs);
       const std::vector<collision::ProximityCandidate> found =
-          gl.find(gpu.sources(), lists.reach, lists.motion);
+          gl.find(gpu.sources(), lists.reach, lists.motion, pairs);
       EXPECT_EQ(found.size(), expected.size()) << where << ", case " << i;
       EXPECT_TRUE(found == expected) << where << ", case " << i;
       sizes.push_back(expected.size());
@@ -173,8 +174,8 @@ TEST_F(GlProximityTest, ReachesOnTheCandidatesOwnDistancesGiveTheCpuCandidates) 
   const test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids(), true);
   cpu::CpuProximity probe(f.data, std::make_shared<cpu::Executor>(2));
   const VertexLists wide = vertex_lists(f.data, std::vector<float>{0.03f, 0.03f});
-  const std::vector<collision::ProximityCandidate> all =
-      probe.find(f.vertices(), nullptr, wide.cpu_reach());
+  const std::vector<collision::ProximityCandidate> all = probe.find(
+      f.vertices(), nullptr, wide.cpu_reach(), collision::searched_mesh_pairs(f.data, {}));
   ASSERT_GT(all.size(), 1000u);
   const std::vector<glm::vec3> drift = {{0.002f, 0.0f, 0.0f}, {0.0f, -0.002f, 0.0f}};
   std::vector<VertexLists> cases;
@@ -230,10 +231,11 @@ TEST_F(GlProximityTest, OverAGlCollisionsTreesGivesTheCpuCandidates) {
     const VertexLists lists =
         vertex_lists(f.data, std::vector<float>{0.01f, 0.02f}, drift, 0.005f, 20u + step);
     const ProximityRefitOrder order = collision.prepare_proximity();
+    const std::vector<std::uint32_t> pairs = collision::searched_mesh_pairs(f.data, {});
     const std::vector<collision::ProximityCandidate> found =
-        gl.find_bound(order, lists.reach, lists.motion);
+        gl.find_bound(order, lists.reach, lists.motion, pairs);
     const std::vector<collision::ProximityCandidate> expected =
-        cpu.find(f.vertices(), lists.cpu_motion(), lists.cpu_reach());
+        cpu.find(f.vertices(), lists.cpu_motion(), lists.cpu_reach(), pairs);
     EXPECT_GT(expected.size(), 0u);
     EXPECT_EQ(found.size(), expected.size()) << "step " << step;
     EXPECT_TRUE(found == expected) << "step " << step;
@@ -257,9 +259,12 @@ TEST_F(GlProximityTest, ListsOfTheWrongLengthAreRefused) {
                                          std::vector<glm::vec3>(2, glm::vec3(0.0f)));
   const std::vector<float> short_reach(lists.reach.begin(), lists.reach.end() - 1);
   const std::vector<glm::vec3> short_motion(lists.motion.begin(), lists.motion.end() - 1);
-  EXPECT_THROW((void)gl.find(gpu.sources(), short_reach, lists.motion), Error);
-  EXPECT_THROW((void)gl.find(gpu.sources(), lists.reach, short_motion), Error);
-  EXPECT_NO_THROW((void)gl.find(gpu.sources(), lists.reach, {}));
+  const std::vector<std::uint32_t> pairs = collision::searched_mesh_pairs(f.data, {});
+  EXPECT_THROW((void)gl.find(gpu.sources(), short_reach, lists.motion, pairs), Error);
+  EXPECT_THROW((void)gl.find(gpu.sources(), lists.reach, short_motion, pairs), Error);
+  const std::vector<std::uint32_t> beyond = {static_cast<std::uint32_t>(f.data.mesh_pairs.size())};
+  EXPECT_THROW((void)gl.find(gpu.sources(), lists.reach, lists.motion, beyond), Error);
+  EXPECT_NO_THROW((void)gl.find(gpu.sources(), lists.reach, {}, pairs));
 }
 
 // Through the public Detector: on GL, find_proximity runs the GL search over the GL backend's
@@ -298,6 +303,18 @@ TEST_F(GlProximityTest, DetectorOnGlEqualsTheCpuDetector) {
       vertex_lists(f.data, std::vector<float>{0.01f, 0.015f}, drift, 0.003f, 3u);
   expect_same(moving.reach, moving.motion, "host positions, per vertex, moving");
   expect_same({0.01f, 0.02f}, {}, "host positions, per mesh, still");
+  // Still meshes: GL searches the mesh pairs the CPU does (mesh 0 still: its pair with itself
+  // is not searched; both still: none is), then all of them again.
+  for (const std::vector<std::uint8_t>& still :
+       {std::vector<std::uint8_t>{1u, 0u}, std::vector<std::uint8_t>{1u, 1u}}) {
+    const std::vector<ProximityPair> some =
+        cpu_detector.find_proximity(moving.reach, moving.motion, still);
+    EXPECT_EQ(some.empty(), still[1] != 0u);
+    EXPECT_TRUE(gl_detector.find_proximity(moving.reach, moving.motion, still) == some);
+  }
+  expect_same(moving.reach, moving.motion, "host positions, per vertex, moving, after subsets");
+  const std::vector<std::uint8_t> one_flag = {1u};
+  EXPECT_THROW((void)gl_detector.find_proximity(moving.reach, moving.motion, one_flag), InputError);
 
   // The same positions in a GL buffer (vec4 per vertex), then moved there and in the host
   // arrays alike; the GL detector detects in between.

@@ -13,6 +13,7 @@
 #include "deformcd/error.h"
 #include "deformcd/world.h"
 #include "support/world_fixtures.h"
+#include "world/body_sleep.h"
 
 namespace deformcd {
 namespace {
@@ -94,6 +95,35 @@ TEST(BodySleep, ARestingBlockSleepsWakesWhenABlockLandsOnItAndBothSleepTogether)
   RecordProperty(
       "frames_lower_asleep_woken_both_asleep",
       std::to_string(lower_slept) + " " + std::to_string(woke) + " " + std::to_string(both_slept));
+}
+
+// Bodies that fell asleep in one island wake together, though the frames since linked them no
+// more (the contact response does not search between two sleeping bodies), and a body that
+// fell asleep alone sleeps on. One-node bodies: 0 and 1 resting on each other, 2 apart, 3
+// moving until it hits 1.
+TEST(BodySleep, AnIslandThatFellAsleepTogetherWakesTogether) {
+  std::vector<gpu::ObjectInfo> objects(4, gpu::ObjectInfo{});
+  for (std::uint32_t b = 0; b < 4u; ++b) {
+    objects[b].node_offset = b;
+    objects[b].node_count = 1u;
+  }
+  BodySleep sleep({.speed = 0.5f, .time = 0.25f}, objects, std::vector<float>(4, 1.0f),
+                  std::vector<float>(4, 1.0f), std::vector<std::uint8_t>(4, 1u), 0.1f);
+  std::vector<glm::vec4> velocity(4, glm::vec4(0.0f));
+  velocity[3] = glm::vec4(3.0f, 0.0f, 0.0f, 0.0f);
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>> resting = {{0u, 1u}};
+  for (int frame = 0; frame < 2; ++frame)  // slow for 0.1 s, 0.2 s
+    EXPECT_TRUE(sleep.end_frame(velocity, resting).empty()) << "frame " << frame;
+  // 0.3 s: the islands of the slow bodies sleep.
+  EXPECT_EQ(sleep.end_frame(velocity, resting), (std::vector<std::uint32_t>{0u, 1u, 2u}));
+  // Asleep: no links between the sleeping bodies any more.
+  for (int frame = 0; frame < 5; ++frame)
+    EXPECT_TRUE(sleep.end_frame(velocity, {}).empty()) << "frame " << frame;
+  // Body 3 reaches 1: 0 wakes with it, 2 sleeps on.
+  EXPECT_EQ(sleep.end_frame(velocity, {{1u, 3u}}), (std::vector<std::uint32_t>{0u, 1u}));
+  EXPECT_TRUE(sleep.asleep(2));
+  EXPECT_EQ(sleep.inverse_masses(0), std::vector<float>{1.0f});
+  EXPECT_EQ(sleep.inverse_masses(2), std::vector<float>{0.0f});
 }
 
 TEST(BodySleep, TheSameOnOneAndTwoThreads) {

@@ -576,6 +576,61 @@ TEST(ContactResponse, SelfProximityEqualsBruteForce) {
   RecordProperty("vertex_triangle_pairs_one_edge_apart", static_cast<int>(neighbours));
 }
 
+// Still meshes (find_proximity's `still`): the pairs between two of them, and a still mesh's
+// pairs with itself, are not searched for; every other pair is the full search's, in its
+// order, and a widening keeps to the same mesh pairs. On the overlap scene's two bodies as
+// they start (20 % overlapped), each mesh also against itself.
+TEST(ContactResponse, StillMeshesArePairedOnlyWithMovingOnes) {
+  SceneWorld s = open_scene("overlap", 1);
+  ProximityWorld w = proximity_world(s, true);
+  const auto make_detector = [&] {
+    Detector d(w.meshes, {.backend = BackendKind::kCpu, .threads = 2});
+    for (std::size_t b = 0; b < 2; ++b)
+      d.set_positions(b, std::span<const glm::vec3>(w.positions[b]));
+    return d;
+  };
+  Detector detector = make_detector();
+  const std::vector<float> reach = {0.01f, 0.01f};
+  std::vector<glm::vec3> motion;
+  for (std::size_t b = 0; b < 2; ++b)
+    motion.insert(motion.end(), w.positions[b].size(), glm::vec3(b == 0 ? 0.01f : -0.01f, 0, 0));
+  const auto without = [](const std::vector<ProximityPair>& pairs,
+                          const std::vector<std::uint8_t>& still) {
+    std::vector<ProximityPair> kept;
+    for (const ProximityPair& p : pairs)
+      if (still[p.mesh_a] == 0u || still[p.mesh_b] == 0u) kept.push_back(p);
+    return kept;
+  };
+  const std::vector<ProximityPair> full = detector.find_proximity(reach, motion);
+  for (const std::vector<std::uint8_t>& still :
+       {std::vector<std::uint8_t>{1u, 0u}, std::vector<std::uint8_t>{0u, 1u},
+        std::vector<std::uint8_t>{1u, 1u}, std::vector<std::uint8_t>{0u, 0u}}) {
+    const std::string where = "still " + std::to_string(still[0]) + std::to_string(still[1]);
+    const std::vector<ProximityPair> expected = without(full, still);
+    EXPECT_TRUE(detector.find_proximity(reach, motion, still) == expected) << where;
+    if (still[0] + still[1] == 1u) {
+      EXPECT_GT(expected.size(), 1000u) << where;
+      EXPECT_LT(expected.size(), full.size()) << where << ": each mesh has pairs with itself";
+    }
+    // A widening of every 7th vertex (reach doubled) after each search: the full search's
+    // widening without the still meshes' pairs.
+    std::vector<std::uint32_t> vertices;
+    std::vector<float> raised;
+    for (std::uint32_t v = 0; v < motion.size(); v += 7u) {
+      vertices.push_back(v);
+      raised.push_back(0.02f);
+    }
+    Detector other = make_detector();
+    (void)other.find_proximity(reach, motion);
+    const std::vector<ProximityPair> widened_full = other.widen_proximity(vertices, raised);
+    (void)detector.find_proximity(reach, motion, still);
+    EXPECT_TRUE(detector.widen_proximity(vertices, raised) == without(widened_full, still))
+        << where;
+  }
+  const std::vector<std::uint8_t> three = {0u, 0u, 1u};
+  EXPECT_THROW((void)detector.find_proximity(reach, motion, three), InputError);
+}
+
 TEST(ContactResponse, BadSettingsAreErrorsNamingTheField) {
   SceneWorld s = open_scene("overlap", 1);
   const auto error_of = [&](const ResponseSettings& settings) -> std::string {

@@ -129,4 +129,15 @@ std::vector<std::uint32_t> vertex_firsts(const CollisionData& data) {
   return first;
 }
 
+std::vector<std::uint32_t> searched_mesh_pairs(const CollisionData& data,
+                                               std::span<const std::uint8_t> still) {
+  std::vector<std::uint32_t> searched;
+  searched.reserve(data.mesh_pairs.size());
+  for (std::uint32_t p = 0; p < data.mesh_pairs.size(); ++p) {
+    const gpu::BodyPair& pair = data.mesh_pairs[p];
+    if (still.empty() || still[pair.a] == 0u || still[pair.b] == 0u) searched.push_back(p);
+  }
+  return searched;
+}
+
 }  // namespace deformcd::collision

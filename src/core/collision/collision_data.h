@@ -4,6 +4,7 @@
 // lists, one BVH per mesh). One array per GPU buffer, as the GL backend uploads them.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,12 @@ struct CollisionData {
 /// Where each mesh's vertices start in the per-vertex arrays of a proximity search (every
 /// mesh's vertices, mesh after mesh), then their total: mesh_count() + 1 entries.
 [[nodiscard]] std::vector<std::uint32_t> vertex_firsts(const CollisionData& data);
+
+/// The mesh pairs a proximity search looks at (indices into data.mesh_pairs, ascending): every
+/// pair but those of two meshes flagged in `still` (one flag per mesh, or none: every pair),
+/// a still mesh with itself included. Meshes that do not move cannot come closer.
+[[nodiscard]] std::vector<std::uint32_t> searched_mesh_pairs(const CollisionData& data,
+                                                             std::span<const std::uint8_t> still);
 
 /// Builds the leaf-box lists and the BVHs of every mesh on `pose`.
 void build_hierarchies(CollisionData& data, VertexPositions pose);

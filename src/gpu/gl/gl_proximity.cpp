@@ -24,11 +24,13 @@ std::uint32_t node_total(const collision::CollisionData& data) {
   return total;
 }
 
-// Item p's first work item: mesh pair p's mesh a's faces follow the earlier pairs'.
-std::vector<std::uint32_t> pair_first_items(const collision::CollisionData& data) {
+// Each searched pair's first work item (`pairs`: indices into data.mesh_pairs), then their
+// total: a pair's mesh a's faces follow the earlier pairs'.
+std::vector<std::uint32_t> pair_first_items(const collision::CollisionData& data,
+                                            std::span<const std::uint32_t> pairs) {
   std::vector<std::uint32_t> first = {0u};
-  for (const gpu::BodyPair& pair : data.mesh_pairs)
-    first.push_back(first.back() + data.meshes[pair.a].face_count);
+  for (const std::uint32_t p : pairs)
+    first.push_back(first.back() + data.meshes[data.mesh_pairs[p].a].face_count);
   return first;
 }
 
@@ -49,7 +51,8 @@ GlProximity::GlProximity(Context& context, const collision::CollisionData& data)
     : GlProximity(query_device_info(context), data) {}
 
 GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionData& data)
-    : GlProximity(device, data, collision::vertex_firsts(data), pair_first_items(data)) {}
+    : GlProximity(device, data, collision::vertex_firsts(data),
+                  pair_first_items(data, collision::searched_mesh_pairs(data, {}))) {}
 
 GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionData& data,
                          const std::vector<std::uint32_t>& vertex_first,
@@ -57,6 +60,9 @@ GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionDat
     : max_buffer_bytes_(device.max_ssbo_block_bytes),
       vertex_count_(vertex_first.back()),
       node_count_(node_total(data)),
+      all_pairs_(data.mesh_pairs),
+      meshes_(data.meshes),
+      searched_(collision::searched_mesh_pairs(data, {})),
       pair_count_(static_cast<std::uint32_t>(data.mesh_pairs.size())),
       item_count_(pair_first.back()),
       refit_("proximity/proximity_refit.comp"),
@@ -72,11 +78,7 @@ GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionDat
       boxes_(std::max<std::uint32_t>(node_count_, 1u)),
       counts_(std::max<std::uint32_t>(item_count_, 1u)),
       offsets_(std::size_t{item_count_} + 1u) {
-  for (ComputeProgram* p : {&count_, &emit_}) {
-    p->set_uniform("u_pair_count", pair_count_);
-    p->set_uniform("u_item_count", item_count_);
-  }
-  scan_.set_uniform("u_item_count", item_count_);
+  set_item_uniforms();
   refit_.set_uniform("u_node_count", node_count_);
   const std::uint64_t most =
       std::uint64_t{device.max_work_group_count[0]} * count_.work_group_size()[0];
@@ -88,26 +90,59 @@ GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionDat
   }
 }
 
-std::vector<collision::ProximityCandidate> GlProximity::find(const ProximitySources& sources,
-                                                             std::span<const float> reach,
-                                                             std::span<const glm::vec3> motion) {
-  check_lists(reach, motion);  // before anything is rebound
+void GlProximity::set_item_uniforms() {
+  for (ComputeProgram* p : {&count_, &emit_}) {
+    p->set_uniform("u_pair_count", pair_count_);
+    p->set_uniform("u_item_count", item_count_);
+  }
+  scan_.set_uniform("u_item_count", item_count_);
+}
+
+void GlProximity::search_pairs(std::span<const std::uint32_t> mesh_pairs) {
+  if (std::equal(mesh_pairs.begin(), mesh_pairs.end(), searched_.begin(), searched_.end())) return;
+  // A subset of the pairs uploaded at construction: the buffers hold them all.
+  std::vector<gpu::BodyPair> pairs;
+  pairs.reserve(mesh_pairs.size());
+  for (const std::uint32_t p : mesh_pairs)
+    pairs.push_back(all_pairs_[p]);
+  std::vector<std::uint32_t> first = {0u};
+  for (const gpu::BodyPair& pair : pairs)
+    first.push_back(first.back() + meshes_[pair.a].face_count);
+  if (!pairs.empty()) mesh_pairs_.upload(std::span<const gpu::BodyPair>(pairs));
+  pair_first_.upload(std::span<const std::uint32_t>(first));
+  searched_.assign(mesh_pairs.begin(), mesh_pairs.end());
+  pair_count_ = static_cast<std::uint32_t>(pairs.size());
+  item_count_ = first.back();
+  set_item_uniforms();
+}
+
+std::vector<collision::ProximityCandidate> GlProximity::find(
+    const ProximitySources& sources, std::span<const float> reach,
+    std::span<const glm::vec3> motion, std::span<const std::uint32_t> mesh_pairs) {
+  check_lists(reach, motion, mesh_pairs);  // before anything is rebound
   bind_name(gpu::kNodePosition, sources.positions);
   bind_name(gpu::kFaceInfo, sources.faces);
   bind_name(gpu::kMeshInfo, sources.meshes);
   bind_name(gpu::kBvhNode, sources.bvh_nodes);
   bind_name(gpu::kBodyBvh, sources.mesh_bvhs);
-  return find_bound(sources.refit, reach, motion);
+  return find_bound(sources.refit, reach, motion, mesh_pairs);
 }
 
-void GlProximity::check_lists(std::span<const float> reach,
-                              std::span<const glm::vec3> motion) const {
+void GlProximity::check_lists(std::span<const float> reach, std::span<const glm::vec3> motion,
+                              std::span<const std::uint32_t> mesh_pairs) const {
   if (reach.size() != vertex_count_ || (!motion.empty() && motion.size() != vertex_count_)) {
     throw Error(
         "GlProximity::find takes one reach and one motion (or none) per vertex of every "
         "mesh: " +
         std::to_string(vertex_count_) + " expected, " + std::to_string(reach.size()) +
         " reaches and " + std::to_string(motion.size()) + " motions given");
+  }
+  for (std::size_t i = 0; i < mesh_pairs.size(); ++i) {
+    if (mesh_pairs[i] >= all_pairs_.size() || (i > 0 && mesh_pairs[i] <= mesh_pairs[i - 1])) {
+      throw Error("GlProximity::find: mesh pair " + std::to_string(mesh_pairs[i]) + " (entry " +
+                  std::to_string(i) + ") is not an ascending index below the " +
+                  std::to_string(all_pairs_.size()) + " mesh pairs");
+    }
   }
 }
 
@@ -134,8 +169,9 @@ void GlProximity::refit(const ProximityRefitOrder& order, std::span<const float>
 
 std::vector<collision::ProximityCandidate> GlProximity::find_bound(
     const ProximityRefitOrder& order, std::span<const float> reach,
-    std::span<const glm::vec3> motion) {
-  check_lists(reach, motion);
+    std::span<const glm::vec3> motion, std::span<const std::uint32_t> mesh_pairs) {
+  check_lists(reach, motion, mesh_pairs);
+  search_pairs(mesh_pairs);
   if (item_count_ == 0) return {};
   refit(order, reach, motion);
   mesh_pairs_.bind(gpu::kBodyPair);

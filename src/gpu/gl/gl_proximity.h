@@ -73,21 +73,22 @@ class GlProximity {
   // The candidates on the positions `sources` hold, as CpuProximity::find gives them: each
   // vertex moving by its `motion` (m, one per vertex of every mesh, mesh 0's first; empty:
   // none) with its `reach` (m, >= 0, one per vertex in the same order), boxes swept and grown,
-  // pairs kept by their distance (emit_face_pair_candidates), mesh pair by mesh pair, then by
-  // the querying face of the pair's first mesh, in the traversal order of the trees in
-  // `sources`. Waits for the GPU (two read-backs). Throws Error for lists of the wrong length,
-  // GlError naming the candidate buffer when it would exceed the device's buffer limit or the
-  // driver refuses the memory.
-  [[nodiscard]] std::vector<collision::ProximityCandidate> find(const ProximitySources& sources,
-                                                                std::span<const float> reach,
-                                                                std::span<const glm::vec3> motion);
+  // pairs kept by their distance (emit_face_pair_candidates), over the mesh pairs
+  // `mesh_pairs` (indices into the data's mesh pairs, ascending), mesh pair by mesh pair, then
+  // by the querying face of the pair's first mesh, in the traversal order of the trees in
+  // `sources`. Waits for the GPU (two read-backs). Throws Error for lists of the wrong length
+  // or pair indices not ascending below the pair count, GlError naming the candidate buffer
+  // when it would exceed the device's buffer limit or the driver refuses the memory.
+  [[nodiscard]] std::vector<collision::ProximityCandidate> find(
+      const ProximitySources& sources, std::span<const float> reach,
+      std::span<const glm::vec3> motion, std::span<const std::uint32_t> mesh_pairs);
   // The same over the buffers bound now at SSBOs 0, 7, 8, 25 and 27, as
   // GlCollision::prepare_proximity leaves them (a positions buffer may be bound as a range),
   // refitting in `order` (which prepare_proximity returns). Rebinds SSBO 26 and 22 and its own
   // binding points.
   [[nodiscard]] std::vector<collision::ProximityCandidate> find_bound(
       const ProximityRefitOrder& order, std::span<const float> reach,
-      std::span<const glm::vec3> motion);
+      std::span<const glm::vec3> motion, std::span<const std::uint32_t> mesh_pairs);
 
  private:
   GlProximity(const DeviceInfo& device, const collision::CollisionData& data);
@@ -96,24 +97,32 @@ class GlProximity {
   GlProximity(const DeviceInfo& device, const collision::CollisionData& data,
               const std::vector<std::uint32_t>& vertex_first,
               const std::vector<std::uint32_t>& pair_first);
-  void check_lists(std::span<const float> reach, std::span<const glm::vec3> motion) const;
+  void check_lists(std::span<const float> reach, std::span<const glm::vec3> motion,
+                   std::span<const std::uint32_t> mesh_pairs) const;
+  // Makes `mesh_pairs` the pairs searched (their list and work items uploaded when they
+  // differ from the last search's).
+  void search_pairs(std::span<const std::uint32_t> mesh_pairs);
+  void set_item_uniforms();
   // Uploads the vertices' motion and reach and refits the search's boxes in `order`.
   void refit(const ProximityRefitOrder& order, std::span<const float> reach,
              std::span<const glm::vec3> motion);
 
-  std::uint64_t max_buffer_bytes_ = 0;  // the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE
-  std::uint32_t vertex_count_ = 0;      // of every mesh
-  std::uint32_t node_count_ = 0;        // BVH nodes of every mesh
-  std::uint32_t pair_count_ = 0;
-  std::uint32_t item_count_ = 0;
+  std::uint64_t max_buffer_bytes_ = 0;    // the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+  std::uint32_t vertex_count_ = 0;        // of every mesh
+  std::uint32_t node_count_ = 0;          // BVH nodes of every mesh
+  std::vector<gpu::BodyPair> all_pairs_;  // the data's mesh pairs
+  std::vector<gpu::MeshInfo> meshes_;     // the data's meshes
+  std::vector<std::uint32_t> searched_;   // the pairs uploaded (indices into all_pairs_)
+  std::uint32_t pair_count_ = 0;          // of them
+  std::uint32_t item_count_ = 0;          // their work items (faces of their first meshes)
   ComputeProgram refit_;
   ComputeProgram refit_level_;
   ComputeProgram count_;
   ComputeProgram scan_;
   ComputeProgram emit_;
   Ssbo<std::uint32_t> owners_;                                     // per face
-  Ssbo<gpu::BodyPair> mesh_pairs_;                                 // SSBO 22
-  Ssbo<std::uint32_t> pair_first_;                                 // per mesh pair + 1
+  Ssbo<gpu::BodyPair> mesh_pairs_;                                 // SSBO 22: searched
+  Ssbo<std::uint32_t> pair_first_;                                 // per searched pair + 1
   Ssbo<std::uint32_t> vertex_first_;                               // per mesh
   Ssbo<glm::vec4> motion_;                                         // per vertex: motion, reach
   Ssbo<gpu::Box> boxes_;                                           // per BVH node (SSBO 26)
