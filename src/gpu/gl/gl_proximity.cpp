@@ -24,13 +24,14 @@ std::uint32_t node_total(const collision::CollisionData& data) {
   return total;
 }
 
-// Each searched pair's first work item (`pairs`: indices into data.mesh_pairs), then their
-// total: a pair's mesh a's faces follow the earlier pairs'.
-std::vector<std::uint32_t> pair_first_items(const collision::CollisionData& data,
+// Each searched pair's first work item (`pairs`: indices into `all`), then their total: a
+// pair's mesh a's faces follow the earlier pairs'.
+std::vector<std::uint32_t> pair_first_items(const std::vector<gpu::BodyPair>& all,
+                                            const std::vector<gpu::MeshInfo>& meshes,
                                             std::span<const std::uint32_t> pairs) {
   std::vector<std::uint32_t> first = {0u};
   for (const std::uint32_t p : pairs)
-    first.push_back(first.back() + data.meshes[data.mesh_pairs[p].a].face_count);
+    first.push_back(first.back() + meshes[all[p].a].face_count);
   return first;
 }
 
@@ -52,7 +53,8 @@ GlProximity::GlProximity(Context& context, const collision::CollisionData& data)
 
 GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionData& data)
     : GlProximity(device, data, collision::vertex_firsts(data),
-                  pair_first_items(data, collision::searched_mesh_pairs(data, {}))) {}
+                  pair_first_items(data.mesh_pairs, data.meshes,
+                                   collision::searched_mesh_pairs(data, {}))) {}
 
 GlProximity::GlProximity(const DeviceInfo& device, const collision::CollisionData& data,
                          const std::vector<std::uint32_t>& vertex_first,
@@ -105,9 +107,7 @@ void GlProximity::search_pairs(std::span<const std::uint32_t> mesh_pairs) {
   pairs.reserve(mesh_pairs.size());
   for (const std::uint32_t p : mesh_pairs)
     pairs.push_back(all_pairs_[p]);
-  std::vector<std::uint32_t> first = {0u};
-  for (const gpu::BodyPair& pair : pairs)
-    first.push_back(first.back() + meshes_[pair.a].face_count);
+  const std::vector<std::uint32_t> first = pair_first_items(all_pairs_, meshes_, mesh_pairs);
   if (!pairs.empty()) mesh_pairs_.upload(std::span<const gpu::BodyPair>(pairs));
   pair_first_.upload(std::span<const std::uint32_t>(first));
   searched_.assign(mesh_pairs.begin(), mesh_pairs.end());
