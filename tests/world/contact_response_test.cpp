@@ -23,6 +23,7 @@
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
+#include "support/collision_fixtures.h"
 #include "support/sanitizers.h"
 #include "world/contact_response.h"
 #include "world/simulation_factory.h"
@@ -439,15 +440,9 @@ void expect_widening_equals_brute_force(Detector& detector, ProximityWorld& w, s
 // A world's meshes and current positions, for a detector of their own.
 ProximityWorld proximity_world(const SceneWorld& s, bool self_collision) {
   ProximityWorld w;
-  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-    CollisionMesh m;
-    m.vertex_count = static_cast<std::uint32_t>(s.bodies[b].body.positions.size());
-    for (const gpu::Face& f : s.bodies[b].body.faces)
-      m.triangles.push_back({f.a, f.b, f.c});
-    m.self_collision = self_collision;
-    w.meshes.push_back(std::move(m));
+  w.meshes = test::surface_meshes(s.bodies, self_collision);
+  for (std::size_t b = 0; b < s.bodies.size(); ++b)
     w.positions.push_back(s.world->positions(b));
-  }
   return w;
 }
 
@@ -615,15 +610,7 @@ std::uint64_t impact_searches(int every, int first, int frames) {
       create_response(BackendKind::kCpu, nullptr, *simulation, executor);
   if (every > 0) backend = std::make_unique<StrayClaimingBackend>(std::move(backend), every);
   ContactResponse response(*scene.response, bodies, state, step, *simulation, std::move(backend));
-  std::vector<CollisionMesh> meshes;
-  for (const BodyInit& b : bodies) {
-    CollisionMesh m;
-    m.vertex_count = static_cast<std::uint32_t>(b.body.positions.size());
-    for (const gpu::Face& f : b.body.faces)
-      m.triangles.push_back({f.a, f.b, f.c});
-    meshes.push_back(std::move(m));
-  }
-  Detector detector(meshes, {.backend = BackendKind::kCpu, .threads = 2});
+  Detector detector(test::surface_meshes(bodies), {.backend = BackendKind::kCpu, .threads = 2});
   const std::vector<glm::vec4>& x = simulation->host_state()->positions;
   for (std::size_t b = 0; b < bodies.size(); ++b)
     detector.set_positions(b, HostPositions{&x[state.objects[b].node_offset].x, sizeof(glm::vec4)});
