@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <utility>
 
 #include "deformcd/error.h"
@@ -27,29 +28,43 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   frame_start_.resize(nodes);
   deviation_.assign(nodes, 0.0f);
   counts_.assign(nodes, 0u);
+  slot_begin_.resize(nodes);
+  slot_cursor_.resize(nodes);
+  touched_.clear();
   executor_->run([&] {
     parallel_for(nodes, [&](std::size_t i) {
       frame_start_[i] = glm::vec4(glm::vec3(state_.positions[i]), constraints_->node_motion[i].w);
     });
   });
+  watch_reachable_nodes();
 }
 
 void CpuContactResponse::update_frame(const response::FrameConstraints& constraints) {
   take(constraints);
-  for (std::size_t i = 0; i < frame_start_.size(); ++i)
+  // A widening raises finite reaches only, so the watched nodes stay those begin_frame listed.
+  for (const std::uint32_t i : watched_)
     frame_start_[i].w = constraints_->node_motion[i].w;
+}
+
+void CpuContactResponse::watch_reachable_nodes() {
+  // A node with an infinite reach (on no collision surface) is in no constraint and never
+  // strays: the per-substep passes leave it out (most of a tetrahedral body's nodes).
+  watched_.clear();
+  for (std::uint32_t i = 0; i < frame_start_.size(); ++i)
+    if (!std::isinf(frame_start_[i].w)) watched_.push_back(i);
 }
 
 bool CpuContactResponse::project(const response::ContactConstants& k, int iterations) {
   if (constraints_ == nullptr) throw Error("CpuContactResponse::project before begin_frame()");
   std::atomic<bool> any_strayed{false};  // an OR: the same whatever the order
   const std::vector<gpu::ContactPair>& pairs = constraints_->pairs;
-  const std::size_t nodes = state_.positions.size();
   executor_->run([&] {
     // Deviation pass, activity pass (only awake constraints look at their geometry), count,
     // then per iteration the solve and node passes: each writes only its own element's slots,
-    // and each node reads its own list in order.
-    parallel_for(nodes, [&](std::size_t i) {
+    // and each node reads its own list in order. The node passes visit only the watched nodes
+    // (those a constraint can name) or the touched ones (those an active constraint names).
+    parallel_for(watched_.size(), [&](std::size_t w) {
+      const std::uint32_t i = watched_[w];
       deviation_[i] = response::path_deviation(glm::vec3(state_.positions[i]), frame_start_[i],
                                                constraints_->node_motion[i], k.elapsed);
     });
@@ -70,31 +85,32 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         },
         1024);
     // The count pass, summed from the compacted list: the integer counts do not depend on the
-    // order, and equal the GL count pass's over each node's list.
+    // order, and equal the GL count pass's over each node's list. The last substep's touched
+    // nodes are the only nonzero counts.
     acting_.clear();
     for (std::uint32_t p = 0; p < pairs.size(); ++p)
       if (active_[p] != 0u) acting_.push_back(p);
-    std::fill(counts_.begin(), counts_.end(), 0u);
-    for (const std::uint32_t p : acting_)
-      for (const std::uint32_t n : pairs[p].nodes)
-        ++counts_[n];
+    for (const std::uint32_t n : touched_)
+      counts_[n] = 0u;
     touched_.clear();
-    active_offset_.resize(nodes + 1u);
-    std::uint32_t slots = 0;
-    for (std::uint32_t i = 0; i < nodes; ++i) {
-      active_offset_[i] = slots;
-      slots += counts_[i];
-      if (counts_[i] != 0u) touched_.push_back(i);
+    for (const std::uint32_t p : acting_) {
+      for (const std::uint32_t n : pairs[p].nodes) {
+        if (counts_[n]++ == 0u) touched_.push_back(n);
+      }
     }
-    active_offset_[nodes] = slots;
+    std::uint32_t slots = 0;
+    for (const std::uint32_t n : touched_) {
+      slot_begin_[n] = slots;
+      slot_cursor_[n] = slots;
+      slots += counts_[n];
+    }
     // Each node's active slots, ascending (constraints in order, corners in order): its list's
     // order without the inactive slots, so the sums are the GL node pass's, without walking
     // the slots of the many candidates that do not act.
     active_slots_.resize(slots);
-    cursor_.assign(active_offset_.begin(), active_offset_.end() - 1);
     for (const std::uint32_t p : acting_)
       for (std::uint32_t corner = 0; corner < 4u; ++corner)
-        active_slots_[cursor_[pairs[p].nodes[corner]]++] = 4u * p + corner;
+        active_slots_[slot_cursor_[pairs[p].nodes[corner]]++] = 4u * p + corner;
     for (int iteration = 0; iteration < iterations; ++iteration) {
       parallel_for(
           acting_.size(),
@@ -116,14 +132,16 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       parallel_for(touched_.size(), [&](std::size_t t) {
         const std::uint32_t i = touched_[t];
         glm::vec3 dx(0.0f), dv(0.0f);
-        response::gather_correction(active_slots_.data(), active_offset_[i], active_offset_[i + 1],
-                                    active_.data(), corrections_.data(), dx, dv);
+        response::gather_correction(active_slots_.data(), slot_begin_[i],
+                                    slot_begin_[i] + counts_[i], active_.data(),
+                                    corrections_.data(), dx, dv);
         response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv);
       });
     }
     // The strays, as GL's last node pass flags them: an untouched node is where the deviation
-    // pass measured it.
-    parallel_for(nodes, [&](std::size_t i) {
+    // pass measured it. An unwatched node never strays (its reach is infinite).
+    parallel_for(watched_.size(), [&](std::size_t w) {
+      const std::uint32_t i = watched_[w];
       const glm::vec4& x = state_.positions[i];
       const bool beyond =
           counts_[i] != 0u

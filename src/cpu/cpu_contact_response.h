@@ -30,6 +30,8 @@ class CpuContactResponse final : public response::ResponseBackend {
  private:
   // Points at `constraints` (the caller keeps them) and sizes the per-constraint arrays.
   void take(const response::FrameConstraints& constraints);
+  // Lists the nodes with a finite reach (watched_) from frame_start_.
+  void watch_reachable_nodes();
 
   SimulationState& state_;
   std::shared_ptr<Executor> executor_;
@@ -40,12 +42,13 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::vector<std::uint32_t> counts_;   // SSBO 33
   std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep
   std::vector<std::uint32_t> acting_;   // the active constraints, ascending
-  std::vector<std::uint32_t> touched_;  // the nodes of active constraints, ascending
+  std::vector<std::uint32_t> touched_;  // the nodes of active constraints, as first named
+  std::vector<std::uint32_t> watched_;  // the nodes with a finite reach, ascending
   std::vector<float> deviation_;        // SSBO 36: per node, from its straight path
-  // Per node, its active slots: active_slots_[active_offset_[n] .. active_offset_[n + 1]).
-  std::vector<std::uint32_t> active_offset_;
+  // Per touched node n, its active slots: active_slots_[slot_begin_[n] .. + counts_[n]).
+  std::vector<std::uint32_t> slot_begin_;
   std::vector<std::uint32_t> active_slots_;
-  std::vector<std::uint32_t> cursor_;  // the fill's per node position
+  std::vector<std::uint32_t> slot_cursor_;  // the fill's per node position
 };
 
 }  // namespace deformcd::cpu

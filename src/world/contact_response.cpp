@@ -442,7 +442,8 @@ void ContactResponse::widen() {
   std::vector<float> reach;
   std::vector<std::uint8_t> strayed(x.size(), 0u);
   for (std::uint32_t i = 0; i < x.size(); ++i) {
-    if (!(x[i].w > 0.0f)) continue;  // fixed: never strays
+    // Fixed nodes never stray, nor do nodes on no surface (their reach is infinite).
+    if (!(x[i].w > 0.0f) || on_surface_[i] == 0u) continue;
     const float old_reach = node_motion[i].w;
     const float deviation = response::path_deviation(
         glm::vec3(x[i]), glm::vec4(window_start_[i], old_reach), node_motion[i], elapsed_);
