@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <numeric>
 
 #include "bench_device_timer.h"
@@ -51,8 +52,10 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
     if (world.responds()) {
       run.proximity_s.push_back(world.last_frame_times().proximity_s);
       run.response_s.push_back(world.last_frame_times().response_s);
-      run.searches.push_back(world.response_counts().searches);
-      run.widenings.push_back(world.response_counts().widenings);
+      const ResponseCounts counts = world.response_counts();
+      run.searches.push_back(counts.searches);
+      run.widenings.push_back(counts.widenings);
+      run.constraints.push_back(counts.vertex_face + counts.edge_edge + counts.untangle);
     }
 
     world.set_broadphase(method);
@@ -94,6 +97,16 @@ double MethodRun::total_proximity_s() const {
 
 double MethodRun::total_response_s() const {
   return std::accumulate(response_s.begin(), response_s.end(), 0.0);
+}
+
+double MethodRun::response_ratio(bool with_constraints) const {
+  double response = 0.0, simulation = 0.0;
+  for (std::size_t f = 0; f < constraints.size(); ++f) {
+    if ((constraints[f] != 0u) != with_constraints) continue;
+    response += proximity_s[f] + response_s[f];
+    simulation += simulation_s[f] - proximity_s[f] - response_s[f];
+  }
+  return simulation > 0.0 ? response / simulation : std::numeric_limits<double>::quiet_NaN();
 }
 
 double MethodRun::total_simulation_s() const {

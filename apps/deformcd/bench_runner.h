@@ -40,6 +40,9 @@ struct MethodRun {
   /// nodes that strayed (World::response_counts()). Empty without.
   std::vector<std::uint64_t> searches;
   std::vector<std::uint64_t> widenings;
+  /// Per frame 1..N with contact response: the constraints the frame ended with (proximity and
+  /// untangling pairs, World::response_counts()). Empty without.
+  std::vector<std::uint64_t> constraints;
 
   [[nodiscard]] double total_simulation_s() const;
   [[nodiscard]] double total_collision_s() const;
@@ -47,6 +50,10 @@ struct MethodRun {
   [[nodiscard]] double total_collision_device_s() const;
   [[nodiscard]] double total_proximity_s() const;
   [[nodiscard]] double total_response_s() const;
+  /// The response's cost (proximity + response) over the simulation's alone (the simulation
+  /// stage less both), over the frames that ended with constraints (`with` true) or without.
+  /// NaN when no frame is of that kind.
+  [[nodiscard]] double response_ratio(bool with_constraints) const;
   /// The paper's V: the run's total time, simulation and collision detection.
   [[nodiscard]] double total_s() const { return total_simulation_s() + total_collision_s(); }
   [[nodiscard]] std::uint64_t pairs() const;

@@ -139,9 +139,9 @@ TEST_F(CliTest, RunWritesThePositionsOfTheLastOrOfEveryFrame) {
   EXPECT_EQ(line + "\n", last);  // the last line is the file without --every-frame
 }
 
-// With a scene's `response`, bench reports the response's stages and its searches and
-// widenings a frame: two cubes falling side by side, never near, one search a frame and no
-// widening.
+// With a scene's `response`, bench reports the response's stages, its searches and widenings a
+// frame and the constraints each frame ended with: two cubes falling side by side, never near,
+// one search a frame, no widening and no constraint.
 TEST_F(CliTest, BenchReportsTheResponsesSearchesAndWidenings) {
   deformcd::write_tetgen(deformcd::test::unit_cube(), path("cube"));
   write("two.json", R"({"settings": {"frames": 3}, "response": {},
@@ -153,10 +153,32 @@ TEST_F(CliTest, BenchReportsTheResponsesSearchesAndWidenings) {
   EXPECT_NE(r.output.find("x the simulation); searches 1.00, widenings 0.00 a frame"),
             std::string::npos)
       << r.output;
+  EXPECT_NE(r.output.find("no frame ended with constraints"), std::string::npos) << r.output;
   std::string json = lines_of(path("bench.json"));
   std::erase_if(json, [](char c) { return c == ' ' || c == '\n'; });
   EXPECT_NE(json.find("\"searches\":[1,1,1]"), std::string::npos) << json;
   EXPECT_NE(json.find("\"widenings\":[0,0,0]"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"constraints\":[0,0,0]"), std::string::npos) << json;
+}
+
+// Cubes that start closer than the contact thickness end every frame with constraints, and bench
+// reports the response's cost over those frames.
+TEST_F(CliTest, BenchSplitsTheResponsesCostByFramesWithConstraints) {
+  deformcd::write_tetgen(deformcd::test::unit_cube(), path("cube"));
+  write("near.json", R"({"settings": {"frames": 3, "gravity": [0, 0, 0]}, "response": {},
+                         "bodies": [{"model": "cube"}, {"model": "cube", "position": [1.05, 0, 0]}]})");
+  const CliRun r =
+      run_cli("bench " + path("near.json") + " --backend cpu --methods bvh --frames 3 " +
+              "--json " + path("bench.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("the 3 frames ending with constraints: proximity + response = "),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("; the other"), std::string::npos) << r.output;
+  std::string json = lines_of(path("bench.json"));
+  std::erase_if(json, [](char c) { return c == ' ' || c == '\n'; });
+  EXPECT_EQ(json.find("\"constraints\":[0"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"constraints\":["), std::string::npos) << json;
 }
 
 TEST_F(CliTest, OutputPathsAreCheckedBeforeAnyWorkAndNamedAsGiven) {
