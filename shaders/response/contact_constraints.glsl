@@ -125,9 +125,42 @@ bool contact_awake(ContactPair pair, float deviation[4], float elapsed) {
   return !(closest > margin);
 }
 
+// abs_sum: the sum of the absolute values of v's components (at least its length).
+float abs_sum(vec3 v) {
+  precise float r = (abs(v.x) + abs(v.y)) + abs(v.z);
+  return r;
+}
+
+// contact_clear, line for line: whether the primitives are surely farther apart than the
+// thickness (the edges' lines' distance, or the vertex's height over the face's plane), with a
+// margin beyond the rounding of this bound and of contact_geometry.
+bool contact_clear(ContactPair pair, vec3 x[4]) {
+  if (pair.kind == CONTACT_EDGE_EDGE) {
+    precise vec3 da = x[1] - x[0], db = x[3] - x[2], r = x[0] - x[2];
+    precise vec3 normal = exact_cross(da, db);
+    precise float normal2 = exact_dot(normal, normal);
+    precise float parallel = 1e-2 * exact_dot(da, da) * exact_dot(db, db);
+    if (!(normal2 > parallel)) return false;
+    precise float along = exact_dot(r, normal);
+    precise float limit =
+        1.001 * pair.thickness + 1e-4 * abs_sum(r) + 1e-6 * (abs_sum(x[0]) + abs_sum(x[2]));
+    precise float along2 = along * along;
+    precise float bound = limit * limit * normal2;
+    return along2 > bound;
+  }
+  precise vec3 normal = exact_cross(x[2] - x[1], x[3] - x[1]);
+  precise vec3 offset = x[0] - x[1];
+  precise float height = exact_dot(offset, normal);
+  precise float limit = 1.001 * pair.thickness + 1e-4 * abs_sum(offset) + 1e-6 * abs_sum(x[1]);
+  precise float height2 = height * height;
+  precise float bound = limit * limit * exact_dot(normal, normal);
+  return height > 0.0 && height2 > bound;
+}
+
 // contact_active: whether the constraint acts now (its distance along n below its thickness).
 bool contact_active(ContactPair pair, vec4 position[4]) {
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
+  if (contact_clear(pair, x)) return false;
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
   float c = 0.0;
