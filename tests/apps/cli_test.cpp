@@ -42,6 +42,24 @@ class CliTest : public ::testing::Test {
     text << in.rdbuf();
     return text.str();
   }
+  // What `bench` (CPU, bvh, 3 frames) says of two cubes with contact response, the second at
+  // `x` along x, under scene settings `settings`: its run, and its JSON without blanks.
+  struct BenchOfCubes {
+    CliRun run;
+    std::string json;
+  };
+  BenchOfCubes bench_two_cubes(const std::string& settings, float x) const {
+    deformcd::write_tetgen(deformcd::test::unit_cube(), path("cube"));
+    write("two.json", R"({"settings": )" + settings + R"(, "response": {},
+                          "bodies": [{"model": "cube"},
+                                     {"model": "cube", "position": [)" +
+                          std::to_string(x) + ", 0, 0]}]}");
+    BenchOfCubes b{run_cli("bench " + path("two.json") +
+                           " --backend cpu --methods bvh --frames 3 --json " + path("bench.json")),
+                   lines_of(path("bench.json"))};
+    std::erase_if(b.json, [](char c) { return c == ' ' || c == '\n'; });
+    return b;
+  }
   deformcd::test::TempDir dir_;
 };
 
@@ -143,19 +161,12 @@ TEST_F(CliTest, RunWritesThePositionsOfTheLastOrOfEveryFrame) {
 // frame and the constraints each frame ended with: two cubes falling side by side, never near,
 // one search a frame, no widening and no constraint.
 TEST_F(CliTest, BenchReportsTheResponsesSearchesAndWidenings) {
-  deformcd::write_tetgen(deformcd::test::unit_cube(), path("cube"));
-  write("two.json", R"({"settings": {"frames": 3}, "response": {},
-                        "bodies": [{"model": "cube"}, {"model": "cube", "position": [3, 0, 0]}]})");
-  const CliRun r =
-      run_cli("bench " + path("two.json") + " --backend cpu --methods bvh --frames 3 " + "--json " +
-              path("bench.json"));
+  const auto [r, json] = bench_two_cubes(R"({"frames": 3})", 3.0f);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("x the simulation); searches 1.00, widenings 0.00 a frame"),
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("no frame ended with constraints"), std::string::npos) << r.output;
-  std::string json = lines_of(path("bench.json"));
-  std::erase_if(json, [](char c) { return c == ' ' || c == '\n'; });
   EXPECT_NE(json.find("\"searches\":[1,1,1]"), std::string::npos) << json;
   EXPECT_NE(json.find("\"widenings\":[0,0,0]"), std::string::npos) << json;
   EXPECT_NE(json.find("\"constraints\":[0,0,0]"), std::string::npos) << json;
@@ -164,19 +175,12 @@ TEST_F(CliTest, BenchReportsTheResponsesSearchesAndWidenings) {
 // Cubes that start closer than the contact thickness end every frame with constraints, and bench
 // reports the response's cost over those frames.
 TEST_F(CliTest, BenchSplitsTheResponsesCostByFramesWithConstraints) {
-  deformcd::write_tetgen(deformcd::test::unit_cube(), path("cube"));
-  write("near.json", R"({"settings": {"frames": 3, "gravity": [0, 0, 0]}, "response": {},
-                         "bodies": [{"model": "cube"}, {"model": "cube", "position": [1.05, 0, 0]}]})");
-  const CliRun r =
-      run_cli("bench " + path("near.json") + " --backend cpu --methods bvh --frames 3 " +
-              "--json " + path("bench.json"));
+  const auto [r, json] = bench_two_cubes(R"({"frames": 3, "gravity": [0, 0, 0]})", 1.05f);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("the 3 frames ending with constraints: proximity + response = "),
             std::string::npos)
       << r.output;
   EXPECT_EQ(r.output.find("; the other"), std::string::npos) << r.output;
-  std::string json = lines_of(path("bench.json"));
-  std::erase_if(json, [](char c) { return c == ' ' || c == '\n'; });
   EXPECT_EQ(json.find("\"constraints\":[0"), std::string::npos) << json;
   EXPECT_NE(json.find("\"constraints\":["), std::string::npos) << json;
 }
