@@ -47,8 +47,8 @@ void CpuContactResponse::update_frame(const response::FrameConstraints& constrai
 }
 
 void CpuContactResponse::watch_reachable_nodes() {
-  // A node with an infinite reach (on no collision surface) is in no constraint and never
-  // strays: the per-substep passes leave it out (most of a tetrahedral body's nodes).
+  // A node with an infinite reach (on no collision surface: a body's interior nodes) is in no
+  // constraint and never strays, so the per-substep passes leave it out.
   watched_.clear();
   for (std::uint32_t i = 0; i < frame_start_.size(); ++i)
     if (!std::isinf(frame_start_[i].w)) watched_.push_back(i);
