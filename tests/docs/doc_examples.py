@@ -19,7 +19,8 @@ and the rules that keep them true. Every block carries a label after its opening
   text, cmake not examples: command output, messages, diagrams, build snippets (tests/package
               builds a project against the installed package).
 
-A block with no label or another label fails the `lint` check, so no example goes unchecked.
+A block with no label or another label fails the `lint` check, so no example goes unchecked;
+`lint` also checks that README.md links every page of docs/ (not the notes).
 
 Usage:
   doc_examples.py extract-cpp SOURCE_DIR OUT_DIR   (at configure time: OUT_DIR/*.cpp and
@@ -101,13 +102,14 @@ def blocks(source):
 
 
 def cpp_requirements(text):
-    """What a C++ example needs beyond the libraries every build has."""
+    """What a C++ example needs beyond the libraries every build has ("gl" first: a build
+    without GL skips the example before looking for anything else)."""
     needs = []
-    if "<GLFW/" in text:
-        needs.append("glfw")
     if "<GLFW/" in text or "<deformcd/gl/" in text or "<deformcd/render/" in text \
             or "BackendKind::kGl" in text:
         needs.append("gl")
+    if "<GLFW/" in text:
+        needs.append("glfw")
     if "<deformcd/tetrahedralize.h>" in text:
         needs.append("tetgen")
     return needs
@@ -153,6 +155,12 @@ def lint(source, out_dir):
                             "(only 'sh run' takes one)")
         if b.label == "cpp" and "int main(" not in b.text:
             problems.append(f"{b.where}: a cpp block must be a complete program with int main()")
+    readme = pathlib.Path(source, "README.md").read_text(encoding="utf-8")
+    for page in sorted(pathlib.Path(source, "docs").glob("*.md")):
+        link = f"(docs/{page.name})"
+        if link not in readme:
+            problems.append(f"README.md does not link docs/{page.name}: add {link} to its "
+                            "table of pages")
     compiled = pathlib.Path(out_dir, "manifest.txt").read_text(encoding="utf-8").split()
     now = [b.where for b in blocks(source) if b.label == "cpp"]
     if compiled != now:
