@@ -287,8 +287,10 @@ def check_command(source, where, line, words, deformcd, commands, help_cache):
         if not pathlib.Path(source, program).exists():
             problems.append(f"{where}: `{line}` runs {program}, which does not exist")
     elif program in PYTHONS:
+        # python3 SCRIPT must name an existing script; python3 -m MODULE is not checked (the
+        # module may be the build's, on PYTHONPATH).
         script = next((a for a in args if not a.startswith("-")), None)
-        if script and not pathlib.Path(source, script).exists():
+        if script and "-m" not in args and not pathlib.Path(source, script).exists():
             problems.append(f"{where}: `{line}` runs {script}, which does not exist")
     elif program not in KNOWN_TOOLS:
         problems.append(f"{where}: `{line}`: {program} is neither a script of the repository, a "
