@@ -157,7 +157,7 @@ constexpr const char* kWorldDoc =
     R"doc(Deformable bodies (tetrahedral mass-spring systems) simulated, with their collisions detected
 after each frame, as `deformcd run` does.
 
-Made from a scene file (see the README's "Scene files"):
+Made from a scene file (docs/scenes.md):
 
     w = deformcd.World.from_scene("scenes/phase2.json", frames=30, backend="cpu")
     w.step(30)

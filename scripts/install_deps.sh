@@ -14,6 +14,8 @@ packages=(
   libepoxy-dev libegl-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev xvfb xauth
   # images
   libpng-dev libstb-dev
+  # the API reference (the CMake target `docs`, a CI stage): Doxygen over include/deformcd
+  doxygen
   # bench --plot
   gnuplot-nox
   # TetGen (AGPL-3, optional target)

@@ -30,8 +30,8 @@ struct BodyOptions {
 
 /// Axis-aligned bounds of a point set.
 struct Bounds {
-  glm::dvec3 min{0.0};
-  glm::dvec3 max{0.0};
+  glm::dvec3 min{0.0};  ///< smallest x, y and z
+  glm::dvec3 max{0.0};  ///< largest x, y and z
 };
 
 /// One deformable body. Indices in springs and faces are local to this body (0-based);

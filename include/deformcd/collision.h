@@ -48,8 +48,8 @@ struct ContactFace {
 /// an edge are never a contact; faces sharing one node are when they also meet elsewhere (then
 /// the segment starts or ends at that node).
 struct Contact {
-  ContactFace a;
-  ContactFace b;
+  ContactFace a;  ///< the face of the lower-numbered body (or, within one body, the lower face)
+  ContactFace b;  ///< the other face
   /// Coplanar faces overlap in an area and have no segment (then both ends are 0).
   bool coplanar = false;
   /// Where the two triangles cross (both ends equal when they touch at a point).

@@ -48,7 +48,7 @@ class Context;
 
 /// One mesh as the detector sees it: triangles indexing its vertices [0, vertex_count).
 struct CollisionMesh {
-  std::uint32_t vertex_count = 0;
+  std::uint32_t vertex_count = 0;  ///< the mesh's vertices are 0 .. vertex_count - 1
   /// Counter-clockwise or not, in any order: contacts name them by their index here.
   std::vector<Triangle> triangles = {};
   /// Also test the mesh's triangles against each other (triangles sharing an edge are never a
@@ -61,11 +61,13 @@ struct CollisionMesh {
 /// Two meshes whose triangles are tested against each other (a != b; a == b means the mesh
 /// with itself, as CollisionMesh::self_collision).
 struct MeshPair {
-  std::uint32_t a = 0;
-  std::uint32_t b = 0;
+  std::uint32_t a = 0;  ///< a mesh index
+  std::uint32_t b = 0;  ///< the other mesh index (== a: the mesh with itself)
 };
 
+/// How a Detector runs: backend, broad phase, which mesh pairs, threads.
 struct DetectorOptions {
+  /// KAuto: GL on a hardware device, else the CPU (backend_choice).
   BackendKind backend = BackendKind::kAuto;
   /// GL context to run in (e.g. gl::adopt_current_context() in an application that renders
   /// with OpenGL). When null, the detector creates a headless one.
@@ -85,8 +87,8 @@ struct DetectorOptions {
 /// caller's: it is read in place by every detect() and must outlive the detector or the next
 /// set_positions() of the mesh.
 struct HostPositions {
-  const float* data = nullptr;
-  std::size_t stride_bytes = 3 * sizeof(float);
+  const float* data = nullptr;                   ///< x of vertex 0; must not be null
+  std::size_t stride_bytes = 3 * sizeof(float);  ///< bytes from one vertex to the next (>= 12)
 };
 
 /// Positions in a GL buffer the caller owns (GL backend only): vertex i's x, y, z are the floats
@@ -96,26 +98,35 @@ struct HostPositions {
 /// detector's. The buffer must stay alive, and must not be written between a detect() and the
 /// reading of its results (or complete()).
 struct GlPositions {
-  std::uint32_t buffer = 0;
-  std::size_t offset_bytes = 0;
+  std::uint32_t buffer = 0;      ///< GL buffer name (not 0)
+  std::size_t offset_bytes = 0;  ///< byte offset of vertex 0 (a multiple of 4)
+  /// Bytes from one vertex to the next (a multiple of 4, >= 12).
   std::size_t stride_bytes = 4 * sizeof(float);
 };
 
 /// A vertex near a triangle, or an edge near an edge (see Detector::find_proximity).
 struct ProximityPair {
-  enum class Kind : std::uint8_t { kVertexTriangle, kEdgeEdge };
-  Kind kind = Kind::kVertexTriangle;
-  std::uint32_t mesh_a = 0;
-  std::uint32_t mesh_b = 0;
+  /// What the two primitives are.
+  enum class Kind : std::uint8_t {
+    kVertexTriangle,  ///< a vertex of mesh_a and a triangle of mesh_b
+    kEdgeEdge,        ///< an edge of mesh_a and an edge of mesh_b
+  };
+  Kind kind = Kind::kVertexTriangle;  ///< what the two primitives are
+  std::uint32_t mesh_a = 0;  ///< the mesh of the vertex (kVertexTriangle) or of the first edge
+  std::uint32_t mesh_b = 0;  ///< the mesh of the triangle or of the second edge
   /// kVertexTriangle: the vertex of mesh_a, then the three vertices of mesh_b's triangle
   /// `triangle`; kEdgeEdge: an edge of mesh_a (two vertices), then an edge of mesh_b.
   std::array<std::uint32_t, 4> vertices = {};
   std::uint32_t triangle = 0;  ///< kVertexTriangle: the triangle's index in mesh_b; else 0
   float distance = 0.0f;       ///< m, between the two primitives on the current positions
 
+  /// Every field equal.
   friend bool operator==(const ProximityPair&, const ProximityPair&) = default;
 };
 
+/// Collision detection between triangle meshes whose positions the caller owns (host arrays
+/// or GL buffers), on the GL or the CPU backend, with the same contacts on both: see
+/// docs/detector.md. Move-only; calls on one detector must not overlap.
 class Detector {
  public:
   /// Checks the meshes (every index below vertex_count; at least one triangle each), the mesh
@@ -123,13 +134,15 @@ class Detector {
   /// triangle or pair, GlError for kGl without OpenGL 4.3.
   explicit Detector(std::vector<CollisionMesh> meshes, const DetectorOptions& options = {});
   ~Detector();
-  Detector(Detector&&) noexcept;
-  Detector& operator=(Detector&&) noexcept;
+  Detector(Detector&&) noexcept;  ///< the moved-from detector may only be destroyed or assigned
+  Detector& operator=(
+      Detector&&) noexcept;  ///< the moved-from detector may only be destroyed or assigned
   Detector(const Detector&) = delete;
   Detector& operator=(const Detector&) = delete;
 
-  [[nodiscard]] std::size_t mesh_count() const;
-  [[nodiscard]] const CollisionMesh& mesh(std::size_t mesh) const;
+  [[nodiscard]] std::size_t mesh_count() const;  ///< the meshes given to the constructor
+  [[nodiscard]] const CollisionMesh& mesh(
+      std::size_t mesh) const;  ///< mesh `mesh` as given to the constructor
   /// Where mesh `mesh`'s triangles start in face_flags() and in the GL buffers.
   [[nodiscard]] std::uint32_t face_offset(std::size_t mesh) const;
   /// Triangles of every mesh.
@@ -141,6 +154,7 @@ class Detector {
   /// not a multiple of 4, or a buffer smaller than offset + stride x (vertex_count - 1) + 12.
   /// The detector is unchanged when it throws.
   void set_positions(std::size_t mesh, const HostPositions& positions);
+  /// The same for positions in a GL buffer (GL backend only).
   void set_positions(std::size_t mesh, const GlPositions& positions);
   /// The same as HostPositions{&v[0].x, sizeof(glm::vec3)}; `v` must hold vertex_count
   /// positions (InputError otherwise) and stay where it is.
@@ -148,7 +162,7 @@ class Detector {
 
   /// The broad phase detect() runs; every one finds the same contacts.
   [[nodiscard]] BroadPhase broadphase() const;
-  void set_broadphase(BroadPhase method);
+  void set_broadphase(BroadPhase method);  ///< takes effect at the next detect()
 
   /// Builds the hierarchies from the current positions now (otherwise the first detect() does).
   void prepare();

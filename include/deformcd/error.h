@@ -19,7 +19,9 @@ class Error : public std::runtime_error {
 /// what() reads "FILE:LINE: message" (or "FILE: message" when no line applies).
 class InputError : public Error {
  public:
+  /// An error at `line` (1-based) of file `source`.
   InputError(std::string source, std::size_t line, const std::string& message);
+  /// An error in `source` (a file, or a name such as "mesh 1") where no line applies.
   InputError(std::string source, const std::string& message);
 
   /// The file (or description of the in-memory source) the error is about.

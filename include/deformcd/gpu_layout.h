@@ -74,8 +74,8 @@ inline constexpr std::uint32_t kLeafBoxesPerBody = 64;
 /// SimulationState's springs; both backends compute each spring edge once instead (SpringEdge,
 /// EdgeTerm), so no shader reads this struct.
 struct Spring {
-  std::uint32_t a;
-  std::uint32_t b;
+  std::uint32_t a;    ///< node at one end (global index)
+  std::uint32_t b;    ///< node at the other end
   float rest_length;  ///< m
   float stiffness;    ///< N/m
 };
@@ -86,9 +86,9 @@ static_assert(offsetof(Spring, rest_length) == 8);
 /// world's arrays the vertex indices are global (into every body's nodes); in a collision
 /// detector's they are local to the mesh, and body is the mesh.
 struct Face {
-  std::uint32_t a;
-  std::uint32_t b;
-  std::uint32_t c;
+  std::uint32_t a;     ///< first vertex
+  std::uint32_t b;     ///< second vertex
+  std::uint32_t c;     ///< third vertex
   std::uint32_t body;  ///< index of the body (mesh) the face belongs to
 };
 static_assert(sizeof(Face) == 16);
@@ -97,24 +97,24 @@ static_assert(sizeof(Face) == 16);
 /// the shared arrays and where its vertex positions are read (the faces' vertex indices are
 /// local to the mesh).
 struct MeshInfo {
-  std::uint32_t vertex_count;
-  std::uint32_t face_offset;
-  std::uint32_t face_count;
+  std::uint32_t vertex_count;     ///< vertices of the mesh
+  std::uint32_t face_offset;      ///< first triangle in the shared face array
+  std::uint32_t face_count;       ///< triangles of the mesh
   std::uint32_t box_face_offset;  ///< first row of the mesh's BoundingBox Face List
-  std::uint32_t box_face_count;
+  std::uint32_t box_face_count;   ///< rows in the BoundingBox Face List
   /// GL: vertex i's x, y, z are floats position_offset + i x position_stride (+ 1, + 2) of the
   /// position buffer bound at kNodePosition. Unused on the CPU, which reads the caller's arrays.
   std::uint32_t position_offset;
-  std::uint32_t position_stride;
-  std::uint32_t pad;
+  std::uint32_t position_stride;  ///< floats from one vertex to the next
+  std::uint32_t pad;              ///< std430 padding
 };
 static_assert(sizeof(MeshInfo) == 32);
 static_assert(offsetof(MeshInfo, position_offset) == 20);
 
 /// 32 bytes. An axis-aligned box; w components are padding.
 struct Box {
-  glm::vec4 min;
-  glm::vec4 max;
+  glm::vec4 min;  ///< smallest corner (w: padding)
+  glm::vec4 max;  ///< largest corner (w: padding)
 };
 static_assert(sizeof(Box) == 32);
 static_assert(offsetof(Box, max) == 16);
@@ -122,27 +122,27 @@ static_assert(offsetof(Box, max) == 16);
 /// 8 bytes. One row of the paper's BoundingBox Face List (Fig. 7): global face index, and the
 /// leaf box's index within its body (0-63, octree order).
 struct BoxFace {
-  std::uint32_t face;
-  std::uint32_t box;
+  std::uint32_t face;  ///< global face index
+  std::uint32_t box;   ///< leaf box within the body, 0-63 in octree order
 };
 static_assert(sizeof(BoxFace) == 8);
 
 /// 8 bytes. Two different bodies whose faces are tested against each other (a < b).
 struct BodyPair {
-  std::uint32_t a;
-  std::uint32_t b;
+  std::uint32_t a;  ///< the lower-numbered body
+  std::uint32_t b;  ///< the other body
 };
 static_assert(sizeof(BodyPair) == 8);
 
 /// 48 bytes. One intersecting face pair (SSBO 10): global face indices, face_a of the pair's
 /// lower-numbered body; the intersection segment when the faces are not coplanar.
 struct FacePair {
-  std::uint32_t face_a;
-  std::uint32_t face_b;
+  std::uint32_t face_a;    ///< face of the lower-numbered body (global index)
+  std::uint32_t face_b;    ///< face of the other body (global index)
   std::uint32_t coplanar;  ///< 1 when the faces are coplanar (no segment), else 0
-  std::uint32_t pad;
-  glm::vec4 segment0;  ///< xyz: one end of the segment, w = 0
-  glm::vec4 segment1;  ///< xyz: the other end, w = 0
+  std::uint32_t pad;       ///< std430 padding
+  glm::vec4 segment0;      ///< xyz: one end of the segment, w = 0
+  glm::vec4 segment1;      ///< xyz: the other end, w = 0
 };
 static_assert(sizeof(FacePair) == 48);
 static_assert(offsetof(FacePair, segment0) == 16);
@@ -163,7 +163,7 @@ struct BodyBvh {
   std::uint32_t root;        ///< global index of the root (= node_offset)
   std::uint32_t node_count;  ///< 2 x faces - 1
   std::uint32_t depth;       ///< longest root-to-leaf path, in edges (stack bound)
-  std::uint32_t pad;
+  std::uint32_t pad;         ///< std430 padding
 };
 static_assert(sizeof(BodyBvh) == 16);
 
@@ -178,18 +178,18 @@ static_assert(sizeof(CollisionCounters) == 16);
 
 /// 48 bytes. Where one body's data lies in the shared arrays (the paper's Object Information).
 struct ObjectInfo {
-  std::uint32_t node_offset;
-  std::uint32_t node_count;
-  std::uint32_t face_offset;
-  std::uint32_t face_count;
-  std::uint32_t spring_offset;
-  std::uint32_t spring_count;
-  std::uint32_t tet_offset;
-  std::uint32_t tet_count;
-  std::uint32_t box_offset;
-  std::uint32_t box_count;
-  std::uint32_t box_face_offset;
-  std::uint32_t box_face_count;
+  std::uint32_t node_offset;      ///< first node in the node arrays
+  std::uint32_t node_count;       ///< nodes of the body
+  std::uint32_t face_offset;      ///< first surface face in the face array
+  std::uint32_t face_count;       ///< surface faces of the body
+  std::uint32_t spring_offset;    ///< first spring in the spring array
+  std::uint32_t spring_count;     ///< springs of the body
+  std::uint32_t tet_offset;       ///< first tetrahedron in the tetrahedron array
+  std::uint32_t tet_count;        ///< tetrahedra of the body
+  std::uint32_t box_offset;       ///< first leaf box in the box array
+  std::uint32_t box_count;        ///< leaf boxes of the body (64)
+  std::uint32_t box_face_offset;  ///< first row in the BoundingBox Face List
+  std::uint32_t box_face_count;   ///< rows of the body in that list
 };
 static_assert(sizeof(ObjectInfo) == 48);
 static_assert(offsetof(ObjectInfo, box_offset) == 32);
@@ -198,8 +198,8 @@ static_assert(offsetof(ObjectInfo, box_offset) == 32);
 /// more springs of the same rest length, with the damping of node a's body. The GL step computes
 /// its state (u, q) once for all of its springs (sim::spring_edge_state).
 struct SpringEdge {
-  std::uint32_t a;
-  std::uint32_t b;
+  std::uint32_t a;    ///< the lower node (global index)
+  std::uint32_t b;    ///< the higher node
   float rest_length;  ///< m
   float damping;      ///< s: stiffness-proportional damping coefficient
 };
@@ -208,7 +208,7 @@ struct SpringEdge {
 /// node (+k at the edge's node a, -k at its node b), so that the spring's force on the node is
 /// (signed_stiffness q) u (sim::spring_term).
 struct EdgeTerm {
-  std::uint32_t edge;
+  std::uint32_t edge;      ///< index into the spring edges (kSpringEdge)
   float signed_stiffness;  ///< N/m
 };
 
@@ -216,17 +216,17 @@ struct EdgeTerm {
 /// volume stiffness: the volume force that keeps it from collapsing or inverting, which edge
 /// springs alone cannot (a flat tetrahedron's apex can snap through its base).
 struct Tetra {
-  std::uint32_t a;
-  std::uint32_t b;
-  std::uint32_t c;
-  std::uint32_t d;
+  std::uint32_t a;    ///< first corner (global node index)
+  std::uint32_t b;    ///< second corner
+  std::uint32_t c;    ///< third corner
+  std::uint32_t d;    ///< fourth corner
   float rest_volume;  ///< m^3
   /// Pa / m^3: the body's volume stiffness over the tetrahedron's mean rest edge length cubed;
   /// the force on corner i is -stiffness (V - rest_volume) dV/dx_i. 0 disables it (the
   /// paper's springs-only model).
   float stiffness;
-  float pad0;
-  float pad1;
+  float pad0;  ///< std430 padding
+  float pad1;  ///< std430 padding
 };
 static_assert(sizeof(Tetra) == 32);
 static_assert(sizeof(SpringEdge) == 16);
@@ -245,9 +245,9 @@ inline constexpr std::uint32_t kContactUntangle = 2;
 /// 48 bytes. One contact constraint (global node indices): kContactVertexFace and
 /// kContactUntangle: vertex, face a, b, c; kContactEdgeEdge: edge (a0, a1), edge (b0, b1).
 struct ContactPair {
-  std::uint32_t nodes[4];
-  std::uint32_t kind;
-  float thickness;  ///< m: the distance the constraint keeps
+  std::uint32_t nodes[4];  ///< global node indices, as the struct's comment orders them
+  std::uint32_t kind;      ///< kContactVertexFace, kContactEdgeEdge or kContactUntangle
+  float thickness;         ///< m: the distance the constraint keeps
   /// m: the primitives' distance less the thickness where the search window starts (-inf for
   /// kContactUntangle: always awake).
   float gap;
@@ -259,9 +259,9 @@ struct ContactPair {
   /// that started behind it is on the far side of a thin part, or inside the body (where the
   /// untangling constraints take it out). 0 for other kinds.
   float side;
-  float pad0;
-  float pad1;
-  float pad2;
+  float pad0;  ///< std430 padding
+  float pad1;  ///< std430 padding
+  float pad2;  ///< std430 padding
 };
 static_assert(sizeof(ContactPair) == 48);
 static_assert(offsetof(ContactPair, kind) == 16);
@@ -273,8 +273,8 @@ struct BodyParams {
   /// 1 while substeps skip the body, else 0 (the GL backend sets it on its own copy from
   /// sim::FrozenBodies: every node fixed, no carry velocity; a state's value is not read).
   float frozen;
-  float pad1;
-  float pad2;
+  float pad1;  ///< std430 padding
+  float pad2;  ///< std430 padding
 };
 static_assert(sizeof(BodyParams) == 32);
 static_assert(offsetof(BodyParams, damping) == 16);

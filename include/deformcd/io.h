@@ -49,11 +49,14 @@ void write_off(const SurfaceMesh& mesh, const std::filesystem::path& file);
 /// written.
 class StreamedFileWriter {
  public:
+  /// Creates the temporary beside `target` (throws Error naming the target).
   explicit StreamedFileWriter(const std::filesystem::path& target);
   ~StreamedFileWriter();
   StreamedFileWriter(const StreamedFileWriter&) = delete;
   StreamedFileWriter& operator=(const StreamedFileWriter&) = delete;
+  /// Writes `text` at the end of the temporary.
   void append(std::string_view text);
+  /// Flushes the temporary and gives it the target's name, replacing any file there.
   void commit();
 
   /// A path through which a child process (ffmpeg, gnuplot) can write the temporary itself,

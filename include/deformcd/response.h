@@ -33,15 +33,17 @@ struct SleepSettings {
   float time = 0.25f;
 };
 
+/// Contact response parameters (a scene's `response` object; docs/simulation-and-response.md).
 struct ResponseSettings {
   /// m: the gap contacts keep between surfaces, for every body. Unset: each body's
   /// relative_thickness x its mean surface edge length; two bodies keep the mean of theirs.
   std::optional<float> thickness;
+  /// The thickness over the body's mean surface edge length, when thickness is unset.
   float relative_thickness = 0.2f;
   /// Coulomb friction: sliding starts when the tangential velocity exceeds friction_static x
   /// the normal velocity change of the contact, and is then slowed by friction_dynamic x it.
   float friction_static = 0.4f;
-  float friction_dynamic = 0.3f;
+  float friction_dynamic = 0.3f;  ///< at most friction_static
   /// 0: the approach speed is absorbed at contact (the bodies' elasticity still makes them
   /// rebound); 1: it is given back.
   float restitution = 0.0f;
@@ -58,8 +60,8 @@ struct ResponseSettings {
   /// that several constraints share short of what the deepest asks (a sharp vertex pressed into
   /// a face beside its edges), and the springs push it back every substep; on the impact scene
   /// 1 projection lets surfaces intersect in 13 of 80 frames, 8 in none. More projections
-  /// converge further: resting bodies jitter less (docs/benchmarks.md, "Accumulated
-  /// corrections"), at a cost that grows with them.
+  /// converge further: resting bodies jitter less (the benchmarks log in docs/notes/,
+  /// "Accumulated corrections"), at a cost that grows with them.
   int iterations = 8;
   /// Resting islands of bodies fall asleep (see SleepSettings). Unset: bodies never sleep.
   std::optional<SleepSettings> sleep;

@@ -1,8 +1,8 @@
 #pragma once
 /// \file scene.h
 /// Scenes: which bodies, where, of what material, and the simulation settings. Read from JSON
-/// files (see README, "Scene files"); every key is checked, and an unknown key, a wrong type or
-/// a missing file is an error naming the key and the file.
+/// files (docs/scenes.md lists every key); every key is checked, and an unknown key, a wrong type
+/// or a missing file is an error naming the key and the file.
 
 #include <cstdint>
 #include <filesystem>
@@ -38,8 +38,8 @@ struct MaterialSpec {
 /// Nodes held in place: listed by index, and/or every node inside a box (in scene coordinates,
 /// after the body's transform).
 struct FixedSpec {
-  std::vector<std::uint32_t> nodes;
-  std::optional<Bounds> box;
+  std::vector<std::uint32_t> nodes;  ///< node indices (local to the body)
+  std::optional<Bounds> box;         ///< every node inside, after the body's transform
 };
 
 /// How a scene meshes a surface model unless its body's `meshing` says otherwise: TetGen's
@@ -67,8 +67,8 @@ struct BodySpec {
   /// Initial deformation released at frame 0: node offsets from the body's centroid are
   /// multiplied by this after rest lengths are measured, so the body starts squashed and wobbles.
   glm::dvec3 squash{1.0};
-  MaterialSpec material;
-  FixedSpec fixed;
+  MaterialSpec material;  ///< the body's `material` object
+  FixedSpec fixed;        ///< the body's `fixed` object
   /// The body is carried linearly from `position` to `*path_to` over the scene's frames, its
   /// mass-spring dynamics running relative to that motion.
   std::optional<glm::dvec3> path_to;
@@ -87,16 +87,17 @@ struct SimulationSettings {
 struct CollisionSettings {
   /// The fastest method by default; the paper's ("octree", and its baseline "brute") by name.
   std::string broadphase = "bvh";
-  bool self = false;
+  bool self = false;  ///< also test each body against itself
 };
 
+/// A scene file as read by read_scene (docs/scenes.md lists its keys).
 struct Scene {
-  std::filesystem::path file;  ///< where it was read from (empty for scenes built in code)
-  SimulationSettings settings;
-  CollisionSettings collision;
+  std::filesystem::path file;   ///< where it was read from (empty for scenes built in code)
+  SimulationSettings settings;  ///< the `settings` object
+  CollisionSettings collision;  ///< the `collision` object
   /// The `response` object: contact response on (`{}` = every default), else unset.
   std::optional<ResponseSettings> response;
-  std::vector<BodySpec> bodies;
+  std::vector<BodySpec> bodies;  ///< the `bodies` array, in order
 };
 
 /// Loads a model file, e.g. read_tetgen (TetGen prefixes only).
@@ -108,6 +109,12 @@ using MeshingLoader =
 
 /// The broad-phase names a scene's `collision.broadphase` may take.
 [[nodiscard]] const std::vector<std::string>& known_broadphases();
+
+/// Every key read_scene accepts, as a dotted path: "settings", "settings.dt", "bodies[].name",
+/// "bodies[].material.density", "response.sleep.speed" ("[]": an element of an array). It is
+/// the reader's own list (the reader reads no other key and rejects the rest), so a reference
+/// such as docs/scenes.md can be checked against it.
+[[nodiscard]] const std::vector<std::string>& scene_keys();
 
 /// Reads and checks a scene file. Model paths are resolved against the scene's folder and must
 /// exist (as a file, or as a TetGen prefix with PREFIX.node). Throws InputError.

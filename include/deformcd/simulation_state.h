@@ -28,15 +28,15 @@ struct BodyInit {
   float volume_stiffness = 0.0f;
   glm::vec3 carry_velocity{0.0f};    ///< m/s, the body's path
   std::vector<std::uint32_t> fixed;  ///< local indices of nodes held in place
-  std::string name;
+  std::string name;                  ///< for messages and outputs
 };
 
 /// Global step settings shared by all bodies.
 struct StepSettings {
-  float dt = 1.0f / 60.0f;  ///< seconds per frame
-  int substeps = 1;
-  glm::vec3 gravity{0.0f, -9.81f, 0.0f};
-  float velocity_damping = 0.0f;  ///< 1/s
+  float dt = 1.0f / 60.0f;                ///< seconds per frame
+  int substeps = 1;                       ///< integration steps per frame (step = dt / substeps)
+  glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s^2
+  float velocity_damping = 0.0f;          ///< 1/s
 };
 
 /// Every body's data, concatenated; indices are global. The per-spring and per-corner arrays are
@@ -58,10 +58,12 @@ struct SimulationState {
   std::vector<std::uint32_t> node_tet_offset;     ///< nodes + 1 entries
   std::vector<std::uint32_t> node_tet_list;       ///< 4 x tetrahedra entries: slots 4 t + k
   std::vector<std::int32_t> node_spring_list;     ///< 2 x springs: +(s+1) at end a, -(s+1) at b
-  std::vector<std::string> body_names;
+  std::vector<std::string> body_names;            ///< one per body, in body order
 
-  [[nodiscard]] std::size_t node_count() const { return positions.size(); }
-  [[nodiscard]] std::size_t body_count() const { return objects.size(); }
+  [[nodiscard]] std::size_t node_count() const {
+    return positions.size();
+  }                                                                        ///< nodes of every body
+  [[nodiscard]] std::size_t body_count() const { return objects.size(); }  ///< bodies
 };
 
 /// Concatenates bodies into one world state: offsets indices, sets inverse masses (0 for fixed

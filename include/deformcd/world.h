@@ -39,8 +39,9 @@ namespace cpu {
 class Executor;
 }
 
+/// How a World runs: backend, broad phase, self-collision, contact response, threads.
 struct WorldOptions {
-  BackendKind backend = BackendKind::kAuto;
+  BackendKind backend = BackendKind::kAuto;  ///< kAuto: GL on a hardware device, else the CPU
   /// GL context to run in (e.g. gl::adopt_current_context() in an application that renders
   /// with OpenGL itself). When null, the world creates a headless one.
   gl::Context* gl_context = nullptr;
@@ -97,6 +98,8 @@ class SimulationError : public Error {
 
 class ContactResponse;
 
+/// A mass-spring simulation of tetrahedral bodies on the GL or the CPU backend, composed with
+/// a Detector over their surfaces (docs/simulation-and-response.md).
 class World {
  public:
   /// Takes the bodies (see make_scene_bodies or build_body) and the step settings.
@@ -119,8 +122,12 @@ class World {
   /// Waits until the backend has finished the work issued (for timing).
   void finish();
 
-  [[nodiscard]] std::size_t body_count() const { return objects_.size(); }
-  [[nodiscard]] const std::string& body_name(std::size_t body) const { return names_[body]; }
+  [[nodiscard]] std::size_t body_count() const {
+    return objects_.size();
+  }  ///< bodies, in the order given
+  [[nodiscard]] const std::string& body_name(std::size_t body) const {
+    return names_[body];
+  }  ///< body `body`'s name
   /// Where body `body`'s nodes, springs and faces lie in the shared arrays and GL buffers.
   [[nodiscard]] const gpu::ObjectInfo& object(std::size_t body) const { return objects_[body]; }
   /// Current node positions of one body (read back from the backend).

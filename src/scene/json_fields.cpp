@@ -1,14 +1,22 @@
 #include "json_fields.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "deformcd/error.h"
+#include "scene_keys.h"
 
 namespace deformcd::scene_detail {
 
-JsonFields::JsonFields(const nlohmann::json& value, std::string file, std::string pointer)
-    : value_(value), file_(std::move(file)), pointer_(std::move(pointer)) {
+JsonFields::JsonFields(const nlohmann::json& value, std::string file, std::string pointer,
+                       std::string keys_path)
+    : value_(value),
+      file_(std::move(file)),
+      pointer_(std::move(pointer)),
+      keys_path_(std::move(keys_path)),
+      valid_(keys_at(keys_path_)) {
   if (!value_.is_object()) {
     throw InputError(file_, (pointer_.empty() ? std::string("/") : pointer_) +
                                 ": expected an object, found " + value_.type_name());
@@ -16,6 +24,7 @@ JsonFields::JsonFields(const nlohmann::json& value, std::string file, std::strin
 }
 
 bool JsonFields::has(const std::string& key) const {
+  check_listed(key);
   return value_.contains(key);
 }
 
@@ -23,7 +32,15 @@ void JsonFields::fail(const std::string& key, const std::string& message) const 
   throw InputError(file_, pointer_of(key) + ": " + message);
 }
 
+void JsonFields::check_listed(const std::string& key) const {
+  if (std::find(valid_.begin(), valid_.end(), key) == valid_.end()) {
+    throw std::logic_error("scene reader: the key '" + key + "' of '" + keys_path_ +
+                           "' is read but not listed in scene_keys.cpp");
+  }
+}
+
 const nlohmann::json* JsonFields::raw(const std::string& key) {
+  check_listed(key);
   auto it = value_.find(key);
   if (it == value_.end()) return nullptr;
   used_.insert(key);
@@ -88,15 +105,15 @@ std::optional<glm::dvec3> JsonFields::vec3(const std::string& key, bool scalar_o
 std::optional<JsonFields> JsonFields::object(const std::string& key) {
   const nlohmann::json* v = raw(key);
   if (!v) return std::nullopt;
-  return JsonFields(*v, file_, pointer_of(key));
+  return JsonFields(*v, file_, pointer_of(key), keys_path_.empty() ? key : keys_path_ + "." + key);
 }
 
-void JsonFields::reject_unknown(std::initializer_list<const char*> valid) const {
+void JsonFields::reject_unknown() const {
   for (const auto& [key, value] : value_.items()) {
     if (used_.count(key)) continue;
     std::ostringstream list;
     const char* sep = "";
-    for (const char* name : valid) {
+    for (const std::string& name : valid_) {
       list << sep << name;
       sep = ", ";
     }

@@ -69,7 +69,7 @@ SimulationSettings read_settings(JsonFields f) {
   s.velocity_damping = non_negative(f, "velocity_damping", s.velocity_damping);
   s.frames = f.integer("frames").value_or(s.frames);
   if (s.frames < 1) f.fail("frames", "must be at least 1");
-  f.reject_unknown({"dt", "substeps", "gravity", "velocity_damping", "frames"});
+  f.reject_unknown();
   return s;
 }
 
@@ -84,7 +84,7 @@ CollisionSettings read_collision(JsonFields f) {
     f.fail("broadphase", "unknown broad phase '" + c.broadphase + "' (valid: " + list + ")");
   }
   c.self = f.boolean("self").value_or(c.self);
-  f.reject_unknown({"broadphase", "self"});
+  f.reject_unknown();
   return c;
 }
 
@@ -111,11 +111,10 @@ ResponseSettings read_response(JsonFields f) {
     SleepSettings z;
     z.speed = static_cast<float>(positive(*sleep, "speed", z.speed));
     z.time = static_cast<float>(positive(*sleep, "time", z.time));
-    sleep->reject_unknown({"speed", "time"});
+    sleep->reject_unknown();
     r.sleep = z;
   }
-  f.reject_unknown({"thickness", "relative_thickness", "friction_static", "friction_dynamic",
-                    "restitution", "untangle_step", "iterations", "sleep"});
+  f.reject_unknown();
   return r;
 }
 
@@ -127,7 +126,7 @@ MaterialSpec read_material(JsonFields f) {
   m.stiffness = positive(f, "stiffness", m.stiffness);
   m.damping = non_negative(f, "damping", m.damping);
   if (f.has("volume_stiffness")) m.volume_stiffness = non_negative(f, "volume_stiffness", 0.0);
-  f.reject_unknown({"density", "mass", "stiffness", "damping", "volume_stiffness"});
+  f.reject_unknown();
   return m;
 }
 
@@ -149,13 +148,13 @@ FixedSpec read_fixed(JsonFields f) {
     b.min = box->vec3("min").value_or(glm::dvec3(0.0));
     b.max = box->vec3("max").value_or(glm::dvec3(0.0));
     if (!box->has("min") && !box->has("max")) f.fail("box", "needs min and max");
-    box->reject_unknown({"min", "max"});
+    box->reject_unknown();
     if (b.min.x > b.max.x || b.min.y > b.max.y || b.min.z > b.max.z) {
       f.fail("box", "min must not exceed max");
     }
     fixed.box = b;
   }
-  f.reject_unknown({"nodes", "box"});
+  f.reject_unknown();
   return fixed;
 }
 
@@ -172,7 +171,7 @@ TetrahedralizeOptions read_meshing(JsonFields f) {
   }
   if (f.has("max_volume")) m.max_volume = positive(f, "max_volume", 0.0);
   m.preserve_surface = f.boolean("preserve_surface").value_or(m.preserve_surface);
-  f.reject_unknown({"quality", "max_volume", "preserve_surface"});
+  f.reject_unknown();
   return m;
 }
 
@@ -222,10 +221,9 @@ BodySpec read_body(JsonFields f, const fs::path& folder) {
   if (auto path = f.object("path")) {
     b.path_to = path->vec3("to");
     if (!b.path_to) path->fail("to", "missing: a path needs its end position 'to'");
-    path->reject_unknown({"to"});
+    path->reject_unknown();
   }
-  f.reject_unknown({"name", "model", "meshing", "position", "rotation", "scale", "velocity",
-                    "squash", "material", "fixed", "path"});
+  f.reject_unknown();
   return b;
 }
 
@@ -243,7 +241,7 @@ const std::vector<std::string>& known_broadphases() {
 
 Scene read_scene(const fs::path& file) {
   const nlohmann::json root = parse_file(file);
-  JsonFields f(root, file.string(), "");
+  JsonFields f(root, file.string(), "", "");
   Scene scene;
   scene.file = file;
   if (auto s = f.object("settings")) scene.settings = read_settings(*s);
@@ -255,10 +253,11 @@ Scene read_scene(const fs::path& file) {
   }
   const fs::path folder = file.parent_path();
   for (std::size_t i = 0; i < bodies->size(); ++i) {
-    scene.bodies.push_back(
-        read_body(JsonFields((*bodies)[i], file.string(), "/bodies/" + std::to_string(i)), folder));
+    scene.bodies.push_back(read_body(
+        JsonFields((*bodies)[i], file.string(), "/bodies/" + std::to_string(i), "bodies[]"),
+        folder));
   }
-  f.reject_unknown({"settings", "collision", "response", "bodies"});
+  f.reject_unknown();
   return scene;
 }
 

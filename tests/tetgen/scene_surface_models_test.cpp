@@ -52,18 +52,18 @@ TEST_F(SceneSurfaceModels, TheSceneSetsTheMeshing) {
   EXPECT_GT(fine, 2 * coarse);  // volume 0.2 m^3: at least 10,000 tetrahedra
 }
 
-TEST_F(SceneSurfaceModels, TheReadmesSceneExampleLoads) {
-  // The README's "Scene files" example, its ../assets paths made absolute.
-  std::ifstream in(fs::path(DEFORMCD_SOURCE_DIR) / "README.md");
+TEST_F(SceneSurfaceModels, TheSceneReferencesExampleLoads) {
+  // The example of docs/scenes.md ("## An example"), its ../assets paths made absolute.
+  std::ifstream in(fs::path(DEFORMCD_SOURCE_DIR) / "docs/scenes.md");
   std::stringstream text;
   text << in.rdbuf();
-  const std::string readme = text.str();
-  const std::size_t begin = readme.find("```json\n", readme.find("## Scene files")) + 8;
-  std::string json = readme.substr(begin, readme.find("```", begin) - begin);
+  const std::string page = text.str();
+  const std::size_t begin = page.find("```json\n", page.find("## An example")) + 8;
+  std::string json = page.substr(begin, page.find("```", begin) - begin);
   const std::string assets = std::string(DEFORMCD_SOURCE_DIR) + "/assets";
   for (std::size_t at; (at = json.find("../assets")) != std::string::npos;)
     json.replace(at, 9, assets);
-  const fs::path file = dir_.path() / "readme_scene.json";
+  const fs::path file = dir_.path() / "reference_scene.json";
   std::ofstream(file) << json;
   const Scene scene = read_scene(file);
   ASSERT_EQ(scene.bodies.size(), 2u);

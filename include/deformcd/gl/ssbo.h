@@ -19,8 +19,8 @@ class BufferObject {
   /// Allocates `bytes` of uninitialized storage. Throws GlError when GL runs out of memory.
   explicit BufferObject(std::size_t bytes);
   ~BufferObject();
-  BufferObject(BufferObject&& other) noexcept;
-  BufferObject& operator=(BufferObject&& other) noexcept;
+  BufferObject(BufferObject&& other) noexcept;             ///< leaves `other` empty (name 0)
+  BufferObject& operator=(BufferObject&& other) noexcept;  ///< leaves `other` empty (name 0)
   BufferObject(const BufferObject&) = delete;
   BufferObject& operator=(const BufferObject&) = delete;
 
@@ -35,7 +35,7 @@ class BufferObject {
 
   /// The GL buffer name, for applications that use the buffer directly (e.g. to render).
   [[nodiscard]] std::uint32_t name() const noexcept { return name_; }
-  [[nodiscard]] std::size_t size_bytes() const noexcept { return bytes_; }
+  [[nodiscard]] std::size_t size_bytes() const noexcept { return bytes_; }  ///< the buffer's size
 
  private:
   std::uint32_t name_ = 0;
@@ -53,8 +53,10 @@ class Ssbo {
   explicit Ssbo(std::size_t count) : buffer_(count * sizeof(T)), count_(count) {}
   /// As many elements as `data`, initialized from it.
   explicit Ssbo(std::span<const T> data) : Ssbo(data.size()) { upload(data); }
+  /// Leaves `other` empty.
   Ssbo(Ssbo&& other) noexcept
       : buffer_(std::move(other.buffer_)), count_(std::exchange(other.count_, 0)) {}
+  /// Leaves `other` empty.
   Ssbo& operator=(Ssbo&& other) noexcept {
     buffer_ = std::move(other.buffer_);
     count_ = std::exchange(other.count_, 0);
@@ -79,7 +81,7 @@ class Ssbo {
 
   /// The GL buffer name, for applications that use the buffer directly (e.g. to render).
   [[nodiscard]] std::uint32_t name() const noexcept { return buffer_.name(); }
-  [[nodiscard]] std::size_t size() const noexcept { return count_; }
+  [[nodiscard]] std::size_t size() const noexcept { return count_; }  ///< number of elements
 
  private:
   BufferObject buffer_;

@@ -21,8 +21,8 @@ class TimerQuery {
   /// Creates the query object.
   TimerQuery();
   ~TimerQuery();
-  TimerQuery(TimerQuery&& other) noexcept;
-  TimerQuery& operator=(TimerQuery&& other) noexcept;
+  TimerQuery(TimerQuery&& other) noexcept;             ///< leaves `other` without a query
+  TimerQuery& operator=(TimerQuery&& other) noexcept;  ///< leaves `other` without a query
   TimerQuery(const TimerQuery&) = delete;
   TimerQuery& operator=(const TimerQuery&) = delete;
 

@@ -28,10 +28,10 @@ enum class FramingView {
 /// Looks at `target` from `distance` away; yaw turns the eye about +y (0: the eye on +z, looking
 /// along -z), pitch raises it (positive: looking down). Angles in degrees.
 struct Camera {
-  glm::vec3 target{0.0f};
-  float distance = 5.0f;
-  float yaw_degrees = 0.0f;
-  float pitch_degrees = 0.0f;
+  glm::vec3 target{0.0f};       ///< the point looked at
+  float distance = 5.0f;        ///< from the eye to the target
+  float yaw_degrees = 0.0f;     ///< turn of the eye about +y
+  float pitch_degrees = 0.0f;   ///< raise of the eye (positive: looking down)
   float fov_y_degrees = 35.0f;  ///< vertical field of view
 
   /// The eye position.

@@ -14,8 +14,8 @@ namespace deformcd::render {
 
 /// 8-bit RGBA pixels, row by row from the top-left corner (as image files store them).
 struct RgbaImage {
-  int width = 0;
-  int height = 0;
+  int width = 0;                     ///< pixels per row
+  int height = 0;                    ///< rows
   std::vector<std::uint8_t> pixels;  ///< 4 x width x height bytes
 
   /// The pixel at column x, row y (0 = top). No bounds check.

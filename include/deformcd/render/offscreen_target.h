@@ -10,6 +10,8 @@
 
 namespace deformcd::render {
 
+/// A multisampled framebuffer (colour and depth renderbuffers) to draw into without a
+/// window, and read back as an image.
 class OffscreenTarget {
  public:
   /// A width x height target with `samples` samples per pixel (clamped to the device's
@@ -26,8 +28,8 @@ class OffscreenTarget {
   /// the default framebuffer (0) bound.
   [[nodiscard]] RgbaImage read() const;
 
-  [[nodiscard]] int width() const { return width_; }
-  [[nodiscard]] int height() const { return height_; }
+  [[nodiscard]] int width() const { return width_; }    ///< pixels
+  [[nodiscard]] int height() const { return height_; }  ///< pixels
   /// Samples per pixel actually used (1 when not multisampled).
   [[nodiscard]] int samples() const { return samples_; }
 

@@ -20,6 +20,7 @@
 
 namespace deformcd::render {
 
+/// How SceneRenderer draws the bodies.
 enum class RenderMode {
   /// The paper's figures: every surface edge, see-through, in a dark colour per body, with the
   /// colliding faces filled on top: body 0's red (1,0,0), body 1's blue (0,0,1), others green.
@@ -29,14 +30,16 @@ enum class RenderMode {
   kShaded,
 };
 
+/// What SceneRenderer::draw draws, and in which colours.
 struct DrawOptions {
-  RenderMode mode = RenderMode::kWireframe;
+  RenderMode mode = RenderMode::kWireframe;  ///< wireframe (the paper's figures) or shaded
   /// Colour the faces the world's last collision pass flagged. Turn off when no pass ran (the
   /// flags would be stale), e.g. with BroadPhase::kNone.
   bool show_collisions = true;
-  glm::vec3 background{1.0f};
+  glm::vec3 background{1.0f};  ///< clear colour, RGB in [0, 1]
 };
 
+/// Draws a GL world straight from its buffers (positions, face flags), with no CPU copy.
 class SceneRenderer {
  public:
   /// Compiles the shaders and uploads the index and per-face body buffers once, from
