@@ -22,8 +22,9 @@ def make_venv(folder, system_site_packages):
 
 
 def run_in(python, code):
-    # PYTHONPATH as set for the tests (the build tree's package), nothing else of this process's
-    env = {"PYTHONPATH": os.environ.get("PYTHONPATH", ""), "PATH": os.environ.get("PATH", "")}
+    # The tests' environment: PYTHONPATH names the build tree's package (and under the
+    # sanitizers LD_PRELOAD their runtimes); the venv decides which site-packages are seen.
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONHOME", "VIRTUAL_ENV")}
     return subprocess.run([str(python), "-c", code], capture_output=True, text=True, env=env,
                           timeout=120, cwd=SOURCE_DIR)
 
