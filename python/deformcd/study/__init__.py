@@ -25,6 +25,7 @@ docs/study.md for laptops, clusters and what the workers need.
 import json
 import pathlib
 import time
+import uuid
 
 from . import cluster, results, task
 from . import models as _models
@@ -74,7 +75,9 @@ def run(scene, vary=None, variations=None, *, frames=None, broadphase="bvh",
     rows = []
     with cluster.dask_client(client, scheduler, workers, threads, log) as dask:
         bundle = dask.scatter(preparer.bundle, broadcast=True) if preparer.bundle else {}
-        futures = {dask.submit(task.run_variation, t, bundle, pure=False): t for t in tasks}
+        study_id = uuid.uuid4().hex[:12]  # the tasks' keys name their run: run_variation-0003-...
+        futures = {dask.submit(task.run_variation, t, bundle,
+                               key=f"run_variation-{t['run']:04d}-{study_id}"): t for t in tasks}
         for future in distributed.as_completed(futures):
             t = futures[future]
             try:
