@@ -1,4 +1,5 @@
-"""Type stubs for the deformcd module (a pybind11 extension); see help(deformcd)."""
+"""Type stubs for the deformcd package: the names its __init__.py re-exports from the compiled
+pybind11 module deformcd._deformcd; see help(deformcd). deformcd.study is plain Python."""
 
 import os
 from typing import Mapping, Optional, Sequence, Tuple, TypedDict, Union
@@ -7,6 +8,7 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+BUILT_FOR: str  # the interpreter the compiled module was built for
 has_gl: bool
 broadphases: Tuple[str, ...]
 backends: Tuple[str, ...]
@@ -14,7 +16,12 @@ backends: Tuple[str, ...]
 class Error(RuntimeError): ...
 class InputError(Error): ...
 class GlError(Error): ...
-class SimulationError(Error): ...
+class SimulationError(Error):
+    stage: str  # "simulation" or "response" (the contact response)
+    frame: Optional[int]
+    body: Optional[int]
+    body_name: Optional[str]
+    node: Optional[int]
 
 _MeshDict = Mapping[str, object]  # {"vertices", "faces", "self_collision"?, "name"?}
 _Mesh = Union[Tuple[npt.ArrayLike, npt.ArrayLike], _MeshDict]
@@ -28,6 +35,20 @@ class _Contacts(TypedDict):
     nodes_b: npt.NDArray[np.int64]  # (k, 3)
     segment: npt.NDArray[np.float32]  # (k, 2, 3)
     coplanar: npt.NDArray[np.bool_]   # (k,)
+
+class _FrameTimes(TypedDict):
+    simulation_s: float
+    collision_s: float
+    proximity_s: float
+    response_s: float
+
+class _ResponseCounts(TypedDict):
+    vertex_face: int
+    edge_edge: int
+    untangle: int
+    searches: int
+    widenings: int
+    asleep: int
 
 class _Counts(TypedDict):
     contacts: int
@@ -76,6 +97,7 @@ class World:
         backend: str = "cpu",
         broadphase: str = "bvh",
         threads: int = 0,
+        measure_stage_times: bool = False,
     ) -> World: ...
     def step(self, n: int = 1) -> None: ...
     def detect(self) -> None: ...
@@ -84,6 +106,8 @@ class World:
     def faces(self, body: int) -> npt.NDArray[np.int64]: ...
     def contacts(self) -> _Contacts: ...
     def counts(self) -> _Counts: ...
+    def last_frame_times(self) -> _FrameTimes: ...
+    def response_counts(self) -> _ResponseCounts: ...
     def face_flags(self, body: Optional[int] = None) -> npt.NDArray[np.bool_]: ...
     @property
     def frame(self) -> int: ...

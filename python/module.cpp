@@ -1,6 +1,7 @@
 // The `deformcd` Python module: errors, mesh files, and the Detector and World bindings.
 
 #include <filesystem>
+#include <regex>
 #include <string>
 
 #include <pybind11/numpy.h>
@@ -30,6 +31,29 @@ py::tuple read_surface_arrays(const std::filesystem::path& file) {
   return py::make_tuple(vertices, triangle_array(mesh.triangles));
 }
 
+// What a blow-up's message names, read back into attributes of the Python exception so that a
+// study's row can hold them without parsing: World::check_stability writes "body B ('NAME') by
+// frame F: node N", ContactResponse::unstable "body B ('NAME') node N ... in the contact
+// response" after the world's "by frame F". An attribute the message does not name is None.
+void raise_simulation_error(const py::handle& type, const std::string& message) {
+  static const std::regex body_pattern(R"(body (\d+) \('(.*?)'\))");
+  static const std::regex frame_pattern(R"(by frame (\d+))");
+  static const std::regex node_pattern(R"(node (\d+))");
+  py::object error = type(message);
+  std::smatch match;
+  if (std::regex_search(message, match, body_pattern)) {
+    error.attr("body") = std::stoll(match[1].str());
+    error.attr("body_name") = match[2].str();
+  }
+  if (std::regex_search(message, match, frame_pattern))
+    error.attr("frame") = std::stoll(match[1].str());
+  if (std::regex_search(message, match, node_pattern))
+    error.attr("node") = std::stoll(match[1].str());
+  const bool in_response = message.find("in the contact response") != std::string::npos;
+  error.attr("stage") = in_response ? "response" : "simulation";
+  PyErr_SetObject(type.ptr(), error.ptr());
+}
+
 }  // namespace
 
 // Translators are tried last registered first: the base class goes first.
@@ -48,13 +72,18 @@ void bind_errors(py::module_& m) {
   simulation.doc() =
       "A World's simulation blew up (NaN/Inf, or a node moving implausibly far in one "
       "substep); the\nmessage names the body and the frame and suggests a smaller dt or more "
-      "substeps.";
+      "substeps.\n\nAttributes, None when the message does not name them: stage (\"simulation\" "
+      "or\n\"response\": the contact response), frame (the frame being stepped, from 1), body "
+      "(index),\nbody_name, node (index in the body).";
+  for (const char* field : {"frame", "body", "body_name", "node"})
+    simulation.attr(field) = py::none();
+  simulation.attr("stage") = "simulation";
   // By value: pybind11 takes a void (*)(std::exception_ptr).
   py::register_exception_translator([](std::exception_ptr p) {  // NOLINT(performance-*)
     try {
       if (p) std::rethrow_exception(p);
     } catch (const SimulationError& e) {
-      simulation(e.what());
+      raise_simulation_error(simulation, e.what());
     } catch (const GlError& e) {
       gl(e.what());
     } catch (const InputError& e) {
@@ -67,7 +96,8 @@ void bind_errors(py::module_& m) {
 
 }  // namespace deformcd::python
 
-PYBIND11_MODULE(deformcd, m) {
+// _deformcd: the compiled part of the `deformcd` package, whose __init__.py re-exports it.
+PYBIND11_MODULE(_deformcd, m) {
   namespace py = pybind11;
   using namespace deformcd::python;
   m.doc() = R"doc(deformcd: collision detection for deformable triangle meshes, and mass-spring

@@ -43,7 +43,8 @@ class PyWorld {
  public:
   static std::unique_ptr<PyWorld> from_scene(const std::filesystem::path& file,
                                              std::optional<int> frames, const std::string& backend,
-                                             const std::string& broadphase, int threads) {
+                                             const std::string& broadphase, int threads,
+                                             bool measure_stage_times) {
     const Scene scene = read_scene(file);
     const int run_frames = frames.value_or(scene.settings.frames);
     if (run_frames < 1) {
@@ -54,6 +55,7 @@ class PyWorld {
     options.backend = parse_backend(backend);
     options.broadphase = parse_broadphase(broadphase);
     options.cpu_threads = threads;
+    options.measure_stage_times = measure_stage_times;
     options.self_collision = scene.collision.self;
     options.response = scene.response;
     auto world = std::make_unique<World>(make_scene_bodies(scene, load_tetgen_model, run_frames),
@@ -94,6 +96,26 @@ class PyWorld {
   }
   py::dict counts() {
     return counts_dict(without_gil(mutex_, [&] { return world_->collision_counts(); }));
+  }
+  py::dict last_frame_times() const {
+    const FrameTimes& t = world_->last_frame_times();
+    py::dict d;
+    d["simulation_s"] = t.simulation_s;
+    d["collision_s"] = t.collision_s;
+    d["proximity_s"] = t.proximity_s;
+    d["response_s"] = t.response_s;
+    return d;
+  }
+  py::dict response_counts() {
+    const ResponseCounts c = without_gil(mutex_, [&] { return world_->response_counts(); });
+    py::dict d;
+    d["vertex_face"] = c.vertex_face;
+    d["edge_edge"] = c.edge_edge;
+    d["untangle"] = c.untangle;
+    d["searches"] = c.searches;
+    d["widenings"] = c.widenings;
+    d["asleep"] = c.asleep;
+    return d;
   }
   py::array_t<bool> face_flags(const std::optional<std::int64_t>& body) {
     const std::optional<std::size_t> b =
@@ -187,6 +209,9 @@ broadphase : str
     The scene's own "collision.broadphase" is not used; its "collision.self" is.
 threads : int
     CPU threads; 0 uses every core. Results do not depend on it.
+measure_stage_times : bool
+    Time each stage of step() (see last_frame_times()); the world then waits for the backend
+    after each stage, which on GL keeps the CPU from queueing the next frame's work.
 
 Raises deformcd.InputError naming the file and the key for a bad scene or model,
 deformcd.Error for a bad name, deformcd.GlError without OpenGL 4.3 for backend="gl".)doc";
@@ -197,7 +222,8 @@ void bind_world(py::module_& m) {
   py::class_<PyWorld>(m, "World", kWorldDoc)
       .def_static("from_scene", &PyWorld::from_scene, py::arg("path"),
                   py::arg("frames") = py::none(), py::arg("backend") = "cpu",
-                  py::arg("broadphase") = "bvh", py::arg("threads") = 0, kFromSceneDoc)
+                  py::arg("broadphase") = "bvh", py::arg("threads") = 0,
+                  py::arg("measure_stage_times") = false, kFromSceneDoc)
       .def("step", &PyWorld::step, py::arg("n") = 1,
            "Advances n frames, each the scene's substeps and then a collision pass with\n"
            "`broadphase`. Raises deformcd.SimulationError naming the body and the frame when the\n"
@@ -218,6 +244,15 @@ void bind_world(py::module_& m) {
            "NumPy arrays (see Detector.contacts(); body = body index, face = row of faces(body)).\n"
            "The same pairs as the line of that frame in `deformcd run --contacts`.")
       .def("counts", &PyWorld::counts, "Counts of the last collision pass (see Detector.counts()).")
+      .def("last_frame_times", &PyWorld::last_frame_times,
+           "Wall time of the last step()'s stages in seconds, a dict: simulation_s (substeps and\n"
+           "the stability check), collision_s (bounds, broad and narrow phase), proximity_s and\n"
+           "response_s (the contact response's pair search and projections). All 0 unless the\n"
+           "world was made with measure_stage_times=True.")
+      .def("response_counts", &PyWorld::response_counts,
+           "The contact response's constraints at the end of the last step, a dict: vertex_face\n"
+           "and edge_edge (proximity pairs), untangle (vertices of intersecting faces pushed\n"
+           "out), searches, widenings, asleep (bodies). All 0 without the scene's response.")
       .def("face_flags", &PyWorld::face_flags, py::arg("body") = py::none(),
            "A bool array, True for each surface triangle in a contact of the last pass: body\n"
            "`body`'s triangles, or with body=None every body's, one body after the other.")

@@ -26,6 +26,9 @@ packages=(
   libfcl-dev libbullet-dev
   # the Python module (pybind11, for Debian's /usr/bin/python3), its tests and example
   python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
+  # deformcd.study (parameter studies on Dask, results as a DataFrame; Debian 12 has no pyarrow,
+  # so CSV), and the test of the module from a venv (python3 -m venv --system-site-packages)
+  python3-dask python3-distributed python3-pandas python3-venv
 )
 
 missing=()

@@ -39,6 +39,17 @@ def spheres():
     return V0, F0, rest1, F1
 
 
+@pytest.fixture(scope="session")
+def separate_cluster(tmp_path_factory):
+    """A Dask scheduler and two workers, each a process of its own on 127.0.0.1, shared by the
+    study's tests (study_support.SeparateCluster); the study's tests that use it run last."""
+    from study_support import SeparateCluster
+
+    cluster = SeparateCluster(tmp_path_factory.mktemp("dask"))
+    yield cluster
+    cluster.stop()
+
+
 def pose(rest, frame, frames=30):
     out = np.empty_like(rest)
     sliding_pose(rest, frame, frames, out)

@@ -2,6 +2,7 @@
 to what `deformcd run` writes for the same frames."""
 
 import json
+import pickle
 import subprocess
 
 import numpy as np
@@ -9,6 +10,7 @@ import pytest
 
 import deformcd
 from conftest import SOURCE_DIR, contact_rows
+from tiny_scenes import write_two_cubes
 
 PHASE2 = SOURCE_DIR / "scenes" / "phase2.json"
 FRAMES = 30
@@ -133,3 +135,45 @@ def test_stack_bodies_are_awake_while_they_fall():
     w = deformcd.World.from_scene(SOURCE_DIR / "scenes" / "stack.json", frames=2, backend="cpu")
     w.step(2)
     assert [w.asleep(b) for b in range(len(w.body_names))] == [False] * 5
+
+
+def test_blow_up_names_its_stage_frame_and_body(tmp_path):
+    """SimulationError's attributes (what a study's row holds), read from the world's message,
+    and kept through pickle (Dask sends exceptions between processes)."""
+    scene = json.loads(write_two_cubes(tmp_path).read_text())
+    scene["settings"]["substeps"] = 1
+    for body in scene["bodies"]:
+        body["material"]["stiffness"] = 1e10  # a million times too stiff for one substep
+    (tmp_path / "stiff.json").write_text(json.dumps(scene))
+    w = deformcd.World.from_scene(tmp_path / "stiff.json", backend="cpu")
+    with pytest.raises(deformcd.SimulationError) as info:
+        w.step(20)
+    e = info.value
+    # the frame being stepped, or the one just stepped when the periodic check finds it
+    assert e.stage == "simulation" and e.frame in (w.frame, w.frame + 1) and e.frame >= 1
+    assert e.body in (0, 1) and e.body_name == w.body_name(e.body)
+    assert f"body {e.body} ('{e.body_name}') by frame {e.frame}: node {e.node}" in str(e)
+    again = pickle.loads(pickle.dumps(e))
+    assert type(again) is deformcd.SimulationError and str(again) == str(e)
+    assert (again.stage, again.frame, again.body, again.node) == (e.stage, e.frame, e.body, e.node)
+    assert deformcd.SimulationError.frame is None  # a message naming no frame leaves None
+
+
+def test_stage_times_and_response_counts(tmp_path):
+    scene = json.loads(write_two_cubes(tmp_path, response=True).read_text())
+    (tmp_path / "timed.json").write_text(json.dumps(scene))
+    w = deformcd.World.from_scene(tmp_path / "timed.json", backend="cpu",
+                                  measure_stage_times=True)
+    assert w.last_frame_times() == {"simulation_s": 0.0, "collision_s": 0.0,
+                                    "proximity_s": 0.0, "response_s": 0.0}
+    pairs = []
+    for _ in range(w.frames):
+        w.step()
+        c = w.response_counts()
+        pairs.append(c["vertex_face"] + c["edge_edge"])
+    times = w.last_frame_times()
+    assert times["simulation_s"] > 0 and times["collision_s"] > 0 and times["response_s"] > 0
+    assert max(pairs) > 0 and w.counts()["contacts"] == 0  # the response kept them apart
+    untimed = deformcd.World.from_scene(tmp_path / "timed.json", backend="cpu")
+    untimed.step()
+    assert untimed.last_frame_times()["simulation_s"] == 0.0
