@@ -4,7 +4,8 @@ and the rules that keep them true. Every block carries a label after its opening
 
   cpp         a complete program (with main). CMake compiles each against the libraries and
               CTest runs it from the repository root (tests/docs/CMakeLists.txt); exit 0 passes.
-  python      run with /usr/bin/python3 and the build tree's module, from the repository root.
+  python      run with /usr/bin/python3 and the build tree's module, in a scratch folder that
+              links the repository as `sh run` does (relative paths work; outputs land there).
   sh          checked, not run (builds, the main job, benchmarks of minutes): each command must
               name an existing script of the repository, a deformcd command with options that its
               --help lists, a program under build/PRESET/ that the named folder's CMakeLists.txt
@@ -32,6 +33,7 @@ Usage:
   doc_examples.py check-sh SOURCE_DIR DEFORMCD
 """
 
+import contextlib
 import dataclasses
 import os
 import pathlib
@@ -43,8 +45,8 @@ import tempfile
 
 LABELS = {"cpp", "python", "sh", "json", "text", "cmake"}
 KNOWN_TOOLS = {"cmake", "ctest", "git", "apt-get", "sudo", "xvfb-run", "perf", "taskset", "head",
-               "cat", "ls", "mkdir", "cd"}
-PYTHONS = {"python3", "/usr/bin/python3"}
+               "cat", "ls", "mkdir", "cd", ".", "source"}
+PYTHONS = {"python3", "/usr/bin/python3", "python"}  # python: a venv's
 REPO_PATH_PREFIXES = ("scenes/", "assets/", "scripts/", "examples/")
 TIMEOUT_S = 600
 
@@ -170,6 +172,18 @@ def lint(source, out_dir):
     return problems
 
 
+@contextlib.contextmanager
+def scratch_folder(source):
+    """A temporary folder linking every top-level entry of the repository but .git and build, so
+    that an example's relative paths (scenes/, assets/) work and its outputs land outside the
+    source tree."""
+    with tempfile.TemporaryDirectory(prefix="deformcd_docs_") as scratch:
+        for entry in pathlib.Path(source).iterdir():
+            if entry.name not in (".git", "build"):
+                os.symlink(entry, pathlib.Path(scratch, entry.name))
+        yield scratch
+
+
 def run_python(source, pythonpath):
     problems = []
     env = dict(os.environ, PYTHONPATH=pythonpath, MPLBACKEND="Agg", PYTHONDONTWRITEBYTECODE="1")
@@ -177,8 +191,9 @@ def run_python(source, pythonpath):
         if b.label != "python":
             continue
         print(f"== {b.where}", flush=True)
-        r = subprocess.run(["/usr/bin/python3", "-c", b.text], cwd=source, env=env,
-                           capture_output=True, text=True, timeout=TIMEOUT_S, check=False)
+        with scratch_folder(source) as scratch:
+            r = subprocess.run(["/usr/bin/python3", "-c", b.text], cwd=scratch, env=env,
+                               capture_output=True, text=True, timeout=TIMEOUT_S, check=False)
         print(r.stdout + r.stderr, flush=True)
         if r.returncode != 0:
             problems.append(f"{b.where}: the Python example exited with {r.returncode}:\n"
@@ -238,10 +253,7 @@ def run_sh(source, deformcd):
             print(f"== {b.where}: not run, this build has no deformcd {', '.join(missing)}")
             continue
         print(f"== {b.where}", flush=True)
-        with tempfile.TemporaryDirectory(prefix="deformcd_docs_sh_") as scratch:
-            for entry in pathlib.Path(source).iterdir():
-                if entry.name not in (".git", "build"):
-                    os.symlink(entry, pathlib.Path(scratch, entry.name))
+        with scratch_folder(source) as scratch:
             r = subprocess.run(["bash", "-euo", "pipefail", "-c", b.text], cwd=scratch, env=env,
                                capture_output=True, text=True, timeout=TIMEOUT_S, check=False)
         print(r.stdout + r.stderr, flush=True)
@@ -283,14 +295,14 @@ def check_command(source, where, line, words, deformcd, commands, help_cache):
         if not lists.exists() or not re.search(rf"\b{re.escape(name)}\b", lists.read_text()):
             problems.append(f"{where}: `{line}` runs {program}, but {folder}/CMakeLists.txt "
                             f"builds no {name}")
-    elif "/" in program:
+    elif "/" in program and program not in PYTHONS:
         if not pathlib.Path(source, program).exists():
             problems.append(f"{where}: `{line}` runs {program}, which does not exist")
     elif program in PYTHONS:
         # python3 SCRIPT must name an existing script; python3 -m MODULE is not checked (the
-        # module may be the build's, on PYTHONPATH).
+        # module may be the build's, on PYTHONPATH), nor python3 -c CODE.
         script = next((a for a in args if not a.startswith("-")), None)
-        if script and "-m" not in args and not pathlib.Path(source, script).exists():
+        if script and "-m" not in args and "-c" not in args and not pathlib.Path(source, script).exists():
             problems.append(f"{where}: `{line}` runs {script}, which does not exist")
     elif program not in KNOWN_TOOLS:
         problems.append(f"{where}: `{line}`: {program} is neither a script of the repository, a "
