@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench_intersections.h"
+
 namespace deformcd::app {
 
 namespace {
@@ -152,6 +154,7 @@ void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results
           if (apart != 0) out << "; the other " << apart << ": " << r.response_ratio(false) << " x";
         }
         out << '\n' << std::defaultfloat;
+        print_intersection_summary(out, r.intersections);
       }
     }
     for (const std::string& m : b.disagreements) {
@@ -186,6 +189,7 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
         per_frame["widenings"] = r.widenings;
         per_frame["constraints"] = r.constraints;
       }
+      add_intersection_fields(per_frame, r.intersections);
       methods[name] = {{"total_s", r.total_s()},
                        {"simulation_s", r.total_simulation_s()},
                        {"collision_s", r.total_collision_s()},

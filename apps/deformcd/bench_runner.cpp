@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "bench_device_timer.h"
+#include "bench_intersections.h"
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "model_input.h"
@@ -39,6 +40,7 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
   World world(bodies, settings, world_options);
   device = world.device();
   StageDeviceTimer timer(world.backend_name() == "gl");
+  BenchIntersections census(world);
   MethodRun run;
   run.method = method;
   for (int f = 0; f < frames; ++f) {
@@ -72,6 +74,7 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
     if (const auto s = timer.seconds(BenchStage::kCollision)) run.collision_device_s.push_back(*s);
     run.contacts.push_back(counts.contacts);
     run.candidates.push_back(counts.candidates);
+    census.record(run.intersections);  // untimed
     frame_done();
   }
   return run;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "deformcd/collision.h"
+#include "deformcd/intersection_census.h"
 #include "deformcd/world.h"
 
 namespace deformcd::app {
@@ -43,6 +44,8 @@ struct MethodRun {
   /// Per frame 1..N with contact response: the constraints the frame ended with (proximity and
   /// untangling pairs, World::response_counts()). Empty without.
   std::vector<std::uint64_t> constraints;
+  /// Per frame 1..N with contact response: the intersection census (bench_intersections.h).
+  std::vector<IntersectionCensus> intersections;
 
   [[nodiscard]] double total_simulation_s() const;
   [[nodiscard]] double total_collision_s() const;

@@ -40,8 +40,9 @@ struct ResponseSettings {
   std::optional<float> thickness;
   /// The thickness over the body's mean surface edge length, when thickness is unset.
   float relative_thickness = 0.2f;
-  /// Coulomb friction: sliding starts when the tangential velocity exceeds friction_static x
-  /// the normal velocity change of the contact, and is then slowed by friction_dynamic x it.
+  /// Coulomb friction: a contact sticks while stopping its tangential velocity takes at most
+  /// friction_static x the normal velocity change the contact has given in the substep (all its
+  /// projections together); otherwise it slides, slowed by friction_dynamic x that change.
   float friction_static = 0.4f;
   float friction_dynamic = 0.3f;  ///< at most friction_static
   /// 0: the approach speed is absorbed at contact (the bodies' elasticity still makes them

@@ -174,7 +174,8 @@ bool contact_active(ContactPair pair, vec4 position[4]) {
 // removed by position alone (an untangling constraint by at most max_untangle_step per
 // iteration); Coulomb friction on the tangential relative velocity. `given` carries the normal
 // speed (x) and push (y) given over the substep's iterations so far and the first iteration's
-// approach (z); each iteration corrects the totals, clamped at zero.
+// approach (z) and the friction (w); each iteration corrects the totals, clamped at zero. Coulomb
+// friction is bounded by the substep's accumulated normal change, not the iteration's.
 void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
                    ContactConstants k, bool first_iteration, inout vec4 given,
                    out vec4 correction[8]) {
@@ -208,15 +209,22 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
     total_push = distance_min(total_push, given.y + k.max_untangle_step);
   precise float push = total_push - given.y;
   given.y = total_push;
+  // Coulomb friction against the substep's accumulated normal change (given.x), its own total
+  // in given.w.
   precise vec3 tangential = relative_velocity - normal_velocity * n;
   precise float slip = sqrt(exact_dot(tangential, tangential));
-  precise float pressing = distance_max(normal_speed, 0.0);  // this iteration's normal change
-  precise float keep = 0.0;  // the share of the tangential velocity friction leaves
-  precise float static_limit = k.friction_static * pressing;
-  if (slip > static_limit) {
-    keep = distance_max(1.0 - k.friction_dynamic * pressing / slip, 0.0);
+  precise float stop = slip * reduce;  // the friction that stops the slip
+  precise float friction = stop;
+  precise float static_total = given.w + stop;
+  precise float static_limit = k.friction_static * given.x;
+  if (static_total > static_limit) {
+    precise float left = distance_max(k.friction_dynamic * given.x - given.w, 0.0);
+    friction = distance_min(stop, left);
   }
-  precise vec3 dv = (normal_speed * n - (1.0 - keep) * reduce * tangential) / weight;
+  precise float friction_total = given.w + friction;
+  given.w = friction_total;
+  precise float share = slip > 0.0 ? friction / slip : 0.0;  // of the tangential velocity
+  precise vec3 dv = (normal_speed * n - share * tangential) / weight;
   precise vec3 dx = dv * k.h + (push / weight) * n;
   for (int i = 0; i < 4; ++i) {
     precise float scale = position[i].w * b[i];

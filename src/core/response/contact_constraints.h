@@ -187,20 +187,22 @@ inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 positio
 /// the nodes by that velocity change x h; depth left after that is removed by position alone,
 /// without adding velocity (so a deep start or a tunnel does not turn into a launch), an
 /// untangling constraint by at most max_untangle_step per iteration. Tangentially, Coulomb
-/// friction on the relative velocity: static while it is within friction_static x the normal
-/// velocity change, else reduced by friction_dynamic x it. All along the constraint's weights,
+/// friction on the relative velocity: static while the friction of the substep's iterations
+/// stays within friction_static x their accumulated normal velocity change, else at most
+/// friction_dynamic x that change in all. All along the constraint's weights,
 /// so momentum is conserved; a node moves at most its share of the whole correction (see
 /// `reduce`).
 ///
 /// `given` (ContactImpulse, one per constraint) carries what the constraint has given over the
 /// substep's iterations so far: x the normal speed, y the push, z the first iteration's
-/// approach; the first iteration resets it. Each iteration corrects the totals, which never go
-/// below zero (a projected Jacobi solve on accumulated corrections, as sequential impulses clamp
-/// theirs): a constraint that an earlier iteration over-corrected, because its nodes' other
-/// constraints then moved them too, takes the excess back instead of leaving it. Without that,
-/// a light node on an edge whose heavier end another constraint also stops was thrown off the
-/// surface every substep (the rigid-lever correction of the edge-edge constraint, never undone
-/// once the contact point separated), the main source of the stack scene's resting jitter.
+/// approach, w the friction (a speed, like x); the first iteration resets it. Each iteration
+/// corrects the totals, which never go below zero (a projected Jacobi solve on accumulated
+/// corrections, as sequential impulses clamp theirs): a constraint that an earlier iteration
+/// over-corrected, because its nodes' other constraints then moved them too, takes the excess back
+/// instead of leaving it. Without that, a light node on an edge whose heavier end another
+/// constraint also stops was thrown off the surface every substep (the rigid-lever correction of
+/// the edge-edge constraint, never undone once the contact point separated), the main source of the
+/// stack scene's resting jitter.
 inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position[4],
                           const glm::vec4 velocity[4], const std::uint32_t count[4],
                           const ContactConstants& k, bool first_iteration, glm::vec4& given,
@@ -244,14 +246,21 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
     total_push = glm::min(total_push, given.y + k.max_untangle_step);
   const float push = total_push - given.y;
   given.y = total_push;
+  // Coulomb friction against the substep's accumulated normal change (given.x), its own total
+  // kept in given.w: the slip stops while the friction given so far and the whole slip stay
+  // within friction_static x the normal total, else the slip is slowed by what is left of
+  // friction_dynamic x it. (Bounded by the iteration's normal change instead, only the first
+  // iteration had friction, the rest let the slip its neighbours left go, and a block on an
+  // incline below the static angle slid: tests/world/friction_incline_test.cpp.)
   const glm::vec3 tangential = relative_velocity - normal_velocity * n;
   const float slip = std::sqrt(glm::dot(tangential, tangential));
-  const float pressing = glm::max(normal_speed, 0.0f);  // this iteration's normal change
-  float keep = 0.0f;  // the share of the tangential velocity friction leaves
-  if (slip > k.friction_static * pressing) {
-    keep = glm::max(1.0f - k.friction_dynamic * pressing / slip, 0.0f);
-  }
-  const glm::vec3 dv = (normal_speed * n - (1.0f - keep) * reduce * tangential) / weight;
+  const float stop = slip * reduce;  // the friction that stops the slip
+  float friction = stop;
+  if (given.w + stop > k.friction_static * given.x)
+    friction = glm::min(stop, glm::max(k.friction_dynamic * given.x - given.w, 0.0f));
+  given.w = given.w + friction;
+  const float share = slip > 0.0f ? friction / slip : 0.0f;  // of the tangential velocity
+  const glm::vec3 dv = (normal_speed * n - share * tangential) / weight;
   const glm::vec3 dx = dv * k.h + (push / weight) * n;
   for (int i = 0; i < 4; ++i) {
     const float scale = position[i].w * b[i];

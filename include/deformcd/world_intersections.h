@@ -1,0 +1,32 @@
+#pragma once
+/// \file world_intersections.h
+/// The intersection census (deformcd/intersection_census.h) of a World's bodies: each body's
+/// surface a mesh, at the world's current positions. For tests and `deformcd bench`.
+///
+///     deformcd::WorldIntersections census(world);
+///     world.step();
+///     deformcd::IntersectionCensus c = census.count();  // the frame just stepped
+
+#include <glm/vec3.hpp>
+
+#include <vector>
+
+#include "deformcd/intersection_census.h"
+#include "deformcd/world.h"
+
+namespace deformcd {
+
+class WorldIntersections {
+ public:
+  /// Over `world`'s bodies (it must outlive this); `threads` as IntersectionCounter's.
+  explicit WorldIntersections(const World& world, int threads = 1);
+  /// The census on the world's positions now (read back from the backend).
+  [[nodiscard]] IntersectionCensus count();
+
+ private:
+  const World& world_;
+  IntersectionCounter counter_;
+  std::vector<std::vector<glm::vec3>> positions_;
+};
+
+}  // namespace deformcd

@@ -1,0 +1,64 @@
+// `deformcd bench`'s intersection census (apps/deformcd/bench_intersections.h) as a user sees
+// it: per-frame counts in the JSON and a summary line, for scenes with a contact response only.
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/cli_runner.h"
+#include "support/temp_dir.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using deformcd::test::CliRun;
+using deformcd::test::run_cli;
+
+std::string scene_file(const char* name) {
+  return (fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (std::string(name) + ".json")).string();
+}
+
+nlohmann::json bvh_per_frame(const fs::path& json) {
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  return j.at("scenes").at(0).at("methods").at("bvh").at("per_frame");
+}
+
+// half_overlap starts with the dragon deep in the bunny: its first frames have pairs between
+// the bodies and vertices of each inside the other, which the census must count.
+TEST(BenchIntersectionsCli, ResponseSceneReportsTheCensusEveryFrame) {
+  deformcd::test::TempDir dir;
+  const fs::path json = dir.path() / "bench.json";
+  const CliRun r =
+      run_cli("bench " + scene_file("half_overlap") +
+              " --backend cpu --methods bvh --threads 1 --frames 2 --json " + json.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("intersections (bodies with themselves included): 2 of 2 frames"),
+            std::string::npos)
+      << r.output;
+  const nlohmann::json per_frame = bvh_per_frame(json);
+  for (const char* key :
+       {"intersecting_pairs_between", "intersecting_pairs_self", "inside_vertices"}) {
+    ASSERT_EQ(per_frame.at(key).size(), 2u) << key;
+  }
+  for (int f = 0; f < 2; ++f) {
+    EXPECT_GT(per_frame["intersecting_pairs_between"][f].get<std::uint64_t>(), 0u);
+    EXPECT_GT(per_frame["inside_vertices"][f].get<std::uint64_t>(), 0u);
+  }
+}
+
+TEST(BenchIntersectionsCli, SceneWithoutResponseHasNoCensus) {
+  deformcd::test::TempDir dir;
+  const fs::path json = dir.path() / "bench.json";
+  const CliRun r = run_cli("bench " + scene_file("phase2") +
+                           " --backend cpu --methods bvh --frames 2 --json " + json.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("intersections (bodies"), std::string::npos) << r.output;
+  EXPECT_FALSE(bvh_per_frame(json).contains("inside_vertices"));
+}
+
+}  // namespace
