@@ -37,6 +37,7 @@ struct IntersectionCensus {
   /// surface is not inside.
   std::uint64_t inside_vertices = 0;
 
+  /// Whether anything intersects: a pair between meshes, a pair within one, or a vertex inside.
   [[nodiscard]] bool any() const {
     return between_pairs != 0 || self_pairs != 0 || inside_vertices != 0;
   }
@@ -50,9 +51,12 @@ class IntersectionCounter {
   /// triangle-pair search, 0 every core; the counts do not depend on it.
   explicit IntersectionCounter(std::vector<CollisionMesh> meshes, int threads = 1);
   ~IntersectionCounter();
+  /// Movable (the meshes and the detector move along); not copyable.
   IntersectionCounter(IntersectionCounter&&) noexcept;
+  /// Movable; not copyable.
   IntersectionCounter& operator=(IntersectionCounter&&) noexcept;
 
+  /// The number of meshes given to the constructor.
   [[nodiscard]] std::size_t mesh_count() const;
   /// Whether mesh `mesh` is closed, so that vertices of the others can be inside it.
   [[nodiscard]] bool closed(std::size_t mesh) const;

@@ -16,6 +16,8 @@
 
 namespace deformcd {
 
+/// The intersection census of a World's bodies, each body's surface a mesh: an
+/// IntersectionCounter over the world's surfaces, fed the world's positions on each count().
 class WorldIntersections {
  public:
   /// Over `world`'s bodies (it must outlive this); `threads` as IntersectionCounter's.
