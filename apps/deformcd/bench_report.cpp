@@ -49,12 +49,19 @@ std::uint64_t candidates(const MethodRun& r) {
 
 namespace {
 
-// "12.3  45.6  7.8": a value per stage (before, contact, after), each in `width` columns.
-std::string per_stage_columns(const std::array<double, 3>& values, int width) {
+// "12.3  45.6  -": a value per stage (before, contact, after), each in `width` columns; "-" for
+// a stage without frames (a run never in contact), whose mean is not 0 but undefined.
+std::string per_stage_columns(const std::array<double, 3>& values, const std::array<int, 3>& frames,
+                              int width) {
   std::ostringstream text;
   text << std::fixed << std::setprecision(1);
-  for (double v : values)
-    text << std::setw(width) << v;
+  for (int s = 0; s < 3; ++s) {
+    if (frames[s] == 0) {
+      text << std::setw(width) << "-";
+    } else {
+      text << std::setw(width) << values[s];
+    }
+  }
   return text.str();
 }
 
@@ -100,9 +107,9 @@ void print_detail(std::ostream& out, const SceneBench& b) {
     out << std::left << std::setw(16) << broadphase_name(r.method) << std::right
         << std::setprecision(3) << std::setw(10) << r.total_s() << std::setw(10)
         << r.total_simulation_s() << std::setw(10) << r.total_collision_s() << "  "
-        << per_stage_columns(t.ms_per_frame, kStageWidth) << "  "
-        << per_stage_columns(t.collision_ms_per_frame, kStageWidth) << "  " << std::setw(10)
-        << r.pairs() << '\n';
+        << per_stage_columns(t.ms_per_frame, t.frames, kStageWidth) << "  "
+        << per_stage_columns(t.collision_ms_per_frame, t.frames, kStageWidth) << "  "
+        << std::setw(10) << r.pairs() << '\n';
   }
 }
 
@@ -127,8 +134,8 @@ void print_device_times(std::ostream& out, const SceneBench& b) {
   for (const MethodRun& r : b.runs) {
     const StageTimes t = stage_times(r, b.stages);
     out << std::left << std::setw(16) << broadphase_name(r.method) << std::right << "  "
-        << per_stage_columns(t.device_ms_per_frame, kStageWidth) << "  "
-        << per_stage_columns(t.collision_device_ms_per_frame, kStageWidth) << '\n';
+        << per_stage_columns(t.device_ms_per_frame, t.frames, kStageWidth) << "  "
+        << per_stage_columns(t.collision_device_ms_per_frame, t.frames, kStageWidth) << '\n';
   }
 }
 
@@ -181,9 +188,11 @@ void print_bench_table(std::ostream& out, const SceneBench& b) {
   print_response(out, b);
   // Each row is its own stretch of time: a load that comes or goes during the run weighs on
   // the rows unequally, which a reader comparing them must know.
-  out << "Rows measured one after the other (each method's whole run, then the next): a "
-         "machine whose load changes meanwhile times them unequally.\n"
-      << "Times: wall clock around each stage"
+  if (b.runs.size() > 1) {
+    out << "Rows measured one after the other (each method's whole run, then the next): a "
+           "machine whose load changes meanwhile times them unequally.\n";
+  }
+  out << "Times: wall clock around each stage"
       << (b.backend == "gl" ? " after waiting for the backend (glFinish)" : "")
       << "; warm-up runs excluded" << (b.repeat > 1 ? "; the median of the repeats" : "") << ".\n";
   for (const std::string& m : b.disagreements) {
