@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Configures and builds one CMake preset (default: release). Usage: scripts/build.sh [PRESET]
+# Configures and builds one CMake preset (default: release), all its targets or only those named.
+# Usage: scripts/build.sh [PRESET [TARGET...]]   (e.g. scripts/build.sh release deformcd)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 preset="${1:-release}"
+targets=("${@:2}")
 jobs="${DEFORMCD_JOBS:-$(nproc)}"
 if command -v ccache >/dev/null 2>&1; then
   # Paths relative to the checkout, so that another clone (CI) hits the same cache entries.
@@ -13,4 +15,8 @@ else
   launcher=()
 fi
 cmake --preset "$preset" "${launcher[@]}" >/dev/null
-cmake --build --preset "$preset" -j "$jobs"
+if ((${#targets[@]} > 0)); then
+  cmake --build --preset "$preset" -j "$jobs" --target "${targets[@]}"
+else
+  cmake --build --preset "$preset" -j "$jobs"
+fi

@@ -46,5 +46,10 @@ echo "install_deps: installing ${missing[*]}"
 SUDO=""
 if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# Another apt or dpkg (unattended-upgrades, a second terminal) holds the dpkg lock for a while:
+# wait for it, up to 10 minutes, rather than fail at once with exit 100. apt prints "Waiting
+# for cache lock" while it waits.
+lock_wait=(-o DPkg::Lock::Timeout=600)
+echo "install_deps: if another apt or dpkg is running, waiting up to 10 min for its lock"
+$SUDO apt-get "${lock_wait[@]}" update -qq
+$SUDO apt-get "${lock_wait[@]}" install -y -qq --no-install-recommends "${missing[@]}"

@@ -14,6 +14,7 @@
 #include "bench_report.h"
 #include "bench_runner.h"
 #include "commands.h"
+#include "deformcd/backend.h"
 #include "deformcd/io.h"
 #include "option_values.h"
 #include "output_paths.h"
@@ -27,7 +28,7 @@ namespace {
 struct BenchArgs {
   std::vector<std::string> scenes;
   int frames = 45;
-  std::vector<std::string> backends = {"gl", "cpu"};
+  std::vector<std::string> backends = {"auto"};
   std::vector<std::string> methods = {"all"};
   int repeat = 1;
   int threads = 0;
@@ -43,13 +44,17 @@ BenchOptions bench_options(const BenchArgs& a) {
   for (const std::string& s : a.scenes)
     o.scenes.emplace_back(s);
   for (const std::string& b : a.backends) {
-    if (b != "gl" && b != "cpu") {
+    if (b != "gl" && b != "cpu" && b != "auto") {
       throw UsageError(
-          "--backend takes gl and/or cpu (each is measured and named in the "
+          "--backend takes auto, or gl and/or cpu (each is measured and named in the "
           "results), not '" +
           b + "'");
     }
-    o.backends.push_back(parse_backend(b));
+    if (b == "auto" && a.backends.size() > 1) {
+      throw UsageError(
+          "--backend auto chooses the backends itself: give it alone, or gl and/or cpu");
+    }
+    if (b != "auto") o.backends.push_back(parse_backend(b));
   }
   const std::vector<std::string>& known = broadphase_names();
   for (const std::string& m : a.methods) {
@@ -75,8 +80,18 @@ BenchOptions bench_options(const BenchArgs& a) {
   return o;
 }
 
+// --backend auto follows the library's rule (BackendKind::kAuto): both backends on a hardware GL
+// device, else the CPU alone, as `run` would choose, saying why.
+std::vector<BackendKind> auto_backends() {
+  const AutoBackend choice = choose_auto_backend();
+  if (choice.kind == BackendKind::kGl) return {BackendKind::kGl, BackendKind::kCpu};
+  std::cerr << "deformcd: bench measures the CPU backend only: " << choice.reason
+            << "; --backend gl,cpu measures both\n";
+  return {BackendKind::kCpu};
+}
+
 int bench(const BenchArgs& a) {
-  const BenchOptions o = bench_options(a);
+  BenchOptions o = bench_options(a);
   if (!a.json.empty()) check_output_file("--json", a.json);
   if (!a.csv.empty()) check_output_file("--csv", a.csv);
   std::optional<std::filesystem::path> gnuplot;
@@ -86,6 +101,8 @@ int bench(const BenchArgs& a) {
                               "Debian: apt-get install gnuplot-nox; scripts/install_deps.sh "
                               "installs it");
   }
+
+  if (o.backends.empty()) o.backends = auto_backends();
 
   std::unique_ptr<Progress> bar;
   BenchProgress progress;
@@ -98,6 +115,12 @@ int bench(const BenchArgs& a) {
     bar->set_label(what);
     bar->update(done);
   };
+  // Each backend's tables as soon as they are measured, not all at the end.
+  progress.measured = [&](const SceneBench& measured) {
+    if (bar) bar->clear();
+    print_bench_table(std::cout, measured);
+    std::cout.flush();
+  };
   const std::vector<SceneBench> results = run_bench(o, progress);
   if (bar) bar->done();
 
@@ -107,11 +130,7 @@ int bench(const BenchArgs& a) {
   record.warmup_frames = o.warmup_frames;
   record.threads =
       o.cpu_threads > 0 ? o.cpu_threads : static_cast<int>(std::thread::hardware_concurrency());
-  print_bench_table(std::cout, results);
-  std::cout << "\nTimes: wall clock around each stage after waiting for the backend (glFinish "
-               "on GL), and on GL the device time of each stage from timer queries; warm-up "
-               "runs excluded"
-            << (a.repeat > 1 ? "; the median of the repeats" : "") << ".\n";
+  std::cout << '\n';
   if (!a.json.empty()) {
     write_file_atomically(a.json, bench_json(results, record));
     std::cout << "json       " << a.json << '\n';
@@ -147,7 +166,9 @@ Command add_bench_command(CLI::App& app) {
                   "Length of each run in frames: the scene's whole trajectory in this many "
                   "(4500 in the paper)")
       ->capture_default_str();
-  cmd->add_option("--backend", a->backends, "Backends, comma-separated: gl, cpu")
+  cmd->add_option("--backend", a->backends,
+                  "Backends, comma-separated: gl, cpu; or auto: both on a hardware GL device, "
+                  "else the CPU alone (as run's auto chooses)")
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--methods", a->methods,

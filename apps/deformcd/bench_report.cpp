@@ -49,119 +49,160 @@ std::uint64_t candidates(const MethodRun& r) {
 
 }  // namespace
 
-void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results) {
-  out << std::fixed;
-  out << "\nTotal run time V (simulation + collision detection), each method against "
-      << "the first (V1):\n\n";
-  out << std::left << std::setw(22) << "scene" << std::setw(8) << "backend" << std::setw(16)
-      << "method" << std::right << std::setw(8) << "frames" << std::setw(12) << "V1 (s)"
-      << std::setw(12) << "V2 (s)" << std::setw(11) << "I" << std::setw(11) << "V1/V2"
-      << std::setw(14) << "CD V1/V2" << '\n';
-  for (const SceneBench& b : results) {
-    const MethodRun& base = b.runs.front();
-    for (std::size_t m = 1; m < b.runs.size(); ++m) {
-      const MethodRun& r = b.runs[m];
-      out << std::left << std::setw(22) << b.scene << std::setw(8) << b.backend << std::setw(16)
-          << broadphase_name(r.method) << std::right << std::setw(8) << b.frames
-          << std::setprecision(3) << std::setw(12) << base.total_s() << std::setw(12) << r.total_s()
-          << std::setprecision(1) << std::setw(10)
-          << 100.0 * improvement(base.total_s(), r.total_s()) << "%" << std::setprecision(2)
-          << std::setw(11) << base.total_s() / r.total_s() << std::setw(14)
-          << base.total_collision_s() / r.total_collision_s() << '\n';
-    }
-  }
-  out << "\n(I = (V1 - V2) / V2 as in the paper; CD = the collision-detection stage alone)\n";
+namespace {
 
-  for (const SceneBench& b : results) {
-    const int contact = static_cast<int>(std::count(b.stages.begin(), b.stages.end(), kContact));
-    out << "\n"
-        << b.scene << " on " << b.backend << " (" << b.device << "), " << b.frames << " frames, "
-        << contact << " in contact:\n";
-    out << std::left << std::setw(16) << "method" << std::right << std::setw(10) << "V (s)"
-        << std::setw(10) << "sim (s)" << std::setw(10) << "CD (s)" << std::setw(34)
-        << "ms/frame before | contact | after" << std::setw(37)
-        << "CD ms/frame before | contact | after" << std::setw(12) << "pairs" << '\n';
-    for (const MethodRun& r : b.runs) {
-      const StageTimes t = stage_times(r, b.stages);
-      std::ostringstream ms;
-      std::ostringstream cd;
-      ms << std::fixed << std::setprecision(1);
-      cd << std::fixed << std::setprecision(1);
-      for (int s = 0; s < 3; ++s) {
-        ms << (s ? " | " : "") << t.ms_per_frame[s];
-        cd << (s ? " | " : "") << t.collision_ms_per_frame[s];
-      }
-      out << std::left << std::setw(16) << broadphase_name(r.method) << std::right
-          << std::setprecision(3) << std::setw(10) << r.total_s() << std::setw(10)
-          << r.total_simulation_s() << std::setw(10) << r.total_collision_s() << std::setw(34)
-          << ms.str() << std::setw(37) << cd.str() << std::setw(12) << r.pairs() << '\n';
-    }
-    if (b.device_times != DeviceTimes::kNone) {
-      out << "device time (GL timer queries, GL_TIME_ELAPSED), ms/frame before | contact | after"
-          << (b.device_times == DeviceTimes::kCpu
-                  ? ";\n  the renderer is a software one, not a GPU: these are not GPU times "
-                    "(llvmpipe "
-                    "stamps its queries from its rasterizer's threads, which compute dispatches do "
-                    "not go through: they read about 0 there); see the wall clock above:\n"
-                  : ":\n");
-      out << std::left << std::setw(16) << "method" << std::right << std::setw(34)
-          << "sim + CD before | contact | after" << std::setw(37) << "CD before | contact | after"
-          << '\n';
-      for (const MethodRun& r : b.runs) {
-        const StageTimes t = stage_times(r, b.stages);
-        std::ostringstream all;
-        std::ostringstream cd;
-        all << std::fixed << std::setprecision(1);
-        cd << std::fixed << std::setprecision(1);
-        for (int s = 0; s < 3; ++s) {
-          all << (s ? " | " : "") << t.device_ms_per_frame[s];
-          cd << (s ? " | " : "") << t.collision_device_ms_per_frame[s];
-        }
-        out << std::left << std::setw(16) << broadphase_name(r.method) << std::right
-            << std::setw(34) << all.str() << std::setw(37) << cd.str() << '\n';
-      }
-    }
-    if (!b.runs.empty() && !b.runs.front().proximity_s.empty()) {
-      out << "contact response (in the simulation time above), ms/frame:\n";
-      for (const MethodRun& r : b.runs) {
-        const double frames = static_cast<double>(r.proximity_s.size());
-        const double simulation =
-            r.total_simulation_s() - r.total_proximity_s() - r.total_response_s();
-        out << std::left << std::setw(16) << broadphase_name(r.method) << std::right << std::fixed
-            << std::setprecision(2) << "simulation " << 1e3 * simulation / frames << ", proximity "
-            << 1e3 * r.total_proximity_s() / frames << ", response "
-            << 1e3 * r.total_response_s() / frames << " (proximity + response = "
-            << (r.total_proximity_s() + r.total_response_s()) / simulation
-            << " x the simulation); searches "
-            << static_cast<double>(
-                   std::accumulate(r.searches.begin(), r.searches.end(), std::uint64_t{0})) /
-                   frames
-            << ", widenings "
-            << static_cast<double>(
-                   std::accumulate(r.widenings.begin(), r.widenings.end(), std::uint64_t{0})) /
-                   frames
-            << " a frame\n";
-        // The frames in contact apart: the response costs little in the others.
-        const auto in_contact = static_cast<std::size_t>(std::count_if(
-            r.constraints.begin(), r.constraints.end(), [](auto c) { return c > 0; }));
-        const std::size_t apart = r.constraints.size() - in_contact;
-        out << std::setw(16) << "";
-        if (in_contact == 0) {
-          out << "no frame ended with constraints";
-        } else {
-          out << "the " << in_contact << " frames ending with constraints: proximity + response = "
-              << r.response_ratio(true) << " x the simulation";
-          if (apart != 0) out << "; the other " << apart << ": " << r.response_ratio(false) << " x";
-        }
-        out << '\n' << std::defaultfloat;
-        print_intersection_summary(out, r.intersections);
-      }
-    }
-    for (const std::string& m : b.disagreements) {
-      out << "WARNING: " << m << " found different contacts from "
-          << broadphase_name(b.runs.front().method) << " on some frame\n";
+// "12.3  45.6  -": a value per stage (before, contact, after), each in `width` columns; "-" for
+// a stage without frames (a run never in contact), whose mean is not 0 but undefined.
+std::string per_stage_columns(const std::array<double, 3>& values, const std::array<int, 3>& frames,
+                              int width) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1);
+  for (int s = 0; s < 3; ++s) {
+    if (frames[s] == 0) {
+      text << std::setw(width) << "-";
+    } else {
+      text << std::setw(width) << values[s];
     }
   }
+  return text.str();
+}
+
+constexpr int kStageWidth = 9;  // one stage's column
+constexpr int kStagesWidth = 3 * kStageWidth;
+
+// The paper's summary: each method against the first (V1).
+void print_summary(std::ostream& out, const SceneBench& b) {
+  if (b.runs.size() < 2) return;
+  const MethodRun& base = b.runs.front();
+  out << "Total run time V (simulation + collision detection), each method against "
+      << broadphase_name(base.method) << " (V1):\n";
+  out << std::left << std::setw(16) << "method" << std::right << std::setw(10) << "V1 (s)"
+      << std::setw(10) << "V2 (s)" << std::setw(10) << "I" << std::setw(9) << "V1/V2"
+      << std::setw(11) << "CD V1/V2" << '\n';
+  for (std::size_t m = 1; m < b.runs.size(); ++m) {
+    const MethodRun& r = b.runs[m];
+    out << std::left << std::setw(16) << broadphase_name(r.method) << std::right
+        << std::setprecision(3) << std::setw(10) << base.total_s() << std::setw(10) << r.total_s()
+        << std::setprecision(1) << std::setw(9) << 100.0 * improvement(base.total_s(), r.total_s())
+        << "%" << std::setprecision(2) << std::setw(9) << base.total_s() / r.total_s()
+        << std::setw(11) << base.total_collision_s() / r.total_collision_s() << '\n';
+  }
+  out << "(I = (V1 - V2) / V2 as in the paper; CD = the collision-detection stage alone)\n";
+}
+
+// Each method's times: totals, then per frame in each of the paper's three phases.
+void print_detail(std::ostream& out, const SceneBench& b) {
+  out << std::left << std::setw(16) << "" << std::right << std::setw(30) << "total"
+      << std::setw(kStagesWidth + 2) << "ms per frame (sim + CD)" << std::setw(kStagesWidth + 2)
+      << "CD ms per frame" << '\n';
+  out << std::left << std::setw(16) << "method" << std::right << std::setw(10) << "V (s)"
+      << std::setw(10) << "sim (s)" << std::setw(10) << "CD (s)"
+      << "  ";
+  for (int column = 0; column < 2; ++column) {
+    for (const char* stage : kStageNames)
+      out << std::setw(kStageWidth) << stage;
+    out << "  ";
+  }
+  out << std::setw(10) << "pairs" << '\n';
+  for (const MethodRun& r : b.runs) {
+    const StageTimes t = stage_times(r, b.stages);
+    out << std::left << std::setw(16) << broadphase_name(r.method) << std::right
+        << std::setprecision(3) << std::setw(10) << r.total_s() << std::setw(10)
+        << r.total_simulation_s() << std::setw(10) << r.total_collision_s() << "  "
+        << per_stage_columns(t.ms_per_frame, t.frames, kStageWidth) << "  "
+        << per_stage_columns(t.collision_ms_per_frame, t.frames, kStageWidth) << "  "
+        << std::setw(10) << r.pairs() << '\n';
+  }
+}
+
+// Timer queries mean something on a GPU only: on a software renderer they read about 0 (see
+// deformcd/gl/timer_query.h), so a table of them would mislead.
+void print_device_times(std::ostream& out, const SceneBench& b) {
+  if (b.device_times == DeviceTimes::kCpu) {
+    out << "(no device-time table: the renderer is a software one, whose timer queries do not "
+           "time compute dispatches; the wall clock above is the measure)\n";
+  }
+  if (b.device_times != DeviceTimes::kGpu) return;
+  out << "device time (GL timer queries, GL_TIME_ELAPSED):\n";
+  out << std::left << std::setw(16) << "" << std::right << std::setw(kStagesWidth + 2)
+      << "ms per frame (sim + CD)" << std::setw(kStagesWidth + 2) << "CD ms per frame" << '\n';
+  out << std::left << std::setw(16) << "method" << std::right << "  ";
+  for (int column = 0; column < 2; ++column) {
+    for (const char* stage : kStageNames)
+      out << std::setw(kStageWidth) << stage;
+    out << "  ";
+  }
+  out << '\n';
+  for (const MethodRun& r : b.runs) {
+    const StageTimes t = stage_times(r, b.stages);
+    out << std::left << std::setw(16) << broadphase_name(r.method) << std::right << "  "
+        << per_stage_columns(t.device_ms_per_frame, t.frames, kStageWidth) << "  "
+        << per_stage_columns(t.collision_device_ms_per_frame, t.frames, kStageWidth) << '\n';
+  }
+}
+
+void print_response(std::ostream& out, const SceneBench& b) {
+  if (b.runs.empty() || b.runs.front().proximity_s.empty()) return;
+  out << "contact response (in the simulation time above), ms/frame:\n";
+  for (const MethodRun& r : b.runs) {
+    const double frames = static_cast<double>(r.proximity_s.size());
+    const double simulation = r.total_simulation_s() - r.total_proximity_s() - r.total_response_s();
+    out << std::left << std::setw(16) << broadphase_name(r.method) << std::right << std::fixed
+        << std::setprecision(2) << "simulation " << 1e3 * simulation / frames << ", proximity "
+        << 1e3 * r.total_proximity_s() / frames << ", response "
+        << 1e3 * r.total_response_s() / frames << " (proximity + response = "
+        << (r.total_proximity_s() + r.total_response_s()) / simulation
+        << " x the simulation); searches "
+        << static_cast<double>(
+               std::accumulate(r.searches.begin(), r.searches.end(), std::uint64_t{0})) /
+               frames
+        << ", widenings "
+        << static_cast<double>(
+               std::accumulate(r.widenings.begin(), r.widenings.end(), std::uint64_t{0})) /
+               frames
+        << " a frame\n";
+    // The frames in contact apart: the response costs little in the others.
+    const auto in_contact = static_cast<std::size_t>(
+        std::count_if(r.constraints.begin(), r.constraints.end(), [](auto c) { return c > 0; }));
+    const std::size_t apart = r.constraints.size() - in_contact;
+    out << std::setw(16) << "";
+    if (in_contact == 0) {
+      out << "no frame ended with constraints";
+    } else {
+      out << "the " << in_contact
+          << " frames ending with constraints: proximity + response = " << r.response_ratio(true)
+          << " x the simulation";
+      if (apart != 0) out << "; the other " << apart << ": " << r.response_ratio(false) << " x";
+    }
+    out << '\n' << std::defaultfloat;
+    print_intersection_summary(out, r.intersections);
+  }
+}
+
+}  // namespace
+
+void print_bench_table(std::ostream& out, const SceneBench& b) {
+  const int contact = static_cast<int>(std::count(b.stages.begin(), b.stages.end(), kContact));
+  out << std::fixed << "\n== " << b.scene << " on " << b.backend << " (" << b.device << "), "
+      << b.frames << " frames, " << contact << " in contact ==\n";
+  print_summary(out, b);
+  print_detail(out, b);
+  print_device_times(out, b);
+  print_response(out, b);
+  // Each row is its own stretch of time: a load that comes or goes during the run weighs on
+  // the rows unequally, which a reader comparing them must know.
+  if (b.runs.size() > 1) {
+    out << "Rows measured one after the other (each method's whole run, then the next): a "
+           "machine whose load changes meanwhile times them unequally.\n";
+  }
+  out << "Times: wall clock around each stage"
+      << (b.backend == "gl" ? " after waiting for the backend (glFinish)" : "")
+      << "; warm-up runs excluded" << (b.repeat > 1 ? "; the median of the repeats" : "") << ".\n";
+  for (const std::string& m : b.disagreements) {
+    out << "WARNING: " << m << " found different contacts from "
+        << broadphase_name(b.runs.front().method) << " on some frame\n";
+  }
+  out << std::defaultfloat;
 }
 
 std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord& record) {

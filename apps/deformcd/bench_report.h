@@ -15,9 +15,10 @@ namespace deformcd::app {
   return (v1 - v2) / v2;
 }
 
-/// The summary table (one row per scene, backend and method against the first method, which
-/// is the baseline) and the detail per method.
-void print_bench_table(std::ostream& out, const std::vector<SceneBench>& results);
+/// One scene on one backend, printed as soon as it is measured: the summary (each method
+/// against the first, the baseline), the detail per method, on a GPU the device times, the
+/// contact response's share, and how the rows were measured.
+void print_bench_table(std::ostream& out, const SceneBench& bench);
 
 /// How the measurements were made, recorded with them.
 struct BenchRecord {

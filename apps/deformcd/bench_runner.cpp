@@ -187,6 +187,7 @@ std::vector<SceneBench> run_bench(const BenchOptions& o, const BenchProgress& pr
       bench.scene = o.scenes[s].string();
       bench.backend = std::string(backend_label(backend));
       bench.frames = frames;
+      bench.repeat = o.repeat;
       WorldOptions world_options;
       world_options.backend = backend;
       world_options.cpu_threads = o.cpu_threads;
@@ -217,6 +218,7 @@ std::vector<SceneBench> run_bench(const BenchOptions& o, const BenchProgress& pr
           bench.disagreements.emplace_back(broadphase_name(run.method));
         }
       }
+      progress.measured(bench);
       results.push_back(std::move(bench));
     }
   }

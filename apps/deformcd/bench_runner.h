@@ -83,6 +83,7 @@ struct SceneBench {
   std::string backend;
   std::string device;
   int frames = 0;
+  int repeat = 1;               ///< runs per measurement, the median kept
   std::vector<MethodRun> runs;  ///< in the order of the methods asked for
   std::vector<Stage> stages;    ///< per frame, from the first run's contacts
   DeviceTimes device_times = DeviceTimes::kNone;
@@ -109,6 +110,8 @@ struct BenchProgress {
   /// ("phase1.json cpu bvh").
   std::function<void(long done, long total, const std::string& what)> frame =
       [](long, long, const std::string&) {};
+  /// When a scene's runs on one backend are all measured, before the next backend's begin.
+  std::function<void(const SceneBench& bench)> measured = [](const SceneBench&) {};
 };
 
 /// Runs everything. Throws Error/GlError (e.g. kGl without GL 4.3, naming the scene).

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "deformcd/backend.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/device_info.h"
@@ -33,7 +34,12 @@ std::string bytes_and_mib(std::uint64_t bytes) {
   return text.str();
 }
 
-void print_table(std::ostream& out, const gl::DeviceInfo& d) {
+// What the backend `auto` (run's default, bench's) chooses given this device, in words.
+std::string auto_backend_text(const AutoBackend& choice) {
+  return choice.kind == BackendKind::kGl ? "gl (a hardware device)" : "cpu: " + choice.reason;
+}
+
+void print_table(std::ostream& out, const gl::DeviceInfo& d, const AutoBackend& choice) {
   const std::pair<const char*, std::string> rows[] = {
       {"vendor", d.vendor},
       {"renderer", d.renderer},
@@ -48,14 +54,21 @@ void print_table(std::ostream& out, const gl::DeviceInfo& d) {
       {"max SSBO size", bytes_and_mib(d.max_ssbo_block_bytes)},
       {"max SSBO bindings", std::to_string(d.max_ssbo_bindings)},
       {"max compute SSBOs", std::to_string(d.max_compute_ssbo_blocks) + " per shader"},
+      {"software renderer", is_software_renderer(d.renderer) ? "yes" : "no"},
+      {"backend auto", auto_backend_text(choice)},
   };
   for (const auto& [label, value] : rows) {
     out << std::left << std::setw(22) << label << value << '\n';
   }
 }
 
-nlohmann::json to_json(const gl::DeviceInfo& d) {
+nlohmann::json to_json(const gl::DeviceInfo& d, const AutoBackend& choice) {
   return {
+      // What the library makes of the device: scripts choose their work from these
+      // (scripts/run.sh), not from the renderer's name.
+      {"software_renderer", is_software_renderer(d.renderer)},
+      {"auto_backend", choice.kind == BackendKind::kGl ? "gl" : "cpu"},
+      {"auto_backend_reason", choice.reason},
       {"vendor", d.vendor},
       {"renderer", d.renderer},
       {"gl_version", d.gl_version},
@@ -86,10 +99,11 @@ int run_gpu_info(std::ostream& out, bool json) {
     std::cerr << "deformcd: " << e.what() << '\n';
     return 1;
   }
+  const AutoBackend choice = choose_auto_backend();
   if (json) {
-    out << to_json(info).dump(2) << '\n';
+    out << to_json(info, choice).dump(2) << '\n';
   } else {
-    print_table(out, info);
+    print_table(out, info, choice);
   }
   return 0;
 }

@@ -22,6 +22,7 @@
 #include "option_values.h"
 #include "output_paths.h"
 #include "progress.h"
+#include "response_summary.h"
 #include "usage_error.h"
 #include "video_encoder.h"
 #include "view_scene.h"
@@ -143,11 +144,13 @@ int render(const RenderOptions& o) {
   draw.show_collisions = broadphase != BroadPhase::kNone;
   create_output_directory("--out", o.out);
 
+  ResponseTally response;
   Progress progress("rendering", frames.back());
   progress.update(0);
   for (int frame : frames) {
     while (world.frame() < frame) {
       world.step();
+      if (world.responds()) response.add(world.frame(), world.response_counts());
       progress.update(world.frame());
     }
     std::uint64_t contacts = 0;
@@ -162,8 +165,27 @@ int render(const RenderOptions& o) {
     const fs::path file = out_dir / image_name(frame);
     render::write_png(file, target.read());
     progress.clear();
-    std::cout << file.string() << "  frame " << frame << "  " << contacts << " contacts"
-              << std::endl;
+    std::cout << file.string() << "  frame " << frame;
+    if (!world.responds()) {
+      std::cout << "  " << contacts << " contacts";
+    } else {
+      // The response keeps surfaces apart: its constraints, not intersections, say it acts.
+      std::cout << "  ";
+      if (broadphase != BroadPhase::kNone) {
+        std::cout << count_of(contacts, "intersecting face pair", "intersecting face pairs")
+                  << ", ";
+      }
+      const ResponseCounts c = world.response_counts();
+      std::cout << count_of(c.vertex_face + c.edge_edge + c.untangle, "contact constraint",
+                            "contact constraints");
+    }
+    std::cout << std::endl;
+  }
+  if (world.responds()) {
+    std::cout << "response: "
+              << describe_response(response, world.body_count(),
+                                   view.scene.response->sleep.has_value())
+              << '\n';
   }
   if (ffmpeg) {
     const double fps = 1.0 / view.scene.settings.dt;

@@ -21,6 +21,7 @@
 #include "option_values.h"
 #include "output_paths.h"
 #include "progress.h"
+#include "response_summary.h"
 #include "usage_error.h"
 
 namespace deformcd::app {
@@ -134,9 +135,11 @@ int run(const RunOptions& o) {
   const auto start = Clock::now();
   Progress progress("simulating", frames);
   progress.update(0);
+  ResponseTally response;
   for (int f = 0; f < frames; ++f) {
     world.step();
     record_frame();
+    if (world.responds()) response.add(world.frame(), world.response_counts());
     progress.update(f + 1);
   }
   world.finish();
@@ -158,7 +161,7 @@ int run(const RunOptions& o) {
             << std::fixed << std::setprecision(3) << "time       " << seconds << " s, "
             << 1000.0 * seconds / frames << " ms per frame"
             << (detecting ? " (simulation and collision detection)" : "") << '\n';
-  if (detecting) {
+  if (detecting && !world.responds()) {
     std::cout << "collision  " << broadphase_name(options.broadphase) << ": "
               << count_of(tally.frames_in_contact, "frame", "frames") << " in contact";
     if (tally.frames_in_contact > 0) {
@@ -168,17 +171,24 @@ int run(const RunOptions& o) {
     }
     std::cout << '\n';
   }
-  if (world.responds()) {
-    const ResponseCounts c = world.response_counts();
-    std::cout << "response   "
-              << count_of(c.vertex_face + c.edge_edge, "proximity constraint",
-                          "proximity constraints")
-              << " in the last frame";
-    if (scene.response->sleep.has_value()) {
-      std::cout << ", " << c.asleep << " of " << count_of(world.body_count(), "body", "bodies")
-                << " asleep at the end";
+  if (detecting && world.responds()) {
+    // With contact response, intersecting faces are what the response is there to prevent:
+    // none is its success, not a sign that the bodies never met (the line below says that).
+    std::cout << "intersect  " << broadphase_name(options.broadphase) << ": ";
+    if (tally.frames_in_contact == 0) {
+      std::cout << "no intersecting faces in frames 0-" << frames
+                << " (the response kept the surfaces apart)";
+    } else {
+      std::cout << "intersecting faces in " << tally.frames_in_contact << " of " << frames + 1
+                << " frames (" << tally.first_frame << "-" << tally.last_frame << "), at most "
+                << tally.peak << " face pairs in a frame (the response pushes them apart)";
     }
     std::cout << '\n';
+  }
+  if (world.responds()) {
+    std::cout << "response   "
+              << describe_response(response, world.body_count(), scene.response->sleep.has_value())
+              << '\n';
   }
   if (!o.positions_out.empty()) {
     std::cout << "positions  " << o.positions_out

@@ -21,6 +21,17 @@ enum class BackendKind {
 /// "auto", "gl" or "cpu"; throws Error listing the valid names otherwise.
 [[nodiscard]] BackendKind parse_backend(std::string_view name);
 
+/// What kAuto chooses on this machine.
+struct AutoBackend {
+  BackendKind kind = BackendKind::kCpu;  ///< kGl (a hardware GL 4.3 device) or kCpu
+  std::string reason;                    ///< why the CPU, as a World's notice says; empty for GL
+};
+
+/// Applies kAuto's rule as a World or a Detector does (tries a headless GL 4.3 context and looks
+/// at its device), for a program that chooses more than one backend from it (deformcd bench:
+/// both on a hardware device, else the CPU alone).
+[[nodiscard]] AutoBackend choose_auto_backend();
+
 /// Whether a GL_RENDERER string (or a device description holding it) names a software
 /// rasterizer: llvmpipe, softpipe, swrast. There GL runs on the CPU's cores, and its times,
 /// timer queries included (deformcd/gl/timer_query.h), are CPU times.

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -88,6 +89,12 @@ struct ResponseCounts {
   std::uint64_t widenings = 0;
   /// Bodies asleep after the frame (ResponseSettings::sleep).
   std::uint64_t asleep = 0;
+  /// m: the closest two primitives of a proximity constraint were when the frame's searches
+  /// found them (on the positions the response left), relative to that pair's thickness in
+  /// closest_thickness (the gap the response keeps): the smallest distance / thickness of the
+  /// frame's proximity constraints. Infinity and 0 when the frame had none.
+  float closest_distance = std::numeric_limits<float>::infinity();
+  float closest_thickness = 0.0f;
 };
 
 /// The simulation blew up: a state became NaN/Inf or a node moved implausibly far in a step.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <string_view>
+#include <utility>
 
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"  // declarations only: fine without the GL backend
@@ -74,6 +75,11 @@ BackendChoice choose_backend(BackendKind kind, gl::Context* context) {
   }
 #endif
   return choice;
+}
+
+AutoBackend choose_auto_backend() {
+  BackendChoice choice = choose_backend(BackendKind::kAuto, nullptr);
+  return {choice.kind, std::move(choice.notice)};
 }
 
 }  // namespace deformcd

@@ -347,10 +347,12 @@ void ContactResponse::search() {
     reach[i] =
         0.5f * thickness_[node_body_[i]] + (on_surface_[i] != 0u ? c.node_motion[i].w : 0.0f);
   }
-  const std::uint64_t widenings = counts_.widenings;
+  const ResponseCounts frame_so_far = counts_;
   counts_ = {};
   counts_.searches = searches;
-  counts_.widenings = widenings;
+  counts_.widenings = frame_so_far.widenings;
+  counts_.closest_distance = frame_so_far.closest_distance;  // the frame's, not the window's
+  counts_.closest_thickness = frame_so_far.closest_thickness;
   // The positions now: the window's start, kept for the side each vertex-face pair's vertex
   // starts on (also for pairs a widening finds later in the window).
   const std::vector<glm::vec4>& x = positions();
@@ -431,6 +433,12 @@ void ContactResponse::add_proximity_pair(const ProximityPair& p, response::Frame
   }
   c.pairs.push_back(pair);
   ++(edges ? counts_.edge_edge : counts_.vertex_face);
+  // The closest relative to its thickness (a cross-multiplied comparison: thickness > 0).
+  if (p.distance * counts_.closest_thickness < counts_.closest_distance * pair.thickness ||
+      counts_.closest_thickness == 0.0f) {
+    counts_.closest_distance = p.distance;
+    counts_.closest_thickness = pair.thickness;
+  }
 }
 
 void ContactResponse::widen() {

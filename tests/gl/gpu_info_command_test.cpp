@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "deformcd/backend.h"
 #include "gl_test_context.h"
 #include "gpu_info_command.h"
 
@@ -47,6 +48,12 @@ TEST_F(GpuInfoCommandTest, PrintsOneJsonObjectWithTheLimits) {
                           "max_work_group_invocations", "max_shared_memory_bytes"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
+  // The library's verdict on the device, for scripts (scripts/run.sh): the backend `auto`
+  // chooses, GL on a hardware device only, and why not.
+  const bool software = j.at("software_renderer").get<bool>();
+  EXPECT_EQ(software, is_software_renderer(j.at("renderer").get<std::string>()));
+  EXPECT_EQ(j.at("auto_backend").get<std::string>(), software ? "cpu" : "gl");
+  EXPECT_EQ(j.at("auto_backend_reason").get<std::string>().empty(), !software);
 }
 
 TEST_F(GpuInfoCommandTest, PrintsAnAlignedTable) {

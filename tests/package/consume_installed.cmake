@@ -53,8 +53,14 @@ file(WRITE "${WORK_DIR}/bogus/CMakeLists.txt"
      "cmake_minimum_required(VERSION 3.25)\nproject(bogus NONE)\nfind_package(deformcd 0.2 REQUIRED COMPONENTS nonsense)\n")
 execute_process(COMMAND ${CMAKE_COMMAND} -S "${WORK_DIR}/bogus" -B "${WORK_DIR}/bogus/build"
                         "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix"
-                RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+                RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
 if(rc EQUAL 0)
   message(FATAL_ERROR "find_package(deformcd COMPONENTS nonsense) succeeded")
+endif()
+# ... naming the component and the valid ones (CMake wraps the message: spaces may be newlines).
+string(REGEX REPLACE "[ \t\r\n]+" " " err "${err}")
+if(NOT err MATCHES "unknown component 'nonsense' \\(valid: collision, io, scene, world, render, tetgen")
+  message(FATAL_ERROR "find_package(deformcd COMPONENTS nonsense) did not name the component "
+                      "and the valid ones:\n${err}")
 endif()
 message(STATUS "installed package: consumer built and ran, versions and components checked")

@@ -65,6 +65,25 @@ TEST_F(RenderCli, WritesTheChosenFramesWithCollisionColoursOnlyInContact) {
   EXPECT_EQ(std::distance(fs::directory_iterator(path("images")), fs::directory_iterator()), 2);
 }
 
+// On a response scene "0 contacts" would read as if the bodies never met: each image's line
+// names the intersecting face pairs and the response's constraints, and a last line says what
+// the response did. The overlap scene's bodies start intersecting, so constraints act at once.
+TEST_F(RenderCli, OnAResponseSceneSaysWhatTheResponseDid) {
+  const CliRun r =
+      run_cli("render scenes/overlap.json --at 2 --out " + path("images") + " --size 160x120");
+  if (gl_unavailable(r)) DEFORMCD_GL_UNAVAILABLE(r.output);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::size_t line = r.output.find("frame_00002.png  frame 2  ");
+  ASSERT_NE(line, std::string::npos) << r.output;
+  const std::string image_line = r.output.substr(line, r.output.find('\n', line) - line);
+  EXPECT_NE(image_line.find(" intersecting face pair"), std::string::npos) << image_line;
+  EXPECT_NE(image_line.find(" contact constraints"), std::string::npos) << image_line;
+  EXPECT_EQ(image_line.find(" contacts"), std::string::npos) << image_line;
+  EXPECT_NE(r.output.find("response: contact constraints in 2 of 2 frames (1-2), at most "),
+            std::string::npos)
+      << r.output;
+}
+
 TEST_F(RenderCli, AFileInTheWayOfOutIsAClearErrorAndNothingIsWritten) {
   std::ofstream(path("taken")) << "keep me";
   const CliRun r = run_cli("render scenes/phase2.json --at 0 --out " + path("taken"));
