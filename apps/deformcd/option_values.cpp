@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "deformcd/collision.h"
+#include "deformcd/limits.h"
 #include "usage_error.h"
 
 namespace deformcd::app {
@@ -39,6 +40,14 @@ void check_at_least(const char* option, long value, long minimum) {
   if (value < minimum) {
     throw UsageError(std::string(option) + " must be at least " + std::to_string(minimum) +
                      ", got " + std::to_string(value));
+  }
+}
+
+void check_threads_option(long threads) {
+  try {
+    check_thread_count("--threads", threads);
+  } catch (const InputError& e) {
+    throw UsageError(e.what());
   }
 }
 

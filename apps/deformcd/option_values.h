@@ -22,6 +22,10 @@ void add_broadphase_option(CLI::App* command, std::optional<std::string>& broadp
 /// Throws UsageError "`option` must be at least `minimum`, got `value`".
 void check_at_least(const char* option, long value, long minimum);
 
+/// `--threads T`: the library's rule (deformcd::check_thread_count: 0 to kMaxThreads) as a
+/// UsageError with the library's message.
+void check_threads_option(long threads);
+
 /// "1 body", "2 bodies".
 [[nodiscard]] std::string count_of(std::uint64_t n, const char* one, const char* many);
 

@@ -10,6 +10,7 @@
 #include "core/sim/stability_estimate.h"
 #include "cpu/executor.h"
 #include "deformcd/gl/context.h"
+#include "deformcd/limits.h"
 #include "simulation_factory.h"
 
 namespace deformcd {
@@ -46,7 +47,7 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   if (!(settings.dt > 0.0f) || settings.substeps < 1) {
     throw Error("dt must be positive and substeps at least 1");
   }
-  if (options.cpu_threads < 0) throw Error("cpu_threads must be 0 (every core) or positive");
+  check_thread_count("threads", options.cpu_threads);
   const SimulationState state = assemble_simulation(bodies);
   objects_ = state.objects;
   names_ = state.body_names;
