@@ -1,6 +1,8 @@
 #include "option_values.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "deformcd/collision.h"
@@ -49,6 +51,17 @@ void check_threads_option(long threads) {
   } catch (const InputError& e) {
     throw UsageError(e.what());
   }
+}
+
+void check_run_length(long long frames, long long substeps) {
+  const long long total = frames * substeps;  // both below 2^31: no overflow
+  const char* lifted = std::getenv("DEFORMCD_LONG_RUN");
+  if (total <= kMaxRunSubsteps || (lifted != nullptr && std::string(lifted) == "1")) return;
+  throw UsageError("the run is " + std::to_string(frames) + " frames x " +
+                   std::to_string(substeps) + " substeps = " + std::to_string(total) +
+                   " substeps, more than " + std::to_string(kMaxRunSubsteps) +
+                   " (the longest shipped scene takes 9600): set DEFORMCD_LONG_RUN=1 to run it "
+                   "anyway, or give fewer --frames");
 }
 
 std::string count_of(std::uint64_t n, const char* one, const char* many) {

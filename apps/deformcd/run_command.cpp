@@ -88,6 +88,7 @@ int run(const RunOptions& o) {
   status("reading " + o.scene);
   const Scene scene = read_scene(o.scene);
   const int frames = o.frames.value_or(scene.settings.frames);
+  check_run_length(frames, scene.settings.substeps);
   WorldOptions options;
   options.backend = parse_backend(o.backend);
   options.cpu_threads = o.threads;

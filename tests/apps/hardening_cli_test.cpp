@@ -134,6 +134,17 @@ TEST(HardeningCli, ThreadCountsPastTheLimitAreUsageErrorsWithTheLibrarysMessage)
   }
 }
 
+TEST(HardeningCli, ARunOfBillionsOfSubstepsIsRefusedUnlessAskedFor) {
+  // phase1 runs 16 substeps a frame: 2e9 frames would run for ever, silently.
+  const CliRun r = run_cli("run scenes/phase1.json --backend cpu --frames 2000000000");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("the run is 2000000000 frames x 16 substeps = 32000000000 substeps, "
+                          "more than 1000000"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("DEFORMCD_LONG_RUN=1"), std::string::npos) << r.output;
+}
+
 #if !defined(DEFORMCD_UNDER_ASAN) && defined(DEFORMCD_HAS_GL)
 // The case: under `ulimit -v 250000` Mesa's llvmpipe dies of SIGSEGV while it sets up a
 // context. The auto backend probes in a child, so the run goes on, on the CPU, with a notice.
