@@ -48,7 +48,6 @@ namespace {
   }
   ::_exit(0);
 }
-#endif
 
 // Reads everything from `in` until the child closes it or `deadline` passes; false on timeout.
 bool read_answer(int in, std::chrono::steady_clock::time_point deadline, std::string& answer) {
@@ -68,6 +67,7 @@ bool read_answer(int in, std::chrono::steady_clock::time_point deadline, std::st
     answer.append(buffer.data(), static_cast<std::size_t>(n));
   }
 }
+#endif
 
 }  // namespace
 
