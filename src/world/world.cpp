@@ -109,7 +109,10 @@ void World::run_response(const std::function<void()>& stage) {
   } catch (const SimulationError& e) {
     // The world's check names the frame and the suggested substeps; it finds the same node
     // unless the response met a position too large to subtract (finite, moving slowly).
-    check_stability(frame_ + 1, " in the contact response");
+    // The response checks the positions and velocities the integration gave it: what it finds
+    // non-finite there was not made by contact forces (the bodies may be far apart).
+    check_stability(frame_ + 1,
+                    ", found by the contact response's check of what the integration gave it");
     throw SimulationError("the simulation became unstable by frame " + std::to_string(frame_ + 1) +
                           ": " + e.what() + ". " + advice());
   }
