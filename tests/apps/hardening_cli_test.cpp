@@ -134,6 +134,32 @@ TEST(HardeningCli, ThreadCountsPastTheLimitAreUsageErrorsWithTheLibrarysMessage)
   }
 }
 
+TEST(HardeningCli, InfoRefusesCoordinatesPastTheRangeInsteadOfPrintingInfiniteBounds) {
+  deformcd::test::TempDir dir;
+  std::ofstream(dir / "big.node") << "4 3 0 0\n0 0 0 0\n1 1e39 0 0\n2 0 1e39 0\n3 0 0 1e39\n";
+  std::ofstream(dir / "big.ele") << "1 4 0\n0 0 1 2 3\n";
+  const CliRun r = run_cli("info " + (dir / "big").string());
+  EXPECT_EQ(r.status, 1) << r.output;  // before: 0, with bounds [inf, inf, inf]
+  EXPECT_NE(r.output.find("node 1 has coordinate 1e+39, outside +-1e+09 "
+                          "(deformcd::kMaxCoordinate)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("inf"), std::string::npos) << r.output;
+}
+
+TEST(HardeningCli, OneExitStatusRuleInEveryCommand) {
+  // A missing argument is a usage error (2); a missing input file a failed work (1), named.
+  CliRun r = run_cli("info");
+  EXPECT_EQ(r.status, 2) << r.output;  // before: 1
+  EXPECT_NE(r.output.find("deformcd info: error: give a MODEL, or --gpu"), std::string::npos)
+      << r.output;
+  r = run_cli("collide " + kData + "cube.off " + kData + "no_such.off --backend cpu");
+  EXPECT_EQ(r.status, 1) << r.output;  // before: 2, through CLI11's check
+  EXPECT_NE(r.output.find("no_such.off: cannot open"), std::string::npos) << r.output;
+  r = run_cli("info " + kData + "no_such.off");
+  EXPECT_EQ(r.status, 1) << r.output;
+}
+
 TEST(HardeningCli, ARunOfBillionsOfSubstepsIsRefusedUnlessAskedFor) {
   // phase1 runs 16 substeps a frame: 2e9 frames would run for ever, silently.
   const CliRun r = run_cli("run scenes/phase1.json --backend cpu --frames 2000000000");
