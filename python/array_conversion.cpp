@@ -82,9 +82,9 @@ std::vector<Triangle> triangles_from_array(const py::handle& object, const std::
     throw py::value_error(what + " must have shape (m, 3), got " + shape_string(array));
   }
   // Values past int64 (uint64 only) come out negative here, and are reported as out of range.
-  const auto indices =
-      py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(array);
-  if (!indices) throw py::error_already_set();
+  // The converting constructor keeps numpy's own error (MemoryError for an array too large to
+  // convert); ensure() would clear it and leave nothing to raise.
+  const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> indices(array);
   const std::int64_t* p = indices.data();
   std::vector<Triangle> triangles(static_cast<std::size_t>(array.shape(0)));
   for (std::size_t t = 0; t < triangles.size(); ++t, p += 3) {

@@ -73,7 +73,7 @@ BenchOptions bench_options(const BenchArgs& a) {
   }
   check_at_least("--frames", a.frames, 1);
   check_at_least("--repeat", a.repeat, 1);
-  check_at_least("--threads", a.threads, 0);
+  check_threads_option(a.threads);
   o.frames = a.frames;
   o.repeat = a.repeat;
   o.cpu_threads = a.threads;
@@ -94,6 +94,7 @@ int bench(const BenchArgs& a) {
   BenchOptions o = bench_options(a);
   if (!a.json.empty()) check_output_file("--json", a.json);
   if (!a.csv.empty()) check_output_file("--csv", a.csv);
+  const SummaryOnStderr summary_on_stderr(writes_stdout({a.json, a.csv, a.plot}));
   std::optional<std::filesystem::path> gnuplot;
   if (!a.plot.empty()) {
     check_output_file("--plot", a.plot);

@@ -13,6 +13,7 @@
 #include "deformcd/detector.h"
 #include "deformcd/error.h"
 #include "deformcd/io.h"
+#include "option_values.h"
 #include "output_paths.h"
 
 namespace deformcd::app {
@@ -55,7 +56,9 @@ int run_collide(const CollideOptions& o) {
   const BackendKind backend = parse_backend(o.backend);
   const BroadPhase method = parse_broadphase(o.broadphase);
   if (method == BroadPhase::kNone) throw Error("collide needs a broad phase other than 'none'");
+  check_threads_option(o.threads);
   if (!o.json_out.empty()) check_output_file("--json", o.json_out);
+  const SummaryOnStderr summary_on_stderr(writes_stdout({o.json_out}));
 
   std::vector<LoadedSurface> surfaces;
   std::vector<CollisionMesh> meshes;
@@ -114,14 +117,13 @@ Command add_collide_command(CLI::App& app) {
       "collide",
       "Intersecting triangle pairs of surface files (.off .obj .stl .ply, open surfaces "
       "included) in their given poses; body = the file's position, face = the triangle's index");
-  cmd->add_option("files", options->files, "Surface files")->required()->check(CLI::ExistingFile);
+  cmd->add_option("files", options->files, "Surface files")->required();
   cmd->add_flag("--self", options->self, "Also test each surface against itself");
   cmd->add_option("--backend", options->backend, "gl, cpu or auto")
       ->check(CLI::IsMember({"auto", "gl", "cpu"}));
   cmd->add_option("--broadphase", options->broadphase, "brute, octree, octree-compact or bvh")
       ->check(CLI::IsMember({"brute", "octree", "octree-compact", "bvh"}));
-  cmd->add_option("--threads", options->threads, "CPU threads (0: every core)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", options->threads, "CPU threads (0: every core; at most 256)");
   cmd->add_option("--json", options->json_out,
                   "Write {\"contacts\":[...]} (the shape of a `run --contacts` line)");
   return [options] { return run_collide(*options); };

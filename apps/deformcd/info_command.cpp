@@ -12,6 +12,7 @@
 #include "deformcd/body.h"
 #include "deformcd/error.h"
 #include "model_input.h"
+#include "usage_error.h"
 #ifdef DEFORMCD_HAS_GL
 #include "gpu_info_command.h"
 #endif
@@ -93,7 +94,7 @@ Command add_info_command(CLI::App& app) {
       return 1;
 #endif
     }
-    if (o->model.empty()) throw Error("info: give a MODEL, or --gpu");
+    if (o->model.empty()) throw UsageError("give a MODEL, or --gpu");
     return print_model_info(*o);
   };
 }

@@ -1,9 +1,12 @@
 #include "option_values.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "deformcd/collision.h"
+#include "deformcd/limits.h"
 #include "usage_error.h"
 
 namespace deformcd::app {
@@ -40,6 +43,25 @@ void check_at_least(const char* option, long value, long minimum) {
     throw UsageError(std::string(option) + " must be at least " + std::to_string(minimum) +
                      ", got " + std::to_string(value));
   }
+}
+
+void check_threads_option(long threads) {
+  try {
+    check_thread_count("--threads", threads);
+  } catch (const InputError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+void check_run_length(long long frames, long long substeps) {
+  const long long total = frames * substeps;  // both below 2^31: no overflow
+  const char* lifted = std::getenv("DEFORMCD_LONG_RUN");
+  if (total <= kMaxRunSubsteps || (lifted != nullptr && std::string(lifted) == "1")) return;
+  throw UsageError("the run is " + std::to_string(frames) + " frames x " +
+                   std::to_string(substeps) + " substeps = " + std::to_string(total) +
+                   " substeps, more than " + std::to_string(kMaxRunSubsteps) +
+                   " (the longest shipped scene takes 9600): set DEFORMCD_LONG_RUN=1 to run it "
+                   "anyway, or give fewer --frames");
 }
 
 std::string count_of(std::uint64_t n, const char* one, const char* many) {

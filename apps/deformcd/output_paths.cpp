@@ -3,10 +3,12 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <iostream>
 #include <sstream>
 #include <system_error>
 
 #include "deformcd/error.h"
+#include "deformcd/io.h"
 
 namespace deformcd::app {
 
@@ -32,11 +34,19 @@ bool writable_directory(const fs::path& dir) {
 }  // namespace
 
 void check_output_file(std::string_view option, const std::string& file) {
-  const fs::path path(file);
+  if (file == "-") return;  // standard output
   std::error_code ec;
-  if (file.empty() || path.filename().empty() || fs::is_directory(path, ec)) {
+  if (file.empty() || fs::path(file).filename().empty() || fs::is_directory(file, ec)) {
     throw Error(named(option, file) + ": is a directory; give a file name");
   }
+  // A device, FIFO or socket (links followed) is written directly and needs only to be
+  // writable; otherwise what is replaced is the links' final target (io::AtomicFile).
+  const fs::file_status status = fs::status(file, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    if (::access(file.c_str(), W_OK) != 0) throw Error(named(option, file) + ": is not writable");
+    return;
+  }
+  const fs::path path = follow_symlinks(file);
   const fs::path dir = directory_of(path);
   if (!fs::exists(dir, ec)) {
     throw Error(named(option, file) + ": the directory " + dir.string() +
@@ -88,6 +98,21 @@ void create_output_directory(std::string_view option, const std::string& dir) {
     throw Error(named(option, dir) + ": cannot create the output directory (" +
                 (ec ? ec.message() : std::string("a file of that name is in the way")) + ")");
   }
+}
+
+bool writes_stdout(std::initializer_list<std::string_view> outputs) {
+  for (std::string_view output : outputs) {
+    if (output == "-") return true;
+  }
+  return false;
+}
+
+SummaryOnStderr::SummaryOnStderr(bool move) {
+  if (move) previous_ = std::cout.rdbuf(std::cerr.rdbuf());
+}
+
+SummaryOnStderr::~SummaryOnStderr() {
+  if (previous_ != nullptr) std::cout.rdbuf(previous_);
 }
 
 std::optional<fs::path> find_on_path(std::string_view name) {

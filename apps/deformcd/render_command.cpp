@@ -112,6 +112,8 @@ int render(const RenderOptions& o) {
   check_output_directory("--out", o.out);
   std::optional<fs::path> ffmpeg;
   if (!o.video.empty()) {
+    // ffmpeg picks the container from the extension, and an MP4 needs a seekable file.
+    if (o.video == "-") throw UsageError("--video - : give a file name (an .mp4 needs a file)");
     check_output_file("--video", o.video);
     ffmpeg = require_program("--video", o.video, "ffmpeg",
                              "install ffmpeg, or write the frames with --every-frame and encode " +

@@ -72,7 +72,7 @@ std::string positions_json_line(const World& world) {
 // Everything about the command line that can be checked without reading the scene.
 void check_options(const RunOptions& o) {
   if (o.frames) check_at_least("--frames", *o.frames, 1);
-  check_at_least("--threads", o.threads, 0);
+  check_threads_option(o.threads);
   if (o.every_frame && o.positions_out.empty()) {
     throw UsageError("--every-frame writes the positions of every frame: give --positions FILE");
   }
@@ -85,9 +85,11 @@ void check_options(const RunOptions& o) {
 
 int run(const RunOptions& o) {
   check_options(o);
+  const SummaryOnStderr summary_on_stderr(writes_stdout({o.contacts_out, o.positions_out}));
   status("reading " + o.scene);
   const Scene scene = read_scene(o.scene);
   const int frames = o.frames.value_or(scene.settings.frames);
+  check_run_length(frames, scene.settings.substeps);
   WorldOptions options;
   options.backend = parse_backend(o.backend);
   options.cpu_threads = o.threads;

@@ -10,6 +10,7 @@
 #include "deformcd/error.h"
 #include "deformcd/io.h"
 #include "output_paths.h"
+#include "usage_error.h"
 #ifdef DEFORMCD_HAS_TETGEN
 #include "deformcd/tetrahedralize.h"
 #endif
@@ -44,6 +45,8 @@ Command add_tetra_command(CLI::App& app) {
                 "input order, boundary faces are the input triangles");
   return [o]() -> int {
 #ifdef DEFORMCD_HAS_TETGEN
+    // A prefix of three files: standard output cannot take them.
+    if (o->output == "-") throw UsageError("--out - : tetra writes three files; give a prefix");
     for (const char* extension : {".node", ".ele", ".face"})
       check_output_file("--out", o->output + extension);
     const SurfaceMesh surface = read_surface(o->input);

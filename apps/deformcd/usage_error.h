@@ -5,9 +5,10 @@
 
 namespace deformcd::app {
 
-/// 0: done. 1: the work failed (bad input file, unwritable output, missing program, no GL, a
-/// simulation that blew up, methods that disagree). 2: a usage error (unknown command or option,
-/// a bad option value), reported before any work.
+/// 0: done. 1: the work failed (an input file missing, unreadable or malformed, an unwritable
+/// output, a missing program, no GL, a simulation that blew up, methods that disagree). 2: a
+/// usage error (unknown command or option, a missing argument, a bad option value), reported
+/// before any work. The same in every command (docs/reliability.md, "Exit statuses").
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitUsage = 2;

@@ -41,6 +41,11 @@ void write_tetgen(const TetMesh& mesh, const std::filesystem::path& prefix);
 /// same checks, as write_tetgen).
 void write_off(const SurfaceMesh& mesh, const std::filesystem::path& file);
 
+/// Every writer below writes its path as follows: "-" is standard output; a device, FIFO or
+/// socket is written directly, never replaced; a symbolic link is followed and its final target
+/// replaced atomically (keeping the link); an existing regular file is replaced atomically and
+/// its permission bits kept. Only replaced files have the all-or-nothing guarantee.
+///
 /// A file written piece by piece (e.g. one line per frame) under a temporary next to `target`,
 /// which commit() gives the target's name. Destroyed without commit() (an error on the way),
 /// or the process killed (SIGINT, SIGTERM, SIGKILL) before it, it leaves nothing behind, and an
@@ -70,6 +75,11 @@ class StreamedFileWriter {
   struct File;
   std::unique_ptr<File> file_;
 };
+
+/// `target` with its symbolic links followed (a link's relative target is read from the link's
+/// directory): the file an output path writes. A dangling link gives the name it points to.
+/// Throws Error naming `target` for a loop (over 40 links).
+[[nodiscard]] std::filesystem::path follow_symlinks(const std::filesystem::path& target);
 
 /// Writes `contents` to `file` through a temporary file renamed into place, so a failure leaves
 /// neither a partial file nor a temporary. Throws Error naming the file.

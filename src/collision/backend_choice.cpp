@@ -7,6 +7,7 @@
 
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"  // declarations only: fine without the GL backend
+#include "gl_probe.h"
 #ifdef DEFORMCD_HAS_GL
 #include "deformcd/gl/device_info.h"
 #endif
@@ -34,6 +35,18 @@ BackendChoice choose_gl(gl::Context* context) {
 #endif
 }
 
+BackendChoice cpu_with_notice(std::string notice) {
+  BackendChoice cpu;
+  cpu.notice = std::move(notice);
+  return cpu;
+}
+
+std::string software_notice(const std::string& renderer) {
+  return "the only OpenGL device is a software renderer (" + renderer +
+         "), slower than the CPU backend: using the CPU (ask for the GL backend to run on it "
+         "anyway)";
+}
+
 }  // namespace
 
 bool is_software_renderer(const std::string& renderer) {
@@ -56,6 +69,23 @@ BackendKind parse_backend(std::string_view name) {
 BackendChoice choose_backend(BackendKind kind, gl::Context* context) {
   if (kind == BackendKind::kGl) return choose_gl(context);
   if (kind == BackendKind::kCpu) return {};
+  if (context == nullptr) {
+    // Look for a device in a child process first: a driver that crashes while it sets up a
+    // context must not take the caller down with it.
+    const GlProbe probe = probe_gl_in_child();
+    switch (probe.outcome) {
+      case GlProbe::Outcome::kCrashed:
+        return cpu_with_notice("the OpenGL probe failed (" + probe.text +
+                               "), using the CPU backend");
+      case GlProbe::Outcome::kNoGl:
+        return cpu_with_notice("OpenGL 4.3 is not available, using the CPU backend: " + probe.text);
+      case GlProbe::Outcome::kRenderer:
+        if (is_software_renderer(probe.text)) return cpu_with_notice(software_notice(probe.text));
+        break;
+      case GlProbe::Outcome::kNotRun:
+        break;  // probe in this process, as below
+    }
+  }
   BackendChoice choice;
   try {
     choice = choose_gl(context);
@@ -66,13 +96,7 @@ BackendChoice choose_backend(BackendKind kind, gl::Context* context) {
   }
 #ifdef DEFORMCD_HAS_GL
   const std::string renderer = gl::query_device_info(*choice.context).renderer;
-  if (is_software_renderer(renderer)) {
-    BackendChoice cpu;
-    cpu.notice = "the only OpenGL device is a software renderer (" + renderer +
-                 "), slower than the CPU backend: using the CPU (ask for the GL backend to "
-                 "run on it anyway)";
-    return cpu;
-  }
+  if (is_software_renderer(renderer)) return cpu_with_notice(software_notice(renderer));
 #endif
   return choice;
 }

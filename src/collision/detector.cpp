@@ -1,8 +1,11 @@
 #include "deformcd/detector.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
+
+#include <glm/common.hpp>
 
 #include "backend_choice.h"
 #include "core/collision/contacts.h"
@@ -12,6 +15,7 @@
 #include "cpu/parallel_for.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"  // declarations only: fine without the GL backend
+#include "deformcd/limits.h"
 #include "detector_impl.h"
 #ifdef DEFORMCD_HAS_GL
 #include "gpu/gl/gl_collision.h"
@@ -98,12 +102,32 @@ void Detector::Impl::check_finite() {
     const PositionSource& s = sources[m];
     if (s.kind != PositionSource::Kind::kHost) continue;
     const std::size_t stride = s.stride_bytes / sizeof(float);
+    glm::vec3 low(kMaxCoordinate);
+    glm::vec3 high(-kMaxCoordinate);
     for (std::uint32_t v = 0; v < s.vertex_count; ++v) {
       const float* p = s.host + v * stride;
-      if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) continue;
-      throw InputError(label_of(data, m), "vertex " + std::to_string(v) +
-                                              " has a non-finite position " +
-                                              describe({p[0], p[1], p[2]}));
+      const glm::vec3 x(p[0], p[1], p[2]);
+      if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z))) {
+        throw InputError(label_of(data, m), "vertex " + std::to_string(v) +
+                                                " has a non-finite position " + describe(x));
+      }
+      if (std::abs(x.x) > kMaxCoordinate || std::abs(x.y) > kMaxCoordinate ||
+          std::abs(x.z) > kMaxCoordinate) {
+        throw InputError(label_of(data, m),
+                         "vertex " + std::to_string(v) + " has position " + describe(x) +
+                             ", outside +-1e9 (deformcd::kMaxCoordinate), the range in which "
+                             "contacts do not depend on the units");
+      }
+      low = glm::min(low, x);
+      high = glm::max(high, x);
+    }
+    const glm::vec3 side = high - low;
+    const float extent = std::max(side.x, std::max(side.y, side.z));
+    if (s.vertex_count > 0 && extent > 0.0f && extent < kMinMeshExtent) {
+      throw InputError(label_of(data, m),
+                       "spans only " + describe(side) +
+                           ", below 1e-10 (deformcd::kMinMeshExtent), the smallest size at which "
+                           "contacts do not depend on the units: give it in smaller units");
     }
   }
   std::uint32_t mesh = 0;
@@ -158,7 +182,7 @@ void Detector::Impl::complete() {
 }
 
 Detector::Detector(std::vector<CollisionMesh> meshes, const DetectorOptions& options) {
-  if (options.threads < 0) throw Error("threads must be 0 (every core) or positive");
+  check_thread_count("threads", options.threads);
   BackendChoice choice = choose_backend(options.backend, options.gl_context);
   impl_ = Impl::create(std::move(meshes), options, choice.kind, choice.context,
                        std::make_shared<cpu::Executor>(options.threads), true);

@@ -3,6 +3,7 @@
 
 #include "deformcd/body.h"
 #include "deformcd/error.h"
+#include "deformcd/limits.h"
 #include "geometry.h"
 #include "spring_topology.h"
 #include "surface_extraction.h"
@@ -20,8 +21,18 @@ Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::stri
   body.tetrahedra = mesh.tetrahedra;
 
   body.positions.reserve(mesh.nodes.size());
-  for (const glm::dvec3& p : mesh.nodes)
+  for (std::size_t i = 0; i < mesh.nodes.size(); ++i) {
+    const glm::dvec3& p = mesh.nodes[i];
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(p[k]) <= static_cast<double>(kMaxCoordinate)) continue;
+      std::ostringstream msg;
+      msg << "node " << i << " has coordinate " << p[k] << ", outside +-" << kMaxCoordinate
+          << " (deformcd::kMaxCoordinate), the range in which contacts do not depend on the "
+             "units: give the model in other units, or nearer the origin";
+      throw InputError(source, msg.str());
+    }
     body.positions.emplace_back(glm::vec3(p), 1.0f);
+  }
   body.velocities.assign(mesh.nodes.size(), glm::vec4(0.0f));
 
   // Each tetrahedron's volume, once: masses, volume forces and spring stiffnesses use it.

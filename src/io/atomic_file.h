@@ -5,6 +5,16 @@
 // is given the target's name only once everything was written. Where the file system has no
 // O_TMPFILE (or /proc is not mounted) the temporary is a hidden named file next to the target,
 // removed on errors but left behind if the process is killed.
+//
+// What a target path names decides how it is written (the one place that decides it, for every
+// writer and every output option of the tool):
+// - "-": standard output, written directly (nothing to replace);
+// - an existing file that is not a regular file or a directory (a device such as /dev/null or
+//   /dev/full, a FIFO, a socket): opened and written directly, never replaced;
+// - a symbolic link: followed (links to links too); its final target is replaced atomically,
+//   with the temporary in the target's directory, and the link is kept;
+// - a regular file or a new name: replaced atomically; an existing file's permission bits are
+//   given to its replacement.
 
 #include <cstdio>
 #include <filesystem>
@@ -19,6 +29,13 @@ namespace deformcd::io {
 /// leaves nothing either (unless it had to use a named temporary, see named_temporary()).
 class AtomicFile {
  public:
+  /// How the target is written (see the file's comment).
+  enum class Kind {
+    kReplaced,  ///< a regular file or a new name (a symlink's final target): atomic replacement
+    kDirect,    ///< a device, FIFO or socket: written directly
+    kStdout,    ///< "-": standard output
+  };
+
   explicit AtomicFile(std::filesystem::path target);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
@@ -46,11 +63,18 @@ class AtomicFile {
   [[nodiscard]] const std::filesystem::path& named_temporary() const { return temporary_; }
   /// True once write() has created the temporary.
   [[nodiscard]] bool is_open() const { return file_ != nullptr; }
+  /// How the target is written; known once write() opened it.
+  [[nodiscard]] Kind kind() const { return kind_; }
 
  private:
   void open();
+  void open_direct();
+  void open_temporary();
 
   std::filesystem::path target_;
+  std::filesystem::path replaced_;  // the file replaced: the target, its symlinks followed
+  Kind kind_ = Kind::kReplaced;
+  int mode_ = -1;  // an existing target's permission bits, given to its replacement
   std::filesystem::path temporary_;
   std::FILE* file_ = nullptr;
   bool committed_ = false;

@@ -164,18 +164,27 @@ ParsedSurface read_ascii(std::string_view text, const std::string& file) {
 
 }  // namespace
 
+void check_stl_size(std::string_view head, std::uint64_t size, const std::string& file) {
+  if (size < kBinaryHeader || head.size() < kBinaryHeader) return;
+  const auto count = ByteReader(head, 80, false).read<std::uint32_t>();
+  const std::uint64_t expected = kBinaryHeader + std::uint64_t{count} * kBinaryTriangle;
+  if (size == expected) return;
+  if (!starts_with_solid(head) || !looks_like_text(head)) {
+    throw InputError(file, "binary STL header announces " + std::to_string(count) + " triangles (" +
+                               std::to_string(expected) + " bytes), but the file has " +
+                               std::to_string(size) + " bytes: truncated or not an STL file");
+  }
+}
+
 ParsedSurface read_stl(std::string_view data, const std::string& file) {
   const std::string& name = file;
   if (data.size() >= kBinaryHeader) {
+    check_stl_size(data.substr(0, kBinaryHeader), data.size(), name);
     const auto count = ByteReader(data, 80, false).read<std::uint32_t>();
-    const std::uint64_t expected = kBinaryHeader + std::uint64_t{count} * kBinaryTriangle;
-    if (data.size() == expected) return read_binary(data, name);
-    if (!starts_with_solid(data) || !looks_like_text(data)) {
-      throw InputError(name, "binary STL header announces " + std::to_string(count) +
-                                 " triangles (" + std::to_string(expected) +
-                                 " bytes), but the file has " + std::to_string(data.size()) +
-                                 " bytes: truncated or not an STL file");
+    if (data.size() == kBinaryHeader + std::uint64_t{count} * kBinaryTriangle) {
+      return read_binary(data, name);
     }
+    if (!looks_like_text(data)) check_stl_size(data, data.size(), name);  // the same message
   } else if (!starts_with_solid(data)) {
     throw InputError(name,
                      "is neither ASCII STL (does not start with 'solid') nor binary STL "

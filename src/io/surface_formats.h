@@ -55,6 +55,10 @@ class SurfaceBuilder {
 // parse_surface does.
 ParsedSurface read_off(std::string_view text, const std::string& file);
 ParsedSurface read_stl(std::string_view data, const std::string& file);
+/// Refuses an STL whose first 84 bytes (`head`) and size already show it is neither binary (its
+/// triangle count disagrees with `size`) nor ASCII (no "solid", or control bytes): what read_stl
+/// would say, without reading the rest of the file. Throws InputError.
+void check_stl_size(std::string_view head, std::uint64_t size, const std::string& file);
 ParsedSurface read_ply(std::string_view data, const std::string& file);
 ParsedSurface read_obj(std::string_view text, const std::string& file);
 

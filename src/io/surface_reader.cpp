@@ -10,7 +10,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <system_error>
 
 #include "deformcd/error.h"
 #include "deformcd/io.h"
@@ -55,6 +58,23 @@ SurfaceMesh parse_surface(std::string_view data, SurfaceFormat format, const std
 
 }  // namespace io
 
+namespace {
+
+// A binary STL's size is in its 84-byte header: a file whose size disagrees (and that is no
+// ASCII STL) is refused before it is read, whatever its size.
+void check_stl_head(const std::filesystem::path& file) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (ec) return;  // read_whole_file says why
+  std::ifstream in(file, std::ios::binary);
+  std::string head(84, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  io::check_stl_size(head, size, file.string());
+}
+
+}  // namespace
+
 bool is_surface_file(const std::filesystem::path& file) {
   return io::surface_format_of(file).has_value();
 }
@@ -65,6 +85,7 @@ SurfaceMesh read_surface(const std::filesystem::path& file) {
     throw InputError(file.string(), "unknown surface format '" + file.extension().string() +
                                         "' (expected .off, .obj, .stl or .ply)");
   }
+  if (*format == io::SurfaceFormat::kStl) check_stl_head(file);
   return io::parse_surface(io::read_whole_file(file), *format, file.string());
 }
 

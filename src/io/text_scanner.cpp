@@ -47,15 +47,19 @@ std::string read_whole_file(const std::filesystem::path& file) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
   if (!f) throw InputError(file.string(), std::string("cannot open: ") + std::strerror(errno));
 
+  // Read into a buffer of the file's size, and only then look for more: a chunk read past a
+  // buffer that was exactly full would reallocate it, holding two copies (twice the file) at once.
   std::string data;
   const auto size_hint = std::filesystem::file_size(file, ec);
-  if (!ec) data.reserve(static_cast<std::size_t>(size_hint));
-  constexpr std::size_t kChunk = std::size_t{1} << 20;
-  for (;;) {
-    const std::size_t old_size = data.size();
-    data.resize(old_size + kChunk);
-    const std::size_t got = std::fread(data.data() + old_size, 1, kChunk, f.get());
-    data.resize(old_size + got);
+  if (!ec) {
+    data.resize(static_cast<std::size_t>(size_hint));
+    data.resize(std::fread(data.data(), 1, data.size(), f.get()));
+  }
+  constexpr std::size_t kChunk = std::size_t{1} << 16;
+  std::string chunk(kChunk, '\0');
+  for (;;) {  // a file that grew since its size was read, or one whose size is unknown
+    const std::size_t got = std::fread(chunk.data(), 1, kChunk, f.get());
+    data.append(chunk.data(), got);
     if (got < kChunk) break;
   }
   if (std::ferror(f.get())) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -80,12 +81,25 @@ std::optional<std::string> JsonFields::string(const std::string& key) {
   return v->get<std::string>();
 }
 
+namespace {
+
+// Positions, velocities, gravity...: the simulation holds them in 32-bit float.
+bool fits_float(double v) {
+  return std::abs(v) <= static_cast<double>(std::numeric_limits<float>::max());
+}
+
+constexpr const char* kPastFloat =
+    "a value is past 3.4e+38, the largest 32-bit float (the simulation's type)";
+
+}  // namespace
+
 std::optional<glm::dvec3> JsonFields::vec3(const std::string& key, bool scalar_ok) {
   const nlohmann::json* v = raw(key);
   if (!v) return std::nullopt;
   if (scalar_ok && v->is_number()) {
     const double s = v->get<double>();
     if (!std::isfinite(s)) fail(key, "expected a finite number");
+    if (!fits_float(s)) fail(key, kPastFloat);
     return glm::dvec3(s);
   }
   const char* expected =
@@ -98,6 +112,7 @@ std::optional<glm::dvec3> JsonFields::vec3(const std::string& key, bool scalar_o
       fail(key, std::string("expected ") + expected);
     }
     out[k] = c.get<double>();
+    if (!fits_float(out[k])) fail(key, kPastFloat);
   }
   return out;
 }

@@ -91,6 +91,18 @@ BodyInit make_body(const TetMesh& model, const BodySpec& spec, const Scene& scen
   return init;
 }
 
+// The model of body `i`, an error in it named with the scene and the key that named it (the
+// model's own message, e.g. "bunny.off:12: ...", says what is wrong in the model).
+TetMesh load_model_of(const Scene& scene, std::size_t i, const MeshingLoader& load) {
+  const BodySpec& spec = scene.bodies[i];
+  try {
+    return load(spec.model, spec.meshing);
+  } catch (const InputError& e) {
+    throw InputError(scene.file.string(), "/bodies/" + std::to_string(i) + "/model ('" +
+                                              spec.model_as_written + "'): " + e.what());
+  }
+}
+
 }  // namespace
 
 std::vector<BodyInit> make_scene_bodies(const Scene& scene, const MeshingLoader& load, int frames) {
@@ -106,7 +118,7 @@ std::vector<BodyInit> make_scene_bodies(const Scene& scene, const MeshingLoader&
     const Key key{spec.model, spec.meshing.quality, spec.meshing.max_volume,
                   spec.meshing.preserve_surface};
     auto it = models.find(key);
-    if (it == models.end()) it = models.emplace(key, load(spec.model, spec.meshing)).first;
+    if (it == models.end()) it = models.emplace(key, load_model_of(scene, i, load)).first;
     bodies.push_back(make_body(it->second, spec, scene, frames, where));
   }
   return bodies;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -12,11 +13,13 @@
 #include "deformcd/error.h"
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
+#include "duplicate_keys.h"
 #include "json_fields.h"
 
 namespace deformcd {
 
 namespace fs = std::filesystem;
+using scene_detail::DuplicateKeyCheck;
 using scene_detail::JsonFields;
 
 namespace {
@@ -28,7 +31,8 @@ nlohmann::json parse_file(const fs::path& file) {
   buffer << in.rdbuf();
   const std::string text = buffer.str();
   try {
-    return nlohmann::json::parse(text);
+    DuplicateKeyCheck check(file.string());
+    return nlohmann::json::parse(text, std::ref(check));
   } catch (const nlohmann::json::parse_error& e) {
     // Turn the byte offset into a line number for the message.
     const std::size_t offset = std::min<std::size_t>(e.byte, text.size());
@@ -44,10 +48,27 @@ nlohmann::json parse_file(const fs::path& file) {
   }
 }
 
+// "1e+300": the value as written would be, not std::to_string's 301 digits.
+std::string shortest(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// The simulation computes in float: a value must be finite (and, if positive, not zero) as a
+// float, not only as a double (dt 1e300 is finite as a double and infinite as a float).
+constexpr double kFloatMax = std::numeric_limits<float>::max();
+
 double positive(JsonFields& f, const std::string& key, double fallback) {
   const double v = f.number(key).value_or(fallback);
   if (!(v > 0.0) || !std::isfinite(v)) {
-    f.fail(key, "must be positive and finite, got " + std::to_string(v));
+    f.fail(key, "must be positive and finite, got " + shortest(v));
+  }
+  if (v > kFloatMax || !(static_cast<float>(v) > 0.0f)) {
+    f.fail(key,
+           "must be between 1.4e-45 and 3.4e+38 (the simulation computes in 32-bit float), "
+           "got " +
+               shortest(v));
   }
   return v;
 }
@@ -55,7 +76,11 @@ double positive(JsonFields& f, const std::string& key, double fallback) {
 double non_negative(JsonFields& f, const std::string& key, double fallback) {
   const double v = f.number(key).value_or(fallback);
   if (!(v >= 0.0) || !std::isfinite(v)) {
-    f.fail(key, "must be finite and not negative, got " + std::to_string(v));
+    f.fail(key, "must be finite and not negative, got " + shortest(v));
+  }
+  if (v > kFloatMax) {
+    f.fail(key,
+           "must be at most 3.4e+38 (the simulation computes in 32-bit float), got " + shortest(v));
   }
   return v;
 }
@@ -256,6 +281,18 @@ Scene read_scene(const fs::path& file) {
     scene.bodies.push_back(read_body(
         JsonFields((*bodies)[i], file.string(), "/bodies/" + std::to_string(i), "bodies[]"),
         folder));
+    // Outputs (positions, contacts) and messages name bodies: a name given twice is ambiguous.
+    // Bodies left unnamed keep their model's name, shared or not (told apart by their index).
+    const bool named = (*bodies)[i].contains("name");
+    for (std::size_t j = 0; j < i; ++j) {
+      if (scene.bodies[j].name != scene.bodies[i].name) continue;
+      if (!named && !(*bodies)[j].contains("name")) continue;
+      throw InputError(file.string(), "/bodies/" + std::to_string(i) + ": body name '" +
+                                          scene.bodies[i].name + "' is also body " +
+                                          std::to_string(j) +
+                                          "'s (a body without \"name\" is named after its "
+                                          "model): give each body its own name");
+    }
   }
   f.reject_unknown();
   return scene;

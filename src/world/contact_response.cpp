@@ -186,7 +186,7 @@ void ContactResponse::unstable(std::uint32_t node, const char* what) const {
   // The world adds the frame and what to change (World::run_response).
   throw SimulationError("body " + std::to_string(b) + " ('" + names_[b] + "') node " +
                         std::to_string(node - objects_[b].node_offset) + " has " + what +
-                        " in the contact response, " + std::to_string(frame_time_) +
+                        " (found by the contact response's check), " + std::to_string(frame_time_) +
                         " s into the frame");
 }
 

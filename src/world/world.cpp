@@ -10,6 +10,7 @@
 #include "core/sim/stability_estimate.h"
 #include "cpu/executor.h"
 #include "deformcd/gl/context.h"
+#include "deformcd/limits.h"
 #include "simulation_factory.h"
 
 namespace deformcd {
@@ -46,7 +47,7 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   if (!(settings.dt > 0.0f) || settings.substeps < 1) {
     throw Error("dt must be positive and substeps at least 1");
   }
-  if (options.cpu_threads < 0) throw Error("cpu_threads must be 0 (every core) or positive");
+  check_thread_count("threads", options.cpu_threads);
   const SimulationState state = assemble_simulation(bodies);
   objects_ = state.objects;
   names_ = state.body_names;
@@ -108,7 +109,10 @@ void World::run_response(const std::function<void()>& stage) {
   } catch (const SimulationError& e) {
     // The world's check names the frame and the suggested substeps; it finds the same node
     // unless the response met a position too large to subtract (finite, moving slowly).
-    check_stability(frame_ + 1, " in the contact response");
+    // The response checks the positions and velocities the integration gave it: what it finds
+    // non-finite there was not made by contact forces (the bodies may be far apart).
+    check_stability(frame_ + 1,
+                    ", found by the contact response's check of what the integration gave it");
     throw SimulationError("the simulation became unstable by frame " + std::to_string(frame_ + 1) +
                           ": " + e.what() + ". " + advice());
   }

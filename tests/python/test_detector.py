@@ -327,6 +327,27 @@ def test_error_classes_and_other_errors():
             deformcd.Detector([(V, [[0, 1, 2]])], backend="gl")
 
 
+def test_thread_counts_past_the_limit_raise_the_librarys_input_error():
+    # Issue 34: 2**31-1 threads killed the interpreter inside oneTBB.
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32)
+    assert deformcd.Detector([(V, [[0, 1, 2]])], backend="cpu", threads=256)
+    for threads in (257, 2**31 - 1, -1):
+        expected = ("threads: must be 0 (every core) or 1 to 256 (deformcd::kMaxThreads), got "
+                    + str(threads))
+        with pytest.raises(deformcd.InputError) as raised:
+            deformcd.Detector([(V, [[0, 1, 2]])], backend="cpu", threads=threads)
+        assert str(raised.value) == expected
+
+
+def test_faces_too_large_to_convert_raise_memory_error():
+    # Issue 34: a broadcast view of 2**40 faces needs 24 TB as int64; numpy's MemoryError must
+    # reach the caller, not "error_already_set called while Python error indicator not set".
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32)
+    faces = np.broadcast_to(np.array([0, 1, 2], np.int32), (2**40, 3))
+    with pytest.raises(MemoryError):
+        deformcd.Detector([(V, faces)], backend="cpu")
+
+
 def test_self_collision_and_mesh_pairs(spheres):
     V0, F0, rest1, F1 = spheres
     V1 = pose(rest1, 12)

@@ -115,8 +115,39 @@ TEST(WorldCpu, BlowUpUnderContactResponseStopsWithTheBodyAndAdvice) {
   // The world's own report (its frame and suggested substeps), saying where it was met.
   EXPECT_NE(msg.find("became unstable"), std::string::npos) << msg;
   EXPECT_NE(msg.find("'jelly') by frame 1"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("in the contact response"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("found by the contact response's check of what the integration gave it"),
+            std::string::npos)
+      << msg;
+  EXPECT_EQ(msg.find("in the contact response"), std::string::npos) << msg;
   EXPECT_NE(msg.find("substeps >= "), std::string::npos) << msg;
+}
+
+// Issue 34, item 7: a blow-up with nothing in contact (the bodies 0.83 m apart) is the
+// integration's, which the response's check only found: the message must not blame the
+// contact response.
+TEST(WorldCpu, ABlowUpWithNothingInContactIsNotBlamedOnTheContactResponse) {
+  std::vector<BodyInit> bodies(2);
+  for (int b = 0; b < 2; ++b) {
+    bodies[b].name = b == 0 ? "jelly" : "block";
+    BodyOptions options;
+    options.stiffness = b == 0 ? 1.0e15 : 1.0e4;
+    bodies[b].body = build_body(test::tet_grid(3, 3, 3, 0.1), options);
+    for (glm::vec4& x : bodies[b].body.positions)
+      x.y += b == 0 ? 0.0f : 1.13f;  // 0.83 m above the jelly's top
+  }
+  bodies[0].body.positions[5].y += 0.03f;
+  StepSettings settings;
+  settings.dt = 0.05f;
+  settings.substeps = 8;
+  WorldOptions options;
+  options.backend = BackendKind::kCpu;
+  options.stability_check_interval = 1000;
+  options.response = ResponseSettings{};
+  World world(bodies, settings, options);
+  const std::string msg = blow_up_message(world, 50);
+  EXPECT_NE(msg.find("'jelly') by frame 1"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("in the contact response"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("what the integration gave it"), std::string::npos) << msg;
 }
 
 TEST(WorldCpu, RejectsABodyWithoutSurfaceFaces) {
