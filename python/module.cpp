@@ -1,7 +1,6 @@
 // The `deformcd` Python module: errors, mesh files, and the Detector and World bindings.
 
 #include <filesystem>
-#include <regex>
 #include <string>
 
 #include <pybind11/numpy.h>
@@ -31,26 +30,18 @@ py::tuple read_surface_arrays(const std::filesystem::path& file) {
   return py::make_tuple(vertices, triangle_array(mesh.triangles));
 }
 
-// What a blow-up's message names, read back into attributes of the Python exception so that a
-// study's row can hold them without parsing: World::check_stability writes "body B ('NAME') by
-// frame F: node N", ContactResponse::unstable "body B ('NAME') node N ... in the contact
-// response" after the world's "by frame F". An attribute the message does not name is None.
-void raise_simulation_error(const py::handle& type, const std::string& message) {
-  static const std::regex body_pattern(R"(body (\d+) \('(.*?)'\))");
-  static const std::regex frame_pattern(R"(by frame (\d+))");
-  static const std::regex node_pattern(R"(node (\d+))");
-  py::object error = type(message);
-  std::smatch match;
-  if (std::regex_search(message, match, body_pattern)) {
-    error.attr("body") = std::stoll(match[1].str());
-    error.attr("body_name") = match[2].str();
+// A blow-up's site (SimulationError::site()) as attributes of the Python exception, so that a
+// study's row can hold them without parsing the message; an unknown field is None.
+void raise_simulation_error(const py::handle& type, const SimulationError& e) {
+  const BlowUpSite& site = e.site();
+  py::object error = type(e.what());
+  error.attr("stage") = site.stage;
+  if (site.frame >= 0) error.attr("frame") = site.frame;
+  if (site.body >= 0) {
+    error.attr("body") = site.body;
+    error.attr("body_name") = site.body_name;
   }
-  if (std::regex_search(message, match, frame_pattern))
-    error.attr("frame") = std::stoll(match[1].str());
-  if (std::regex_search(message, match, node_pattern))
-    error.attr("node") = std::stoll(match[1].str());
-  const bool in_response = message.find("in the contact response") != std::string::npos;
-  error.attr("stage") = in_response ? "response" : "simulation";
+  if (site.node >= 0) error.attr("node") = site.node;
   PyErr_SetObject(type.ptr(), error.ptr());
 }
 
@@ -72,7 +63,8 @@ void bind_errors(py::module_& m) {
   simulation.doc() =
       "A World's simulation blew up (NaN/Inf, or a node moving implausibly far in one "
       "substep); the\nmessage names the body and the frame and suggests a smaller dt or more "
-      "substeps.\n\nAttributes, None when the message does not name them: stage (\"simulation\" "
+      "substeps.\n\nAttributes (SimulationError::site() in C++), None when not known: stage "
+      "(\"simulation\" "
       "or\n\"response\": the contact response), frame (the frame being stepped, from 1), body "
       "(index),\nbody_name, node (index in the body).";
   for (const char* field : {"frame", "body", "body_name", "node"})
@@ -83,7 +75,7 @@ void bind_errors(py::module_& m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const SimulationError& e) {
-      raise_simulation_error(simulation, e.what());
+      raise_simulation_error(simulation, e);
     } catch (const GlError& e) {
       gl(e.what());
     } catch (const InputError& e) {

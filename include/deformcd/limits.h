@@ -34,6 +34,8 @@ inline void check_thread_count(const std::string& name, long long threads) {
 /// these, a scene scaled by a power of ten gives the same contact pairs
 /// (tests/collision/coordinate_range_test.cpp).
 inline constexpr float kMaxCoordinate = 1.0e9f;
+/// The smallest extent (largest side of the bounding box) of a mesh that is not a single point;
+/// see kMaxCoordinate.
 inline constexpr float kMinMeshExtent = 1.0e-10f;
 
 }  // namespace deformcd

@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -94,13 +95,37 @@ struct ResponseCounts {
   /// closest_thickness (the gap the response keeps): the smallest distance / thickness of the
   /// frame's proximity constraints. Infinity and 0 when the frame had none.
   float closest_distance = std::numeric_limits<float>::infinity();
+  /// m: the thickness of the pair that gave closest_distance (0 when the frame had none).
   float closest_thickness = 0.0f;
+};
+
+/// Where a simulation blew up, as SimulationError::site() gives it (the message says the same
+/// in words); a field that is not known is -1 or empty.
+struct BlowUpSite {
+  /// The check that found it: "simulation" (the world's check of the state after the substeps)
+  /// or "response" (the contact response's check of the state the integration gave it).
+  std::string stage = "simulation";
+  /// The frame being stepped when it was found, from 1.
+  int frame = -1;
+  /// The body's index in the scene, and its name.
+  std::int64_t body = -1;
+  /// The body's name (BodyInit::name).
+  std::string body_name;
+  /// The node's index within the body.
+  std::int64_t node = -1;
 };
 
 /// The simulation blew up: a state became NaN/Inf or a node moved implausibly far in a step.
 class SimulationError : public Error {
  public:
-  using Error::Error;
+  /// `message` states what happened and what to change; `site` the same as fields.
+  explicit SimulationError(const std::string& message, BlowUpSite site = {})
+      : Error(message), site_(std::move(site)) {}
+  /// Where it blew up (for programs that record it, such as a study's rows).
+  [[nodiscard]] const BlowUpSite& site() const noexcept { return site_; }
+
+ private:
+  BlowUpSite site_;
 };
 
 class ContactResponse;
@@ -195,7 +220,7 @@ class World {
   /// Throws a SimulationError naming the first node (by body) whose position or velocity is
   /// not finite or would cross half its body in a substep, `frame` the frame it is found in and
   /// `where` (may be empty) where it was met, with the suggested substeps.
-  void check_stability(int frame, const char* where);
+  void check_stability(int frame, const char* where, const char* stage);
   /// Runs a step of the contact response; a blow-up it meets (a SimulationError) is reported
   /// with the world's check, which knows the frame and the suggested substeps.
   void run_response(const std::function<void()>& stage);

@@ -185,9 +185,13 @@ void ContactResponse::unstable(std::uint32_t node, const char* what) const {
   const std::uint32_t b = node_body_[node];
   // The world adds the frame and what to change (World::run_response).
   throw SimulationError("body " + std::to_string(b) + " ('" + names_[b] + "') node " +
-                        std::to_string(node - objects_[b].node_offset) + " has " + what +
-                        " (found by the contact response's check), " + std::to_string(frame_time_) +
-                        " s into the frame");
+                            std::to_string(node - objects_[b].node_offset) + " has " + what +
+                            " (found by the contact response's check), " +
+                            std::to_string(frame_time_) + " s into the frame",
+                        {.stage = "response",
+                         .body = static_cast<std::int64_t>(b),
+                         .body_name = names_[b],
+                         .node = static_cast<std::int64_t>(node - objects_[b].node_offset)});
 }
 
 const std::vector<glm::vec4>& ContactResponse::velocities() {

@@ -112,9 +112,13 @@ void World::run_response(const std::function<void()>& stage) {
     // The response checks the positions and velocities the integration gave it: what it finds
     // non-finite there was not made by contact forces (the bodies may be far apart).
     check_stability(frame_ + 1,
-                    ", found by the contact response's check of what the integration gave it");
+                    ", found by the contact response's check of what the integration gave it",
+                    "response");
+    BlowUpSite site = e.site();
+    site.frame = frame_ + 1;
     throw SimulationError("the simulation became unstable by frame " + std::to_string(frame_ + 1) +
-                          ": " + e.what() + ". " + advice());
+                              ": " + e.what() + ". " + advice(),
+                          std::move(site));
   }
 }
 
@@ -155,7 +159,7 @@ void World::step() {
   }
   if (response_) timed_response([&] { response_->end_frame(); });
   ++frame_;
-  if (frame_ % check_interval_ == 0 || frame_ == 1) check_stability(frame_, "");
+  if (frame_ % check_interval_ == 0 || frame_ == 1) check_stability(frame_, "", "simulation");
   if (measure_stage_times_) backend_->finish();
   const auto simulated = Clock::now();
   if (broadphase_ != BroadPhase::kNone) {
@@ -234,7 +238,7 @@ std::string World::advice() const {
   return msg.str();
 }
 
-void World::check_stability(int frame, const char* where) {
+void World::check_stability(int frame, const char* where, const char* stage) {
   std::vector<glm::vec4> positions, velocities;
   backend_->download_positions(positions);
   backend_->download_velocities(velocities);
@@ -257,7 +261,11 @@ void World::check_stability(int frame, const char* where) {
             << body_sizes_[b] << ")";
       }
       msg << where << ". " << advice();
-      throw SimulationError(msg.str());
+      throw SimulationError(msg.str(), {.stage = stage,
+                                        .frame = frame,
+                                        .body = static_cast<std::int64_t>(b),
+                                        .body_name = names_[b],
+                                        .node = static_cast<std::int64_t>(i - o.node_offset)});
     }
   }
 }

@@ -138,8 +138,9 @@ def test_stack_bodies_are_awake_while_they_fall():
 
 
 def test_blow_up_names_its_stage_frame_and_body(tmp_path):
-    """SimulationError's attributes (what a study's row holds), read from the world's message,
-    and kept through pickle (Dask sends exceptions between processes)."""
+    """SimulationError's attributes (what a study's row holds; SimulationError::site() in C++),
+    agreeing with the message, and kept through pickle (Dask sends exceptions between
+    processes)."""
     scene = json.loads(write_two_cubes(tmp_path).read_text())
     scene["settings"]["substeps"] = 1
     for body in scene["bodies"]:

@@ -19,12 +19,13 @@ fs::path scene_path(const char* name) {
 }
 
 // Steps `world` up to `frames` frames and returns the message of the SimulationError that must
-// stop it (a failure, and "", when none does).
-std::string blow_up_message(World& world, int frames) {
+// stop it (a failure, and "", when none does); `site` receives the error's site.
+std::string blow_up_message(World& world, int frames, BlowUpSite* site = nullptr) {
   try {
     for (int f = 0; f < frames; ++f)
       world.step();
   } catch (const SimulationError& e) {
+    if (site != nullptr) *site = e.site();
     return e.what();
   }
   ADD_FAILURE() << "expected SimulationError within " << frames << " frames";
@@ -144,10 +145,18 @@ TEST(WorldCpu, ABlowUpWithNothingInContactIsNotBlamedOnTheContactResponse) {
   options.stability_check_interval = 1000;
   options.response = ResponseSettings{};
   World world(bodies, settings, options);
-  const std::string msg = blow_up_message(world, 50);
+  BlowUpSite site;
+  const std::string msg = blow_up_message(world, 50, &site);
   EXPECT_NE(msg.find("'jelly') by frame 1"), std::string::npos) << msg;
   EXPECT_EQ(msg.find("in the contact response"), std::string::npos) << msg;
   EXPECT_NE(msg.find("what the integration gave it"), std::string::npos) << msg;
+  // The same as fields: the response's check found it, in frame 1, on the jelly.
+  EXPECT_EQ(site.stage, "response");
+  EXPECT_EQ(site.frame, 1);
+  EXPECT_EQ(site.body, 0);
+  EXPECT_EQ(site.body_name, "jelly");
+  EXPECT_GE(site.node, 0);
+  EXPECT_NE(msg.find("node " + std::to_string(site.node)), std::string::npos) << msg;
 }
 
 TEST(WorldCpu, RejectsABodyWithoutSurfaceFaces) {
