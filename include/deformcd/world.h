@@ -174,7 +174,8 @@ class World {
   /// Things a user should know, one per line: why kAuto fell back to the CPU; a substep longer
   /// than the estimated stable one. Empty when there is nothing to say.
   [[nodiscard]] const std::string& notice() const { return notice_; }
-  /// Estimated largest stable substep (s), a conservative bound (see stability_estimate.h).
+  /// Largest stable substep (s) of the system linearized at rest, the springs' damping included:
+  /// a conservative bound (block Gershgorin, see src/core/sim/stability_estimate.h).
   [[nodiscard]] double estimated_max_substep() const { return max_stable_substep_; }
   /// The broad phase step() runs; every one finds the same contacts.
   [[nodiscard]] BroadPhase broadphase() const { return broadphase_; }

@@ -11,10 +11,18 @@
 namespace deformcd {
 namespace {
 
-// Largest |extension| of a two-mass spring released stretched, over 2000 substeps of h.
-float max_extension(float h) {
+// Two 0.5 kg masses on a 100 N/m spring released stretched by 1 cm, the spring's damping
+// `damping` s x its stiffness.
+SimulationState damped_pair(float damping) {
+  SimulationState state = test::two_mass_spring(0.5f, 0.5f, 1.0f, 1.01f, 100.0f);
+  state.body_params[0].damping = damping;
+  return state;
+}
+
+// Largest |extension| of damped_pair(damping) over 2000 substeps of h.
+float max_extension(float h, float damping = 0.0f) {
   cpu::CpuSimulation sim(1);
-  sim.upload(test::two_mass_spring(0.5f, 0.5f, 1.0f, 1.01f, 100.0f));
+  sim.upload(damped_pair(damping));
   float largest = 0.0f;
   std::vector<glm::vec4> p;
   for (int step = 0; step < 2000; ++step) {
@@ -32,6 +40,17 @@ TEST(StabilityEstimate, IsExactForTwoEqualMasses) {
   EXPECT_NEAR(h, 0.1, 1e-6);
   EXPECT_LT(max_extension(static_cast<float>(0.95 * h)), 0.05f);  // bounded oscillation
   EXPECT_GT(max_extension(static_cast<float>(1.05 * h)), 1.0f);   // grows without bound
+}
+
+TEST(StabilityEstimate, IsExactForADampedPair) {
+  // The mode: omega^2 = 400, damping rate c = 0.01 s x 400 = 4 / s. The explicit step is stable
+  // while h^2 omega^2 + 2 h c <= 4: h < 4 / (c + sqrt(c^2 + 4 omega^2)) = 0.09053 s, not the
+  // undamped 0.1 s (the advice without the damping: at 0.095 s this pair grows without bound).
+  const double h = sim::estimate_max_stable_substep(damped_pair(0.01f));
+  EXPECT_NEAR(h, 4.0 / (4.0 + std::sqrt(16.0 + 1600.0)), 1e-6);
+  EXPECT_LT(max_extension(static_cast<float>(0.95 * h), 0.01f), 0.05f);
+  EXPECT_GT(max_extension(static_cast<float>(1.05 * h), 0.01f), 1.0f);
+  EXPECT_GT(max_extension(0.095f, 0.01f), 1.0f);
 }
 
 TEST(StabilityEstimate, IsConservativeForUnequalMasses) {

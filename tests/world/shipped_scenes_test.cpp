@@ -5,7 +5,9 @@
 // are of these scenes: a warning there reads as a fault of the tool.
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -53,6 +55,42 @@ TEST_P(ShippedScene, RunsAFewFramesWithoutAWarning) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(shipped_scenes()),
                          [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
+
+// The advice "substeps >= N" (a world's notice and its blow-up messages) is a bound the run keeps:
+// the paper's phase 1 with its springs 10 x stiffer, or 10 x more damped, runs at the advised
+// count. Before the estimate counted the springs' damping (stiffness-proportional, taken from the
+// old velocity, so it shortens the stable substep), both were advised fewer substeps (39 and 13)
+// and blew up in the first frame at them.
+TEST(ShippedScenes, RunAtTheAdvisedSubstepsWhenMadeStifferOrMoreDamped) {
+  const fs::path file = fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / "phase1.json";
+  for (const bool stiffer : {true, false}) {
+    Scene scene = read_scene(file);
+    for (BodySpec& body : scene.bodies) {
+      if (stiffer) {
+        body.material.stiffness *= 10.0;
+      } else {
+        body.material.damping *= 10.0;
+      }
+    }
+    const auto build = [&] {
+      WorldOptions options;
+      options.backend = BackendKind::kCpu;
+      options.broadphase = BroadPhase::kNone;
+      return std::make_unique<World>(make_scene_bodies(scene, read_tetgen, scene.settings.frames),
+                                     step_settings(scene.settings), options);
+    };
+    scene.settings.substeps = 1;
+    // The advice World's notice and blow-up messages give: ceil(dt / the stable substep).
+    scene.settings.substeps =
+        static_cast<int>(std::ceil(scene.settings.dt / build()->estimated_max_substep()));
+    const std::unique_ptr<World> built = build();
+    World& world = *built;
+    EXPECT_EQ(world.notice(), "") << (stiffer ? "stiffer" : "more damped");
+    for (int f = 0; f < 10; ++f)
+      ASSERT_NO_THROW(world.step()) << (stiffer ? "stiffer" : "more damped") << ", "
+                                    << scene.settings.substeps << " substeps, frame " << f + 1;
+  }
+}
 
 TEST(ShippedScenes, AreThere) {  // a wrong folder would make the suite above empty
   EXPECT_GE(shipped_scenes().size(), 8u);

@@ -10,18 +10,23 @@
 namespace deformcd::sim {
 
 double estimate_max_stable_substep(const SimulationState& w) {
-  // Row sums of |M^-1/2 K M^-1/2| by 3x3 blocks; fixed nodes (inverse mass 0) do not move.
-  std::vector<double> row(w.node_count(), 0.0);
-  auto inverse_mass = [&](std::uint32_t n) { return static_cast<double>(w.positions[n].w); };
-  auto couple = [&](std::uint32_t i, std::uint32_t j, double block) {
-    row[i] += block * std::sqrt(inverse_mass(i) * inverse_mass(j));
+  // Row sums of |M^-1/2 K M^-1/2| (stiffness) and of |M^-1/2 C M^-1/2| (damping) by 3x3 blocks;
+  // fixed nodes (inverse mass 0) do not move.
+  std::vector<double> stiffness_row(w.node_count(), 0.0);
+  std::vector<double> damping_row(w.node_count(), 0.0);
+  auto weight = [&](std::uint32_t i, std::uint32_t j) {
+    return std::sqrt(static_cast<double>(w.positions[i].w) * static_cast<double>(w.positions[j].w));
   };
   for (const gpu::Spring& s : w.springs) {
     const double k = s.stiffness;
-    couple(s.a, s.a, k);
-    couple(s.a, s.b, k);
-    couple(s.b, s.b, k);
-    couple(s.b, s.a, k);
+    // A spring's damping force is damping x k x the relative velocity along it (mass_spring.h).
+    const double c = static_cast<double>(w.body_params[w.node_body[s.a]].damping) * k;
+    for (const std::uint32_t i : {s.a, s.b}) {
+      for (const std::uint32_t j : {s.a, s.b}) {
+        stiffness_row[i] += k * weight(i, j);
+        damping_row[i] += c * weight(i, j);
+      }
+    }
   }
   for (const gpu::Tetra& t : w.tets) {
     if (t.stiffness == 0.0f) continue;
@@ -36,13 +41,20 @@ double estimate_max_stable_substep(const SimulationState& w) {
     // Hessian block (i, j) of c (V - V0)^2 / 2 at rest: c grad_i grad_j^T, norm c |g_i| |g_j|.
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
-        couple(n[i], n[j], t.stiffness * glm::length(grad[i]) * glm::length(grad[j]));
+        stiffness_row[n[i]] +=
+            t.stiffness * glm::length(grad[i]) * glm::length(grad[j]) * weight(n[i], n[j]);
       }
     }
   }
-  const double omega2 = row.empty() ? 0.0 : *std::max_element(row.begin(), row.end());
-  if (!(omega2 > 0.0)) return std::numeric_limits<double>::infinity();
-  return 2.0 / std::sqrt(omega2);
+  // Row i certifies h^2 k_i + 2 h c_i <= 4 up to its root h_i = 4 / (c_i + sqrt(c_i^2 + 4 k_i))
+  // (the quadratic's positive root, written without the cancellation of -c + sqrt(...)).
+  double h = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < stiffness_row.size(); ++i) {
+    const double k = stiffness_row[i], c = damping_row[i];
+    if (!(k > 0.0) && !(c > 0.0)) continue;
+    h = std::min(h, 4.0 / (c + std::sqrt(c * c + 4.0 * k)));
+  }
+  return h;
 }
 
 }  // namespace deformcd::sim

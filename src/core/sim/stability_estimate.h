@@ -1,8 +1,13 @@
 #pragma once
-// An estimate of the largest substep the explicit (symplectic Euler) step stays stable with:
-// h < 2 / omega_max, omega_max^2 bounded by block Gershgorin on the mass-weighted stiffness
-// matrix of the springs and tetrahedron volume terms at rest. The bound overestimates
-// omega_max, so the estimate errs on the safe side (the true limit is usually 1-2x larger).
+// The largest substep h the explicit step (symplectic Euler, the spring damping taken from the
+// old velocity) is stable with, for the system linearized at rest: every mode of stiffness
+// omega^2 and damping rate c needs h^2 omega^2 + 2 h c <= 4 (the Jury condition of the step's
+// 2 x 2 amplification; c = 0 gives the familiar h < 2 / omega). Applied to the mass-weighted
+// matrix h^2 K + 2 h C (springs and tetrahedron volume terms in K, the springs' stiffness-
+// proportional damping in C), whose largest eigenvalue block Gershgorin bounds row by row, it
+// errs on the safe side. Not covered: the nonlinear terms (a spring compressed below half its
+// rest length is stiffer across than along), so a large deformation can need more; the global
+// velocity damping only helps.
 
 #include "deformcd/simulation_state.h"
 
