@@ -174,12 +174,13 @@ def lint(source, out_dir):
 
 @contextlib.contextmanager
 def scratch_folder(source):
-    """A temporary folder linking every top-level entry of the repository but .git and build, so
+    """A temporary folder linking every top-level folder of the repository but .git and build, so
     that an example's relative paths (scenes/, assets/) work and its outputs land outside the
-    source tree."""
+    source tree. Folders only: a link to a top-level file would be written through (outputs
+    follow symlinks), as a link to a stray impact.csv was by the study example."""
     with tempfile.TemporaryDirectory(prefix="deformcd_docs_") as scratch:
         for entry in pathlib.Path(source).iterdir():
-            if entry.name not in (".git", "build"):
+            if entry.is_dir() and entry.name not in (".git", "build"):
                 os.symlink(entry, pathlib.Path(scratch, entry.name))
         yield scratch
 
