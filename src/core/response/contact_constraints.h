@@ -250,7 +250,7 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   // Coulomb friction as a vector total over the substep's iterations (given[1].xyz, a speed like
   // given[0].x), clamped at every iteration to the cone of the accumulated normal change
   // (given[0].x), as sequential impulses clamp theirs: the total wanted is what was given (in
-  // today's tangent plane) plus what stops the slip left now. The total may shrink or turn, so
+  // the current tangent plane) plus what stops the slip left now. The total may shrink or turn, so
   // friction an iteration over-corrected (its neighbours stopped the same slip), or that a
   // normal total later iterations took back no longer bounds, is given back. The scalar sum of
   // each iteration's magnitude this replaces spent both against the bound: a block held on 28
@@ -262,11 +262,11 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   // (friction_dynamic's cone) only if half or more of its first iteration's slip is left. A
   // constraint whose cone its share of a node's slip overflows, while the node's other
   // constraints stop the node, does not slide: its point does not move. Judged by its own cone
-  // alone (slide when the wanted total leaves friction_static's), the constraints of an
-  // elastic block's lightly loaded rear edge dropped to the dynamic cone, their neighbours then
-  // overflowed theirs, and the block slid on 28 degrees with 0.7 / 0.45. The half sets how slow
-  // a slip still has the static cone (up to twice what it can stop in a substep); at 0.9 the
-  // block held with 0.55 / 0.45 but one with 0.5 / 0.45 slid half Coulomb's distance.
+  // alone (slide when the wanted total leaves friction_static's), an elastic block on 28 degrees
+  // with 0.7 / 0.45 slid at the dynamic cone's net friction within 4 frames of the tilt, though
+  // held it needs 0.53. The half sets how slow a slip still has the static cone (up to twice
+  // what it can stop in a substep); at 0.9 the block held with 0.55 / 0.45 but one with
+  // 0.5 / 0.45 slid half Coulomb's distance.
   const glm::vec3 tangential = relative_velocity - normal_velocity * n;
   const glm::vec3 before = glm::vec3(given[1]);
   const glm::vec3 held = before - glm::dot(before, n) * n;  // in the tangent plane of now
