@@ -58,8 +58,9 @@ enum Binding : std::uint32_t {
   kFrameStart = 34,         ///< glm::vec4 per node: position at the frame's start, w = reach
   kNodeMotion = 35,         ///< glm::vec4 per node: path velocity (xyz, m/s), reach (w, m)
   kNodeDeviation = 36,      ///< float per node: its distance from its straight path (m)
-  /// glm::vec4 per constraint: what it has given in the substep's iterations so far (normal
-  /// speed, push, the first iteration's approach; response::solve_contact)
+  /// two glm::vec4 per constraint (2 p, 2 p + 1): what it has given in the substep's iterations
+  /// so far (normal speed, push, the first iteration's approach; friction, the first
+  /// iteration's slip; response::solve_contact)
   kContactImpulse = 37,
 };
 

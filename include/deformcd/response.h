@@ -40,9 +40,10 @@ struct ResponseSettings {
   std::optional<float> thickness;
   /// The thickness over the body's mean surface edge length, when thickness is unset.
   float relative_thickness = 0.2f;
-  /// Coulomb friction: a contact sticks while stopping its tangential velocity takes at most
-  /// friction_static x the normal velocity change the contact has given in the substep (all its
-  /// projections together); otherwise it slides, slowed by friction_dynamic x that change.
+  /// Coulomb friction: a contact's friction over a substep (all its projections together) is
+  /// at most friction_static x the normal velocity change it gave in that substep while it
+  /// sticks, and friction_dynamic x that change when its slip goes on (half or more of the
+  /// substep's first slip is left after the projections).
   float friction_static = 0.4f;
   float friction_dynamic = 0.3f;  ///< at most friction_static
   /// 0: the approach speed is absorbed at contact (the bodies' elasticity still makes them

@@ -173,14 +173,19 @@ bool contact_active(ContactPair pair, vec4 position[4]) {
 // iteration's approach given back), moving the nodes by that change x h; the depth left is
 // removed by position alone (an untangling constraint by at most max_untangle_step per
 // iteration); Coulomb friction on the tangential relative velocity. `given` carries the normal
-// speed (x) and push (y) given over the substep's iterations so far and the first iteration's
-// approach (z) and the friction (w); each iteration corrects the totals, clamped at zero. Coulomb
-// friction is bounded by the substep's accumulated normal change, not the iteration's.
+// speed (given[0].x) and push (y) given over the substep's iterations so far and the first
+// iteration's approach (z), and the friction given (given[1].xyz, a vector) and the first
+// iteration's slip (given[1].w); each iteration corrects the totals, the normal ones clamped at
+// zero, the friction to its cone of the accumulated normal change.
 void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
-                   ContactConstants k, bool first_iteration, inout vec4 given,
+                   ContactConstants k, bool first_iteration, bool last_iteration,
+                   inout vec4 given[2],
                    out vec4 correction[8]) {
   for (int i = 0; i < 8; ++i) correction[i] = vec4(0.0);
-  if (first_iteration) given = vec4(0.0);
+  if (first_iteration) {
+    given[0] = vec4(0.0);
+    given[1] = vec4(0.0);
+  }
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
@@ -199,32 +204,39 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
     if (lever > 10.0 * weight) reduce = distance_min(reduce, 10.0 * weight / lever);
   }
   precise float normal_velocity = exact_dot(relative_velocity, n);
-  if (first_iteration) given.z = distance_max(-normal_velocity, 0.0);
+  if (first_iteration) given[0].z = distance_max(-normal_velocity, 0.0);
   precise float total_speed =
-      distance_max(given.x + (k.restitution * given.z - normal_velocity) * reduce, 0.0);
-  precise float normal_speed = total_speed - given.x;
-  given.x = total_speed;
-  precise float total_push = distance_max(given.y - (c + normal_speed * k.h) * reduce, 0.0);
+      distance_max(given[0].x + (k.restitution * given[0].z - normal_velocity) * reduce, 0.0);
+  precise float normal_speed = total_speed - given[0].x;
+  given[0].x = total_speed;
+  precise float total_push = distance_max(given[0].y - (c + normal_speed * k.h) * reduce, 0.0);
   if (pair.kind == CONTACT_UNTANGLE)
-    total_push = distance_min(total_push, given.y + k.max_untangle_step);
-  precise float push = total_push - given.y;
-  given.y = total_push;
-  // Coulomb friction against the substep's accumulated normal change (given.x), its own total
-  // in given.w.
+    total_push = distance_min(total_push, given[0].y + k.max_untangle_step);
+  precise float push = total_push - given[0].y;
+  given[0].y = total_push;
+  // Coulomb friction as a vector total over the substep's iterations (given[1].xyz), clamped at
+  // every iteration to the cone of the accumulated normal change (given[0].x): friction_static's
+  // until the last iteration, which takes friction_dynamic's where half or more of the first
+  // iteration's slip (given[1].w) is left.
   precise vec3 tangential = relative_velocity - normal_velocity * n;
-  precise float slip = sqrt(exact_dot(tangential, tangential));
-  precise float stop = slip * reduce;  // the friction that stops the slip
-  precise float friction = stop;
-  precise float static_total = given.w + stop;
-  precise float static_limit = k.friction_static * given.x;
-  if (static_total > static_limit) {
-    precise float left = distance_max(k.friction_dynamic * given.x - given.w, 0.0);
-    friction = distance_min(stop, left);
+  precise vec3 before = given[1].xyz;
+  precise vec3 held = before - exact_dot(before, n) * n;  // in the tangent plane of now
+  precise vec3 wanted = held - reduce * tangential;      // the total that stops the slip
+  precise float wanted_length = sqrt(exact_dot(wanted, wanted));
+  precise float slip_left = reduce * sqrt(exact_dot(tangential, tangential));
+  if (first_iteration) given[1].w = slip_left;
+  precise float half_first = 0.5 * given[1].w;
+  const bool sliding = last_iteration && slip_left > half_first;
+  precise float coefficient = sliding ? k.friction_dynamic : k.friction_static;
+  precise float limit = coefficient * given[0].x;
+  precise vec3 friction_total = wanted;
+  if (wanted_length > limit) {
+    precise float scale = limit / wanted_length;
+    friction_total = wanted * scale;
   }
-  precise float friction_total = given.w + friction;
-  given.w = friction_total;
-  precise float share = slip > 0.0 ? friction / slip : 0.0;  // of the tangential velocity
-  precise vec3 dv = (normal_speed * n - share * tangential) / weight;
+  given[1] = vec4(friction_total, given[1].w);
+  precise vec3 friction = friction_total - held;
+  precise vec3 dv = (normal_speed * n + friction) / weight;
   precise vec3 dx = dv * k.h + (push / weight) * n;
   for (int i = 0; i < 4; ++i) {
     precise float scale = position[i].w * b[i];

@@ -4,9 +4,9 @@
 // the w of its first slot, 8 p) reads its four nodes' positions and velocities and writes their
 // corrections to the constraint's own slots: corner 4 p + k's at 2 (4 p + k) (position) and
 // 2 (4 p + k) + 1 (velocity) (solve_contact), the flag kept for the next iteration, and what it
-// has given over the substep's iterations to its own impulse slot p. An inactive constraint is
-// left alone, as the CPU backend leaves it: the node pass skips its slots. No two invocations
-// write the same slot, and nothing here writes a node.
+// has given over the substep's iterations to its own impulse slots 2 p and 2 p + 1. An inactive
+// constraint is left alone, as the CPU backend leaves it: the node pass skips its slots. No two
+// invocations write the same slot, and nothing here writes a node.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
 
@@ -38,6 +38,7 @@ uniform float u_friction_dynamic;
 uniform float u_restitution;
 uniform float u_max_untangle_step;
 uniform bool u_first_iteration;
+uniform bool u_last_iteration;
 
 void main() {
   const uint p = gl_GlobalInvocationID.x;
@@ -52,12 +53,13 @@ void main() {
   uint count[4];
   for (uint i = 0u; i < 4u; ++i) count[i] = node_contact_count[pair.nodes[i]];
   vec4 correction[8];
-  vec4 given = impulses[p];
+  vec4 given[2] = vec4[2](impulses[2u * p], impulses[2u * p + 1u]);
   solve_contact(pair, x, v, count,
                 ContactConstants(u_h, u_friction_static, u_friction_dynamic, u_restitution,
                                  u_max_untangle_step, 0.0),
-                u_first_iteration, given, correction);
+                u_first_iteration, u_last_iteration, given, correction);
   correction[0].w = 1.0;  // the activity flag, for the next iteration's solve and node passes
   for (uint k = 0u; k < 8u; ++k) corrections[8u * p + k] = correction[k];
-  impulses[p] = given;
+  impulses[2u * p] = given[0];
+  impulses[2u * p + 1u] = given[1];
 }

@@ -17,7 +17,7 @@ void CpuContactResponse::take(const response::FrameConstraints& constraints) {
   constraints_ = &constraints;
   // Not cleared: a projection writes every slot of the constraints it solves and reads no other.
   corrections_.resize(8u * constraints_->pairs.size());
-  impulses_.resize(constraints_->pairs.size());  // reset by each substep's first iteration
+  impulses_.resize(2u * constraints_->pairs.size());  // reset by each substep's first iteration
   active_.assign(constraints_->pairs.size(), 0u);
   acting_.clear();
 }
@@ -124,7 +124,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
             }
             const std::uint32_t count[4] = {counts_[pair.nodes[0]], counts_[pair.nodes[1]],
                                             counts_[pair.nodes[2]], counts_[pair.nodes[3]]};
-            response::solve_contact(pair, x, v, count, k, iteration == 0, impulses_[p],
+            response::solve_contact(pair, x, v, count, k, iteration == 0,
+                                    iteration + 1 == iterations, &impulses_[2u * p],
                                     &corrections_[8u * p]);
           },
           256);

@@ -38,7 +38,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
   std::vector<glm::vec4> frame_start_;                       // SSBO 34
   std::vector<glm::vec4> corrections_;                       // SSBO 30
-  std::vector<glm::vec4> impulses_;     // SSBO 37: per constraint, what it gave this substep
+  std::vector<glm::vec4> impulses_;     // SSBO 37: two per constraint, what it gave this substep
   std::vector<std::uint32_t> counts_;   // SSBO 33
   std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep
   std::vector<std::uint32_t> acting_;   // the active constraints, ascending

@@ -57,7 +57,7 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
       {"Frame Start", gpu::kFrameStart, nodes, sizeof(glm::vec4)},
       {"Node Motion", gpu::kNodeMotion, nodes, sizeof(glm::vec4)},
       {"Node Deviation", gpu::kNodeDeviation, nodes, sizeof(float)},
-      {"Contact Impulse", gpu::kContactImpulse, pairs, sizeof(glm::vec4)},
+      {"Contact Impulse", gpu::kContactImpulse, 2u * pairs, sizeof(glm::vec4)},
   };
 }
 

@@ -103,7 +103,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
   auto new_motion = grow(buffers_.node_motion, nodes, gpu::kNodeMotion);
   auto new_deviation = grow(buffers_.node_deviation, nodes, gpu::kNodeDeviation);
-  auto new_impulses = grow(buffers_.impulses, pairs, gpu::kContactImpulse);
+  auto new_impulses = grow(buffers_.impulses, 2u * pairs, gpu::kContactImpulse);
 
   frame_ready_ = false;  // until the upload below has completed
   adopt(buffers_.pairs, new_pairs);
@@ -194,6 +194,8 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   for (int iteration = 0; iteration < iterations; ++iteration) {
     if (pair_count_ > 0) {
       pairs_.set_uniform("u_first_iteration", static_cast<std::uint32_t>(iteration == 0));
+      pairs_.set_uniform("u_last_iteration",
+                         static_cast<std::uint32_t>(iteration + 1 == iterations));
       pairs_.dispatch_covering(pair_count_);
       storage_barrier();  // the node pass reads the corrections
     }

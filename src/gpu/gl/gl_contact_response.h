@@ -55,7 +55,7 @@ struct ContactBuffers {
   std::optional<Ssbo<glm::vec4>> frame_start;      // SSBO 34: per node
   std::optional<Ssbo<glm::vec4>> node_motion;      // SSBO 35: per node
   std::optional<Ssbo<float>> node_deviation;       // SSBO 36: per node
-  std::optional<Ssbo<glm::vec4>> impulses;         // SSBO 37: per constraint
+  std::optional<Ssbo<glm::vec4>> impulses;         // SSBO 37: two per constraint
 };
 
 class GlContactResponse final : public response::ResponseBackend {
