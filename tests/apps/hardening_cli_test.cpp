@@ -90,6 +90,17 @@ TEST(HardeningCli, RunWritesItsContactsAndPositionsToStandardOutput) {
   EXPECT_NE(r.err.find("scene "), std::string::npos) << r.err;
 }
 
+TEST(HardeningCli, BenchDrawsItsChartToStandardOutput) {
+  deformcd::test::TempDir dir;
+  const SplitRun r =
+      run_split(dir, "bench scenes/phase2.json --backend cpu --methods bvh --frames 2 --plot -");
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_GE(r.out.size(), 8u) << r.err;
+  EXPECT_EQ(r.out.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));  // the PNG signature
+  EXPECT_NE(r.err.find("bvh"), std::string::npos) << r.err;            // the table went to stderr
+  EXPECT_FALSE(fs::exists(fs::path(DEFORMCD_SOURCE_DIR) / "-"));
+}
+
 TEST(HardeningCli, DevStdoutReachesAPipeAsAnyUser) {
   // The whole pipeline runs as nobody, as a user's shell would run it (a pipe is reopened
   // through /proc/self/fd with its creator's permissions).
