@@ -29,6 +29,7 @@
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
 #include "support/sanitizers.h"
+#include "support/shipped_scenes.h"
 
 namespace fs = std::filesystem;
 
@@ -125,15 +126,6 @@ std::string difference(const std::vector<Frame>& expected, const std::vector<Fra
   return {};
 }
 
-std::vector<std::string> shipped_scenes() {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(fs::path(DEFORMCD_SOURCE_DIR) / "scenes")) {
-    if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 // The comparison itself: bytes, not values.
 TEST(DeterminismComparison, SeesSignedZerosAndSegmentBits) {
   Frame frame;
@@ -183,7 +175,7 @@ TEST_P(DeterminismAcrossThreads, PositionsAndContactsAreBitIdentical) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ShippedScenes, DeterminismAcrossThreads,
-                         ::testing::ValuesIn(shipped_scenes()),
+                         ::testing::ValuesIn(test::shipped_scene_names()),
                          [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
 
 }  // namespace

@@ -16,20 +16,12 @@
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
+#include "support/shipped_scenes.h"
 
 namespace fs = std::filesystem;
 
 namespace deformcd {
 namespace {
-
-std::vector<std::string> shipped_scenes() {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(fs::path(DEFORMCD_SOURCE_DIR) / "scenes")) {
-    if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 class ShippedScene : public ::testing::TestWithParam<std::string> {};
 
@@ -53,7 +45,7 @@ TEST_P(ShippedScene, RunsAFewFramesWithoutAWarning) {
     ASSERT_NO_THROW(world.step()) << file.string() << ", frame " << f + 1;
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(shipped_scenes()),
+INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(test::shipped_scene_names()),
                          [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
 
 // The advice "substeps >= N" (a world's notice and its blow-up messages) is a bound the run keeps:
@@ -93,7 +85,7 @@ TEST(ShippedScenes, RunAtTheAdvisedSubstepsWhenMadeStifferOrMoreDamped) {
 }
 
 TEST(ShippedScenes, AreThere) {  // a wrong folder would make the suite above empty
-  EXPECT_GE(shipped_scenes().size(), 8u);
+  EXPECT_GE(test::shipped_scene_names().size(), 8u);
 }
 
 }  // namespace
