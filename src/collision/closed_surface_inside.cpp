@@ -115,7 +115,7 @@ ClosedSurfaceInside::ClosedSurfaceInside(std::span<const glm::vec3> positions,
     const glm::vec3 lo = glm::min(glm::min(a, b), c), hi = glm::max(glm::max(a, b), c);
     for (int j = cell(lo.y, lo_.y, cell_y_); j <= cell(hi.y, lo_.y, cell_y_); ++j)
       for (int k = cell(lo.z, lo_.z, cell_z_); k <= cell(hi.z, lo_.z, cell_z_); ++k)
-        grid_[static_cast<std::size_t>(j * cells_ + k)].push_back(f);
+        grid_[grid_index(j, k)].push_back(f);
   }
 }
 
@@ -125,8 +125,8 @@ bool ClosedSurfaceInside::inside(const glm::vec3& p) const {
   const auto cell = [&](float x, float lo, float size) {
     return std::clamp(static_cast<int>(std::floor((x - lo) / size)), 0, cells_ - 1);
   };
-  const std::vector<std::uint32_t>& along_x = grid_[static_cast<std::size_t>(
-      cell(p.y, lo_.y, cell_y_) * cells_ + cell(p.z, lo_.z, cell_z_))];
+  const std::vector<std::uint32_t>& along_x =
+      grid_[grid_index(cell(p.y, lo_.y, cell_y_), cell(p.z, lo_.z, cell_z_))];
   for (int direction = 0; direction < 6; ++direction) {
     const int axis = direction / 2;
     const Parity parity = ray_parity(p, axis, direction % 2 == 0, axis == 0 ? &along_x : nullptr);

@@ -8,6 +8,7 @@
 // number, inside when above one half, unless it is on the surface (within 1e-7 of the box's
 // diagonal), which is not inside. Internal to deformcd_collision.
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -42,6 +43,11 @@ class ClosedSurfaceInside {
   [[nodiscard]] Parity ray_parity(const glm::vec3& p, int axis, bool positive,
                                   const std::vector<std::uint32_t>* candidates) const;
   [[nodiscard]] double distance_to_surface(const glm::vec3& p) const;
+  /// The grid list of cell (j, k) (0 <= j, k < cells_), its index computed in size_t.
+  [[nodiscard]] std::size_t grid_index(int j, int k) const {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(cells_) +
+           static_cast<std::size_t>(k);
+  }
   [[nodiscard]] double winding_number(const glm::vec3& p) const;
 
   std::span<const glm::vec3> positions_;
