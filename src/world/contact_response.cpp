@@ -152,9 +152,32 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
   }
   on_surface_.assign(node_body_.size(), 0u);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
+    std::vector<EdgeFaces> edges;
     for (const gpu::Face& f : bodies[b].body.faces) {
-      for (const std::uint32_t v : {f.a, f.b, f.c})
-        on_surface_[objects_[b].node_offset + v] = 1u;
+      const std::uint32_t v[3] = {f.a, f.b, f.c};
+      for (int k = 0; k < 3; ++k) {
+        on_surface_[objects_[b].node_offset + v[k]] = 1u;
+        const std::uint32_t lo = std::min(v[k], v[(k + 1) % 3]);
+        const std::uint32_t hi = std::max(v[k], v[(k + 1) % 3]);
+        EdgeFaces e;
+        e.a = lo;
+        e.b = hi;
+        e.third[0] = v[(k + 2) % 3];
+        e.faces = 1;
+        edges.push_back(e);
+      }
+    }
+    // One entry per edge with both faces' third corners, in face order.
+    std::stable_sort(edges.begin(), edges.end(), [](const EdgeFaces& x, const EdgeFaces& y) {
+      return std::pair(x.a, x.b) < std::pair(y.a, y.b);
+    });
+    std::vector<EdgeFaces>& merged = edge_faces_.emplace_back();
+    for (const EdgeFaces& e : edges) {
+      if (!merged.empty() && merged.back().a == e.a && merged.back().b == e.b) {
+        if (merged.back().faces < 2u) merged.back().third[merged.back().faces++] = e.third[0];
+      } else {
+        merged.push_back(e);
+      }
     }
   }
   max_untangle_step_ = settings.untangle_step * smallest_edge;
@@ -416,6 +439,13 @@ void ContactResponse::add_proximity_pair(const ProximityPair& p, response::Frame
   pair.nodes[2] = first_b + p.vertices[2];
   pair.nodes[3] = first_b + p.vertices[3];
   pair.kind = edges ? gpu::kContactEdgeEdge : gpu::kContactVertexFace;
+  // An edge pair whose closest point is an edge's end is that vertex against the other edge.
+  // Where the vertex is over a face beside that edge, the vertex-face pair with that face holds
+  // it along the face's normal, and this one would push along the slanted line from the edge:
+  // a step where the surfaces slide over each other (a block creeping on a slab held with
+  // friction 0.5 on 28 degrees, where Coulomb says it slides; docs/notes/2026-12-04-friction.md).
+  // A vertex against a convex edge (over neither face beside it) keeps its pair.
+  if (edges && !edge_contact_of_its_own(pair, p.mesh_a, p.mesh_b)) return;
   // (Pairs of two bodies that cannot move are not searched for: search() flags them still.)
   link(p.mesh_a, p.mesh_b);
   if (tangled_->holds(pair)) return;
@@ -443,6 +473,54 @@ void ContactResponse::add_proximity_pair(const ProximityPair& p, response::Frame
     counts_.closest_distance = p.distance;
     counts_.closest_thickness = pair.thickness;
   }
+}
+
+bool ContactResponse::edge_contact_of_its_own(const gpu::ContactPair& pair, std::uint32_t body_a,
+                                              std::uint32_t body_b) const {
+  const glm::dvec3 x[4] = {
+      glm::dvec3(window_start_[pair.nodes[0]]), glm::dvec3(window_start_[pair.nodes[1]]),
+      glm::dvec3(window_start_[pair.nodes[2]]), glm::dvec3(window_start_[pair.nodes[3]])};
+  double s = 0.0, t = 0.0;
+  if (!collision::segment_closest_parameters(x[0], x[1], x[2], x[3], s, t)) return true;
+  const bool end_of_a = s == 0.0 || s == 1.0;
+  const bool end_of_b = t == 0.0 || t == 1.0;
+  if (!end_of_a && !end_of_b) return true;  // the edges pass each other: an edge contact
+  if (end_of_a && over_a_face_beside(body_b, pair.nodes[2], pair.nodes[3], s == 0.0 ? x[0] : x[1]))
+    return false;
+  if (end_of_b && over_a_face_beside(body_a, pair.nodes[0], pair.nodes[1], t == 0.0 ? x[2] : x[3]))
+    return false;
+  return true;
+}
+
+bool ContactResponse::over_a_face_beside(std::uint32_t body, std::uint32_t e0, std::uint32_t e1,
+                                         const glm::dvec3& p) const {
+  const std::uint32_t first = objects_[body].node_offset;
+  const std::uint32_t lo = std::min(e0, e1) - first, hi = std::max(e0, e1) - first;
+  const std::vector<EdgeFaces>& edges = edge_faces_[body];
+  const auto it =
+      std::lower_bound(edges.begin(), edges.end(), std::pair(lo, hi),
+                       [](const EdgeFaces& e, const std::pair<std::uint32_t, std::uint32_t>& key) {
+                         return std::pair(e.a, e.b) < key;
+                       });
+  if (it == edges.end() || it->a != lo || it->b != hi) return false;  // not a surface edge
+  const glm::dvec3 a(window_start_[first + lo]), b(window_start_[first + hi]);
+  for (std::uint32_t f = 0; f < it->faces; ++f) {
+    // p's projection on the face's plane in barycentric weights (the vertex-face pairs'
+    // plane_barycentric, in double), inside by 1e-3 of the face on every side: there the
+    // vertex-face pair with this face holds p, even after rounding. A vertex right above the
+    // edge or its end (stacked grids) is on no face by that margin and keeps this pair.
+    const glm::dvec3 c(window_start_[first + it->third[f]]);
+    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d00 = glm::dot(ab, ab), d01 = glm::dot(ab, ac), d11 = glm::dot(ac, ac);
+    const double d20 = glm::dot(ap, ab), d21 = glm::dot(ap, ac);
+    const double denominator = d00 * d11 - d01 * d01;
+    if (!(denominator > 1e-12 * d00 * d11)) continue;
+    const double v = (d11 * d20 - d01 * d21) / denominator;
+    const double w = (d00 * d21 - d01 * d20) / denominator;
+    constexpr double kMargin = 1e-3;
+    if (v > kMargin && w > kMargin && 1.0 - v - w > kMargin) return true;
+  }
+  return false;
 }
 
 void ContactResponse::widen() {

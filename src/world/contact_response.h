@@ -79,6 +79,15 @@ class ContactResponse {
   /// Within the window: the nodes that strayed get twice their deviation as reach, and their
   /// pairs are found again by widening the window's search (Detector::widen_proximity).
   void widen();
+  /// Whether an edge-edge pair (global nodes, positions at the window's start) is a contact of
+  /// its own: its closest points inside both edges, or, at an edge's end, that end vertex not
+  /// over a face beside the other edge (over_a_face_beside; see add_proximity_pair).
+  [[nodiscard]] bool edge_contact_of_its_own(const gpu::ContactPair& pair, std::uint32_t body_a,
+                                             std::uint32_t body_b) const;
+  /// Whether point p (positions at the window's start) is over a face beside edge (e0, e1)
+  /// of `body` (global nodes), inside it by a margin: where its vertex-face pair holds it.
+  [[nodiscard]] bool over_a_face_beside(std::uint32_t body, std::uint32_t e0, std::uint32_t e1,
+                                        const glm::dvec3& p) const;
   /// Appends proximity pair p as a constraint of c (unless its primitives are tangled).
   void add_proximity_pair(const ProximityPair& p, response::FrameConstraints& c);
   /// Notes that a constraint of the frame joins bodies a and b (for the sleeping islands).
@@ -95,13 +104,20 @@ class ContactResponse {
   std::vector<std::uint32_t> node_body_;
   std::vector<std::string> names_;  // per body
   std::vector<glm::vec3> carry_;
-  std::vector<glm::vec3> rest_;             // per node: where the body was given (at rest)
-  std::vector<std::uint8_t> on_surface_;    // per node: a vertex of its body's collision surface
-  std::vector<float> thickness_;            // per body
-  std::vector<float> mean_edge_;            // per body, surface
-  std::vector<glm::vec4> velocities_;       // read back from a GL simulation
-  std::vector<glm::vec4> positions_;        // read back from a GL simulation
-  std::vector<glm::vec4> last_velocities_;  // per node, at the last search
+  std::vector<glm::vec3> rest_;           // per node: where the body was given (at rest)
+  std::vector<std::uint8_t> on_surface_;  // per node: a vertex of its body's collision surface
+  /// A surface edge (local nodes a < b) and the third corners of the faces beside it.
+  struct EdgeFaces {
+    std::uint32_t a = 0, b = 0;
+    std::uint32_t third[2] = {0, 0};
+    std::uint32_t faces = 0;  // 1 or 2 (more: a non-manifold edge keeps the first two)
+  };
+  std::vector<std::vector<EdgeFaces>> edge_faces_;  // per body, sorted by (a, b)
+  std::vector<float> thickness_;                    // per body
+  std::vector<float> mean_edge_;                    // per body, surface
+  std::vector<glm::vec4> velocities_;               // read back from a GL simulation
+  std::vector<glm::vec4> positions_;                // read back from a GL simulation
+  std::vector<glm::vec4> last_velocities_;          // per node, at the last search
   float max_untangle_step_ = 0.0f;
   Detector* detector_ = nullptr;                // of the frame
   std::vector<Contact> intersections_;          // of the frame

@@ -8,13 +8,13 @@
 // block slid about 0.9 m in 2 s on 28 degrees with static 0.6 (static angle 31.0), and slid a
 // third short of Coulomb's distance above it (docs/notes/2026-12-04-friction.md).
 //
-// Not asserted, since it fails: static 0.55 / dynamic 0.45 on 28 degrees (static angle 28.8, 3 %
-// above the slope) slides 1.04 m in 2 s. The sudden tilt is a step load: with the block held
-// (static 5), its ringing asks the slab for up to 0.78 x the normal load in net friction (means
-// over 5 substeps) in the first 0.3 s, and the constraints' own cones for more, so the block
-// slips at first; with dynamic 0.55 too it stops after 8 mm, with 0.45 it does not. Settled on
-// the incline itself under velocity damping and then released, it holds with 0.55 / 0.45, but
-// also with 0.5 / 0.45, below the static angle (docs/notes/2026-12-04-friction.md).
+// Under the sudden tilt, static 0.55 / dynamic 0.45 on 28 degrees (static angle 28.8, 3 % above
+// the slope) slides 1.04 m in 2 s, not asserted: the tilt is a step load whose ringing asks the
+// slab for up to 0.78 x the normal load in net friction in the first 0.3 s, so the block slips,
+// and dynamic 0.45 cannot stop it (with 0.55 / 0.55 it stops after 8 mm); a real block given
+// that load could slip too. Settled on the incline first (`gentle`), it holds with 0.55 / 0.45
+// and slides with 0.5 / 0.45 (before edge pairs at an edge's end over a face of the other
+// surface were left to the vertex-face pairs, it held there too: docs/notes/2026-12-04-friction.md).
 
 #include <cmath>
 #include <numbers>
@@ -101,6 +101,9 @@ struct Incline {
   float friction_static = 0.7f;
   float friction_dynamic = 0.45f;
   int frames = 120;  // 2 s
+  /// Settled on the incline itself first (gravity tilted, 1 s under heavy velocity damping),
+  /// then released: no step load when the run starts.
+  bool gentle = false;
 };
 
 struct Slide {
@@ -109,8 +112,8 @@ struct Slide {
   std::uint64_t intersecting_frames = 0;
 };
 
-// The settled block on the incline (the slab level, gravity tilted at the first frame), on the
-// CPU, without damping of the whole.
+// The settled block on the incline (the slab level, gravity tilted at the first frame; with
+// `gentle`, settled under the tilt first), on the CPU, without damping of the whole.
 Slide slide_on_incline(const Incline& incline) {
   const double a = incline.degrees * std::numbers::pi / 180.0;
   StepSettings step;
@@ -121,7 +124,18 @@ Slide slide_on_incline(const Incline& incline) {
   WorldOptions options;
   options.backend = BackendKind::kCpu;
   options.response = incline_response(incline.friction_static, incline.friction_dynamic);
-  World world(settled_block_on_slab(), step, options);
+  std::vector<BodyInit> bodies = settled_block_on_slab();
+  if (incline.gentle) {
+    StepSettings damped = step;
+    damped.velocity_damping = 20.0f;
+    World settling(bodies, damped, options);
+    for (int f = 0; f < 60; ++f)
+      settling.step();
+    const std::vector<glm::vec3> settled = settling.positions(1);
+    for (std::size_t i = 0; i < settled.size(); ++i)
+      bodies[1].body.positions[i] = glm::vec4(settled[i], bodies[1].body.positions[i].w);
+  }
+  World world(bodies, step, options);
   WorldIntersections census(world);
   const double start = base_x(world, 1);
   Slide slide;
@@ -169,6 +183,28 @@ TEST(FrictionIncline, StaticFrictionHoldsABlockJustBelowItsStaticAngle) {
 TEST(FrictionIncline, ABlockJustAboveItsStaticAngleSlidesAsCoulombSays) {
   // Static angle 26.6 degrees; Coulomb's 1.415 m in 2 s (before: 0.93 m).
   expect_coulomb({.degrees = 28.0, .friction_static = 0.5f, .friction_dynamic = 0.45f});
+}
+
+TEST(FrictionIncline, FromAGentleStartABlockJustBelowItsStaticAngleHolds) {
+  // Static angle 28.8 degrees: under the sudden tilt the block rings past it and slides.
+  expect_held(
+      {.degrees = 28.0, .friction_static = 0.55f, .friction_dynamic = 0.45f, .gentle = true});
+}
+
+TEST(FrictionIncline, FromAGentleStartABlockJustAboveItsStaticAngleSlides) {
+  // Static angle 26.6 degrees. Before edge pairs whose closest point is an edge's end over a face
+  // of the other surface were left to the vertex-face pairs, their slanted normals held it
+  // (0.33 mm in 2 s). It slides 1.24 m now, 12 % short of Coulomb's 1.415 m (an effective
+  // dynamic coefficient of about 0.46 once it slides, and a slower start), while from the sudden
+  // tilt it slides within 1 % of it (ABlockJustAboveItsStaticAngleSlidesAsCoulombSays): asserted
+  // here is that it slides, within 20 %.
+  const Incline incline{
+      .degrees = 28.0, .friction_static = 0.5f, .friction_dynamic = 0.45f, .gentle = true};
+  const Slide slide = slide_on_incline(incline);
+  ASSERT_GT(slide.coulomb, 0.0);
+  EXPECT_NEAR(slide.distance, slide.coulomb, 0.2 * slide.coulomb)
+      << "slid " << slide.distance << " m in 2 s, Coulomb " << slide.coulomb << " m";
+  EXPECT_EQ(slide.intersecting_frames, 0u);
 }
 
 TEST(FrictionIncline, EqualCoefficientsSlideAsCoulombSays) {
