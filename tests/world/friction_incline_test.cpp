@@ -14,7 +14,8 @@
 // and dynamic 0.45 cannot stop it (with 0.55 / 0.55 it stops after 8 mm); a real block given
 // that load could slip too. Settled on the incline first (`gentle`), it holds with 0.55 / 0.45
 // and slides with 0.5 / 0.45 (before edge pairs at an edge's end over a face of the other
-// surface were left to the vertex-face pairs, it held there too: docs/notes/2026-12-04-friction.md).
+// surface were left to the vertex-face pairs, it held there too:
+// docs/notes/2026-12-04-friction.md).
 
 #include <cmath>
 #include <numbers>
