@@ -9,6 +9,7 @@
 
 #include "body_sleep.h"
 #include "core/collision/primitive_distance.h"
+#include "core/response/contact_constraints.h"
 #include "deformcd/error.h"
 
 namespace deformcd {
@@ -505,20 +506,15 @@ bool ContactResponse::over_a_face_beside(std::uint32_t body, std::uint32_t e0, s
   if (it == edges.end() || it->a != lo || it->b != hi) return false;  // not a surface edge
   const glm::dvec3 a(window_start_[first + lo]), b(window_start_[first + hi]);
   for (std::uint32_t f = 0; f < it->faces; ++f) {
-    // p's projection on the face's plane in barycentric weights (the vertex-face pairs'
-    // plane_barycentric, in double), inside by 1e-3 of the face on every side: there the
-    // vertex-face pair with this face holds p, even after rounding. A vertex right above the
-    // edge or its end (stacked grids) is on no face by that margin and keeps this pair.
+    // Inside the face by 1e-3 of it on every side (the vertex-face pairs' weights, in double):
+    // there the vertex-face pair with this face holds p, even after rounding. A vertex right
+    // above the edge or its end (stacked grids) is on no face by that margin and keeps this pair.
     const glm::dvec3 c(window_start_[first + it->third[f]]);
-    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d00 = glm::dot(ab, ab), d01 = glm::dot(ab, ac), d11 = glm::dot(ac, ac);
-    const double d20 = glm::dot(ap, ab), d21 = glm::dot(ap, ac);
-    const double denominator = d00 * d11 - d01 * d01;
-    if (!(denominator > 1e-12 * d00 * d11)) continue;
-    const double v = (d11 * d20 - d01 * d21) / denominator;
-    const double w = (d00 * d21 - d01 * d20) / denominator;
+    glm::dvec3 uvw(0.0);
     constexpr double kMargin = 1e-3;
-    if (v > kMargin && w > kMargin && 1.0 - v - w > kMargin) return true;
+    if (response::plane_barycentric(p, a, b, c, uvw) && uvw.x > kMargin && uvw.y > kMargin &&
+        uvw.z > kMargin)
+      return true;
   }
   return false;
 }

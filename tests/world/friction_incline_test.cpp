@@ -75,25 +75,31 @@ ResponseSettings incline_response(float friction_static, float friction_dynamic)
   return response;
 }
 
-// The block at rest: dropped onto the level slab (gravity straight down) from the thickness and
-// settled for 1 s under heavy velocity damping (static 0.7, dynamic 0.45). A mass-spring block
-// placed with its springs at rest is not at rest on a surface: it sags and bounces, lifts off
-// and lands with a slip that breaks static friction.
-std::vector<BodyInit> settled_block_on_slab() {
-  std::vector<BodyInit> bodies = block_on_slab();
-  StepSettings step;
-  step.dt = 1.0f / kFramesPerSecond;
-  step.substeps = 10;
+// The block (body 1) of `bodies` settled: 1 s of `step` under heavy velocity damping (20 /s),
+// its positions then taken as the body's start.
+void settle(std::vector<BodyInit>& bodies, StepSettings step, const WorldOptions& options) {
   step.velocity_damping = 20.0f;
-  WorldOptions options;
-  options.backend = BackendKind::kCpu;
-  options.response = incline_response(0.7f, 0.45f);
   World world(bodies, step, options);
   for (int f = 0; f < 60; ++f)
     world.step();
   const std::vector<glm::vec3> settled = world.positions(1);
   for (std::size_t i = 0; i < settled.size(); ++i)
     bodies[1].body.positions[i] = glm::vec4(settled[i], bodies[1].body.positions[i].w);
+}
+
+// The block at rest: dropped onto the level slab (gravity straight down) from the thickness and
+// settled (static 0.7, dynamic 0.45). A mass-spring block placed with its springs at rest is not
+// at rest on a surface: it sags and bounces, lifts off and lands with a slip that breaks static
+// friction.
+std::vector<BodyInit> settled_block_on_slab() {
+  std::vector<BodyInit> bodies = block_on_slab();
+  StepSettings step;
+  step.dt = 1.0f / kFramesPerSecond;
+  step.substeps = 10;
+  WorldOptions options;
+  options.backend = BackendKind::kCpu;
+  options.response = incline_response(0.7f, 0.45f);
+  settle(bodies, step, options);
   return bodies;
 }
 
@@ -126,16 +132,7 @@ Slide slide_on_incline(const Incline& incline) {
   options.backend = BackendKind::kCpu;
   options.response = incline_response(incline.friction_static, incline.friction_dynamic);
   std::vector<BodyInit> bodies = settled_block_on_slab();
-  if (incline.gentle) {
-    StepSettings damped = step;
-    damped.velocity_damping = 20.0f;
-    World settling(bodies, damped, options);
-    for (int f = 0; f < 60; ++f)
-      settling.step();
-    const std::vector<glm::vec3> settled = settling.positions(1);
-    for (std::size_t i = 0; i < settled.size(); ++i)
-      bodies[1].body.positions[i] = glm::vec4(settled[i], bodies[1].body.positions[i].w);
-  }
+  if (incline.gentle) settle(bodies, step, options);
   World world(bodies, step, options);
   WorldIntersections census(world);
   const double start = base_x(world, 1);

@@ -40,18 +40,22 @@ struct ContactConstants {
   float elapsed;            ///< s: from the frame's start to the end of this substep
 };
 
-/// Closest point of the plane projection of p on triangle (a, b, c) as barycentric weights
-/// (u, v, w), u + v + w = 1, clamped into the triangle; false for a degenerate triangle.
-inline bool plane_barycentric(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b,
-                              const glm::vec3& c, glm::vec3& uvw) {
-  const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
-  const float d00 = glm::dot(ab, ab), d01 = glm::dot(ab, ac), d11 = glm::dot(ac, ac);
-  const float d20 = glm::dot(ap, ab), d21 = glm::dot(ap, ac);
-  const float denominator = d00 * d11 - d01 * d01;
-  if (!(denominator > 1e-12f * d00 * d11)) return false;
-  const float v = (d11 * d20 - d01 * d21) / denominator;
-  const float w = (d00 * d21 - d01 * d20) / denominator;
-  uvw = glm::vec3(1.0f - v - w, v, w);
+/// The plane projection of p on triangle (a, b, c) as barycentric weights (u, v, w),
+/// u + v + w = 1 (negative outside the triangle); false for a degenerate triangle. T = float is
+/// the constraints' (the GLSL mirror's); the world's search asks in double
+/// (ContactResponse::over_a_face_beside).
+template <class T>
+inline bool plane_barycentric(const glm::vec<3, T>& p, const glm::vec<3, T>& a,
+                              const glm::vec<3, T>& b, const glm::vec<3, T>& c,
+                              glm::vec<3, T>& uvw) {
+  const glm::vec<3, T> ab = b - a, ac = c - a, ap = p - a;
+  const T d00 = glm::dot(ab, ab), d01 = glm::dot(ab, ac), d11 = glm::dot(ac, ac);
+  const T d20 = glm::dot(ap, ab), d21 = glm::dot(ap, ac);
+  const T denominator = d00 * d11 - d01 * d01;
+  if (!(denominator > T(1e-12) * d00 * d11)) return false;
+  const T v = (d11 * d20 - d01 * d21) / denominator;
+  const T w = (d00 * d21 - d01 * d20) / denominator;
+  uvw = glm::vec<3, T>(T(1) - v - w, v, w);
   return true;
 }
 
