@@ -2,7 +2,7 @@
 #
 #   deformcd_embed_shaders(TARGET deformcd_gl
 #                          BASE_DIR ${PROJECT_SOURCE_DIR}/shaders
-#                          HEADER embedded_shaders.h        # declares EmbeddedShader, embedded_shaders()
+#                          HEADER gpu/gl/embedded_shaders.h # declares EmbeddedShader, embedded_shaders()
 #                          NAMESPACE deformcd::gl
 #                          FILES common/layout.glsl test/smoke.comp ...)
 #

@@ -32,7 +32,7 @@ inline void check_thread_count(const std::string& name, long long threads) {
 /// given as host arrays, and every body's nodes when it is built), and so is a Detector mesh
 /// whose extent (its bounding box's largest side) is not zero but below kMinMeshExtent. Within
 /// these, a scene scaled by a power of ten gives the same contact pairs
-/// (tests/collision/coordinate_range_test.cpp).
+/// (tests/detector/coordinate_range_test.cpp).
 inline constexpr float kMaxCoordinate = 1.0e9f;
 /// The smallest extent (largest side of the bounding box) of a mesh that is not a single point;
 /// see kMaxCoordinate.

@@ -1,12 +1,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/geometry.h"
+#include "core/spring_topology.h"
+#include "core/surface_extraction.h"
 #include "deformcd/body.h"
 #include "deformcd/error.h"
 #include "deformcd/limits.h"
-#include "geometry.h"
-#include "spring_topology.h"
-#include "surface_extraction.h"
 
 namespace deformcd {
 

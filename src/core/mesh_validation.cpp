@@ -4,8 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/geometry.h"
 #include "deformcd/error.h"
-#include "geometry.h"
 
 namespace deformcd {
 

@@ -1,4 +1,4 @@
-#include "spring_topology.h"
+#include "core/spring_topology.h"
 
 #include <algorithm>
 #include <unordered_map>

@@ -1,4 +1,4 @@
-#include "surface_extraction.h"
+#include "core/surface_extraction.h"
 
 #include <algorithm>
 #include <cstdint>

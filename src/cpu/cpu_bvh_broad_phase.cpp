@@ -1,4 +1,4 @@
-#include "cpu_bvh_broad_phase.h"
+#include "cpu/cpu_bvh_broad_phase.h"
 
 #include <algorithm>
 

@@ -12,9 +12,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "cpu_bvh_pair_traversal.h"
-#include "cpu_bvh_trees.h"
-#include "cpu_narrow_phase.h"
+#include "cpu/cpu_bvh_pair_traversal.h"
+#include "cpu/cpu_bvh_trees.h"
+#include "cpu/cpu_narrow_phase.h"
 
 namespace deformcd::cpu {
 

@@ -29,7 +29,7 @@
 
 #include "core/collision/broad_phase.h"
 #include "core/collision/bvh.h"
-#include "cpu_bvh_trees.h"
+#include "cpu/cpu_bvh_trees.h"
 #include "deformcd/gpu_layout.h"
 
 namespace deformcd::cpu {

@@ -1,4 +1,4 @@
-#include "cpu_bvh_trees.h"
+#include "cpu/cpu_bvh_trees.h"
 
 #include <algorithm>
 #include <string>
@@ -6,8 +6,8 @@
 #include <glm/common.hpp>
 
 #include "core/collision/bvh.h"
+#include "cpu/parallel_for.h"
 #include "deformcd/error.h"
-#include "parallel_for.h"
 
 namespace deformcd::cpu {
 

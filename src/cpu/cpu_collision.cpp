@@ -1,4 +1,4 @@
-#include "cpu_collision.h"
+#include "cpu/cpu_collision.h"
 
 #include <algorithm>
 #include <tuple>
@@ -8,8 +8,8 @@
 #include <tbb/parallel_sort.h>
 
 #include "core/collision/broad_phase.h"
+#include "cpu/parallel_for.h"
 #include "deformcd/error.h"
-#include "parallel_for.h"
 
 namespace deformcd::cpu {
 

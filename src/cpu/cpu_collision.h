@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "core/collision/collision_backend.h"
-#include "cpu_bvh_broad_phase.h"
-#include "cpu_narrow_phase.h"
-#include "cpu_octree_compact.h"
-#include "executor.h"
+#include "cpu/cpu_bvh_broad_phase.h"
+#include "cpu/cpu_narrow_phase.h"
+#include "cpu/cpu_octree_compact.h"
+#include "cpu/executor.h"
 
 namespace deformcd::cpu {
 

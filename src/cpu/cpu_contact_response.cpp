@@ -1,12 +1,12 @@
-#include "cpu_contact_response.h"
+#include "cpu/cpu_contact_response.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <utility>
 
+#include "cpu/parallel_for.h"
 #include "deformcd/error.h"
-#include "parallel_for.h"
 
 namespace deformcd::cpu {
 

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "core/response/response_backend.h"
+#include "cpu/executor.h"
 #include "deformcd/simulation_state.h"
-#include "executor.h"
 
 namespace deformcd::cpu {
 

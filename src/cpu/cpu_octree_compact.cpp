@@ -1,7 +1,7 @@
-#include "cpu_octree_compact.h"
+#include "cpu/cpu_octree_compact.h"
 
 #include "core/collision/broad_phase.h"
-#include "parallel_for.h"
+#include "cpu/parallel_for.h"
 
 namespace deformcd::cpu {
 

@@ -9,7 +9,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "cpu_narrow_phase.h"
+#include "cpu/cpu_narrow_phase.h"
 #include "deformcd/gpu_layout.h"
 
 namespace deformcd::cpu {

@@ -1,9 +1,9 @@
-#include "cpu_proximity.h"
+#include "cpu/cpu_proximity.h"
 
 #include <algorithm>
 
 #include "core/collision/bvh.h"
-#include "parallel_for.h"
+#include "cpu/parallel_for.h"
 
 namespace deformcd::cpu {
 

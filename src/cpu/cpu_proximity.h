@@ -18,7 +18,7 @@
 #include "core/collision/bvh_upkeep.h"
 #include "core/collision/collision_data.h"
 #include "core/collision/proximity.h"
-#include "executor.h"
+#include "cpu/executor.h"
 
 namespace deformcd::cpu {
 

@@ -1,8 +1,8 @@
-#include "cpu_simulation.h"
+#include "cpu/cpu_simulation.h"
 
 #include "core/sim/mass_spring.h"
-#include "mass_spring_batch.h"
-#include "parallel_for.h"
+#include "cpu/mass_spring_batch.h"
+#include "cpu/parallel_for.h"
 
 namespace deformcd::cpu {
 

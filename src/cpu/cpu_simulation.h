@@ -11,7 +11,7 @@
 #include "core/sim/frozen_bodies.h"
 #include "core/sim/node_force_lists.h"
 #include "core/sim/simulation_backend.h"
-#include "executor.h"
+#include "cpu/executor.h"
 
 namespace deformcd::cpu {
 

@@ -28,8 +28,8 @@
 #include <vector>
 
 #include "deformcd/error.h"
-#include "surface_formats.h"
-#include "text_scanner.h"
+#include "io/surface_formats.h"
+#include "io/text_scanner.h"
 
 namespace deformcd::io {
 

@@ -11,12 +11,12 @@
 #include <string_view>
 #include <vector>
 
-#include "atomic_file.h"
 #include "deformcd/error.h"
 #include "deformcd/io.h"
-#include "surface_formats.h"
-#include "text_scanner.h"
-#include "text_writer.h"
+#include "io/atomic_file.h"
+#include "io/surface_formats.h"
+#include "io/text_scanner.h"
+#include "io/text_writer.h"
 
 namespace deformcd {
 

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "byte_reader.h"
 #include "deformcd/error.h"
-#include "ply_header.h"
-#include "surface_formats.h"
-#include "text_scanner.h"
+#include "io/byte_reader.h"
+#include "io/ply_header.h"
+#include "io/surface_formats.h"
+#include "io/text_scanner.h"
 
 namespace deformcd::io {
 

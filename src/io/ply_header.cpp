@@ -1,11 +1,11 @@
-#include "ply_header.h"
+#include "io/ply_header.h"
 
 #include <array>
 #include <string>
 #include <utility>
 
 #include "deformcd/error.h"
-#include "text_scanner.h"
+#include "io/text_scanner.h"
 
 namespace deformcd::io {
 

@@ -14,10 +14,10 @@
 #include <string_view>
 #include <unordered_map>
 
-#include "byte_reader.h"
 #include "deformcd/error.h"
-#include "surface_formats.h"
-#include "text_scanner.h"
+#include "io/byte_reader.h"
+#include "io/surface_formats.h"
+#include "io/text_scanner.h"
 
 namespace deformcd::io {
 

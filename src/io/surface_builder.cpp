@@ -2,7 +2,7 @@
 #include <string>
 
 #include "deformcd/error.h"
-#include "surface_formats.h"
+#include "io/surface_formats.h"
 
 namespace deformcd::io {
 

@@ -18,8 +18,8 @@
 #include "deformcd/error.h"
 #include "deformcd/io.h"
 #include "deformcd/mesh_validation.h"
-#include "surface_formats.h"
-#include "text_scanner.h"
+#include "io/surface_formats.h"
+#include "io/text_scanner.h"
 
 namespace deformcd {
 

@@ -21,8 +21,8 @@
 #include "deformcd/error.h"
 #include "deformcd/io.h"
 #include "deformcd/mesh_validation.h"
-#include "tetgen_files.h"
-#include "text_scanner.h"
+#include "io/tetgen_files.h"
+#include "io/text_scanner.h"
 
 namespace deformcd {
 

@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.h"
 #include "deformcd/error.h"
 #include "deformcd/io.h"
-#include "tetgen_files.h"
-#include "text_writer.h"
+#include "io/atomic_file.h"
+#include "io/tetgen_files.h"
+#include "io/text_writer.h"
 
 namespace deformcd {
 

@@ -1,4 +1,4 @@
-#include "graphics_program.h"
+#include "render/graphics_program.h"
 
 #include <epoxy/gl.h>
 

@@ -2,7 +2,7 @@
 #include <filesystem>
 #include <string>
 
-#include "render_embedded_shaders.h"
+#include "render/render_embedded_shaders.h"
 
 namespace deformcd::render {
 

@@ -10,8 +10,8 @@
 #include "deformcd/error.h"
 #include "deformcd/gl/ssbo.h"
 #include "gpu/gl/gl_check.h"
-#include "graphics_program.h"
-#include "render_embedded_shaders.h"
+#include "render/graphics_program.h"
+#include "render/render_embedded_shaders.h"
 
 namespace deformcd::render {
 

@@ -1,4 +1,4 @@
-#include "duplicate_keys.h"
+#include "scene/duplicate_keys.h"
 
 #include <algorithm>
 

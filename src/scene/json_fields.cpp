@@ -1,4 +1,4 @@
-#include "json_fields.h"
+#include "scene/json_fields.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "deformcd/error.h"
-#include "scene_keys.h"
+#include "scene/scene_keys.h"
 
 namespace deformcd::scene_detail {
 

@@ -1,4 +1,4 @@
-#include "scene_keys.h"
+#include "scene/scene_keys.h"
 
 #include <stdexcept>
 #include <vector>

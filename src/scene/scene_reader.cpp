@@ -13,8 +13,8 @@
 #include "deformcd/error.h"
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
-#include "duplicate_keys.h"
-#include "json_fields.h"
+#include "scene/duplicate_keys.h"
+#include "scene/json_fields.h"
 
 namespace deformcd {
 

@@ -1,4 +1,4 @@
-#include "isolated_run.h"
+#include "tetgen/isolated_run.h"
 
 #include <sys/wait.h>
 #include <unistd.h>

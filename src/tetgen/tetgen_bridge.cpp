@@ -7,8 +7,8 @@
 #include "deformcd/error.h"
 #include "deformcd/mesh_validation.h"
 #include "deformcd/tetrahedralize.h"
-#include "isolated_run.h"
-#include "tetgen_run.h"
+#include "tetgen/isolated_run.h"
+#include "tetgen/tetgen_run.h"
 
 namespace deformcd {
 

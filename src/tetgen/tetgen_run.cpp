@@ -1,4 +1,4 @@
-#include "tetgen_run.h"
+#include "tetgen/tetgen_run.h"
 
 #include <cstdint>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "body_sleep.h"
+#include "world/body_sleep.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 
-#include "contact_response.h"
+#include "world/contact_response.h"
 
 #include <algorithm>
 #include <array>
@@ -7,10 +7,10 @@
 #include <set>
 #include <utility>
 
-#include "body_sleep.h"
 #include "core/collision/primitive_distance.h"
 #include "core/response/contact_constraints.h"
 #include "deformcd/error.h"
+#include "world/body_sleep.h"
 
 namespace deformcd {
 

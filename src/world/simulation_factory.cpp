@@ -1,4 +1,4 @@
-#include "simulation_factory.h"
+#include "world/simulation_factory.h"
 
 #include "cpu/cpu_contact_response.h"
 #include "cpu/cpu_simulation.h"

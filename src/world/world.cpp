@@ -4,14 +4,14 @@
 #include <cmath>
 #include <sstream>
 
-#include "collision/backend_choice.h"
-#include "collision/detector_impl.h"
-#include "contact_response.h"
 #include "core/sim/stability_estimate.h"
 #include "cpu/executor.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/limits.h"
-#include "simulation_factory.h"
+#include "detector/backend_choice.h"
+#include "detector/detector_impl.h"
+#include "world/contact_response.h"
+#include "world/simulation_factory.h"
 
 namespace deformcd {
 

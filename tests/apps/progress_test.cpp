@@ -1,7 +1,7 @@
 // The progress display: status, elapsed time, rate and time left; a bar redrawn in place on a
 // terminal, periodic plain lines elsewhere.
 
-#include "progress.h"
+#include "apps/deformcd/progress.h"
 
 #include <chrono>
 #include <cstdio>

@@ -12,7 +12,6 @@
 
 #include <gtest/gtest.h>
 
-#include "collision_test_backends.h"
 #include "core/collision/collision_backend.h"
 #include "cpu/cpu_collision.h"
 #include "cpu/cpu_proximity.h"
@@ -20,10 +19,11 @@
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
-#include "gl_test_context.h"
+#include "gl/collision_test_backends.h"
+#include "gl/gl_test_context.h"
+#include "gl/proximity_vertex_lists.h"
 #include "gpu/gl/gl_collision.h"
 #include "gpu/gl/gl_proximity.h"
-#include "proximity_vertex_lists.h"
 #include "support/collision_fixtures.h"
 
 namespace fs = std::filesystem;

@@ -14,11 +14,11 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "collision_test_worlds.h"
 #include "core/collision/collision_backend.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
+#include "gl/collision_test_worlds.h"
 #include "gpu/gl/gl_collision.h"
 #include "support/collision_fixtures.h"
 

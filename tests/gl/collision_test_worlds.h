@@ -22,7 +22,7 @@
 #include "deformcd/body.h"
 #include "deformcd/gpu_layout.h"
 #include "deformcd/simulation_state.h"
-#include "sim_test_worlds.h"
+#include "gl/sim_test_worlds.h"
 #include "support/collision_fixtures.h"
 #include "support/world_fixtures.h"
 

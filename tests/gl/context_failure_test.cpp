@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <string>
 
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
 
 namespace deformcd::gl {
 namespace {

@@ -10,7 +10,7 @@
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/device_info.h"
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
 
 namespace deformcd::gl {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "deformcd/gl/device_info.h"
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
 
 namespace deformcd::gl {
 namespace {

@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "collision_test_backends.h"
-#include "collision_test_worlds.h"
 #include "core/collision/broad_phase.h"
 #include "core/collision/bvh.h"
 #include "deformcd/error.h"
-#include "gl_test_context.h"
+#include "gl/collision_test_backends.h"
+#include "gl/collision_test_worlds.h"
+#include "gl/gl_test_context.h"
 #include "gpu/gl/gl_collision.h"
 #include "support/face_box_overlaps.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "deformcd/error.h"
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
 #include "gpu/gl/gl_check.h"
 
 namespace deformcd::gl {

@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "collision_test_backends.h"
-#include "collision_test_worlds.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/ssbo.h"
-#include "expect_gl_error.h"
-#include "gl_test_context.h"
+#include "gl/collision_test_backends.h"
+#include "gl/collision_test_worlds.h"
+#include "gl/expect_gl_error.h"
+#include "gl/gl_test_context.h"
 #include "gpu/gl/fault_injection.h"
 #include "gpu/gl/gl_collision.h"
 

@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "collision_test_backends.h"
-#include "collision_test_worlds.h"
 #include "deformcd/error.h"
-#include "gl_test_context.h"
+#include "gl/collision_test_backends.h"
+#include "gl/collision_test_worlds.h"
+#include "gl/gl_test_context.h"
 #include "gpu/gl/gl_collision.h"
 
 namespace deformcd::gl {

@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "collision_test_backends.h"
-#include "collision_test_worlds.h"
 #include "deformcd/error.h"
 #include "deformcd/simulation_state.h"
-#include "gl_test_context.h"
+#include "gl/collision_test_backends.h"
+#include "gl/collision_test_worlds.h"
+#include "gl/gl_test_context.h"
 #include "gpu/gl/gl_collision.h"
 #include "gpu/gl/gl_simulation.h"
 

@@ -15,17 +15,17 @@
 
 #include <glm/geometric.hpp>
 
-#include "contact_test_worlds.h"
 #include "core/response/contact_constraints.h"
 #include "cpu/cpu_contact_response.h"
 #include "cpu/executor.h"
 #include "deformcd/body.h"
 #include "deformcd/error.h"
-#include "gl_test_context.h"
+#include "gl/contact_test_worlds.h"
+#include "gl/gl_test_context.h"
+#include "gl/sim_test_worlds.h"
 #include "gpu/gl/contact_upload_checks.h"
 #include "gpu/gl/gl_contact_response.h"
 #include "gpu/gl/gl_simulation.h"
-#include "sim_test_worlds.h"
 
 namespace deformcd::gl {
 namespace {

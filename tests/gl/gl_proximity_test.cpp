@@ -17,7 +17,6 @@
 #include <utility>
 #include <vector>
 
-#include "collision_test_worlds.h"
 #include "core/collision/primitive_distance.h"
 #include "core/collision/proximity.h"
 #include "core/collision/vertex_positions.h"
@@ -26,11 +25,12 @@
 #include "deformcd/detector.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/ssbo.h"
-#include "gl_test_context.h"
+#include "gl/collision_test_worlds.h"
+#include "gl/gl_test_context.h"
+#include "gl/proximity_vertex_lists.h"
 #include "gpu/gl/bvh_work_order.h"
 #include "gpu/gl/gl_collision.h"
 #include "gpu/gl/gl_proximity.h"
-#include "proximity_vertex_lists.h"
 #include "support/collision_fixtures.h"
 
 namespace deformcd::gl {

@@ -13,9 +13,9 @@
 #include "deformcd/body.h"
 #include "deformcd/gl/device_info.h"
 #include "deformcd/simulation_state.h"
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
+#include "gl/sim_test_worlds.h"
 #include "gpu/gl/gl_simulation.h"
-#include "sim_test_worlds.h"
 
 namespace deformcd::gl {
 namespace {

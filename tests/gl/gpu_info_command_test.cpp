@@ -8,9 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "apps/deformcd/gpu_info_command.h"
 #include "deformcd/backend.h"
-#include "gl_test_context.h"
-#include "gpu_info_command.h"
+#include "gl/gl_test_context.h"
 
 namespace deformcd::app {
 namespace {

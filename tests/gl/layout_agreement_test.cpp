@@ -11,7 +11,7 @@
 #include "core/collision/bvh.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
 #include "gpu/gl/collision_work_buffers.h"
 #include "gpu/gl/compute_program.h"
 

@@ -12,7 +12,7 @@
 #include "core/collision/collision_data.h"
 #include "core/collision/proximity.h"
 #include "core/collision/vertex_positions.h"
-#include "sim_test_worlds.h"
+#include "gl/sim_test_worlds.h"
 
 namespace deformcd::test {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "deformcd/error.h"
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
 #include "gpu/gl/compute_program.h"
 #include "gpu/gl/shader_library.h"
 

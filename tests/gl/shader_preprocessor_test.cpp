@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "deformcd/error.h"
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
 #include "gpu/gl/shader_library.h"
 #include "gpu/gl/shader_preprocessor.h"
 

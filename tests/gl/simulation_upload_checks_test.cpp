@@ -13,8 +13,8 @@
 #include "deformcd/body.h"
 #include "deformcd/error.h"
 #include "deformcd/simulation_state.h"
+#include "gl/sim_test_worlds.h"
 #include "gpu/gl/simulation_upload_checks.h"
-#include "sim_test_worlds.h"
 
 namespace deformcd::gl {
 namespace {

@@ -8,7 +8,7 @@
 #include "deformcd/error.h"
 #include "deformcd/gl/device_info.h"
 #include "deformcd/gl/ssbo.h"
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
 #include "gpu/gl/compute_program.h"
 
 namespace deformcd::gl {

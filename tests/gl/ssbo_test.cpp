@@ -12,7 +12,7 @@
 #include "deformcd/error.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
 
 namespace deformcd::gl {
 namespace {

@@ -23,7 +23,7 @@
 
 #include "core/collision/tri_tri_intersection.h"
 #include "deformcd/gl/ssbo.h"
-#include "gl_test_context.h"
+#include "gl/gl_test_context.h"
 #include "gpu/gl/compute_program.h"
 
 namespace deformcd::gl {

@@ -10,7 +10,7 @@
 #include "deformcd/error.h"
 #include "deformcd/io.h"
 #include "io/atomic_file.h"
-#include "io_test_support.h"
+#include "io/io_test_support.h"
 #include "support/mesh_fixtures.h"
 
 namespace deformcd {

@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <string>
 
-#include "byte_writer.h"
 #include "deformcd/io.h"
-#include "io_test_support.h"
+#include "io/byte_writer.h"
+#include "io/io_test_support.h"
 
 namespace deformcd {
 namespace {

@@ -17,8 +17,8 @@
 
 #include "deformcd/error.h"
 #include "deformcd/io.h"
+#include "io/io_test_support.h"
 #include "io/text_scanner.h"
-#include "io_test_support.h"
 #include "support/sanitizers.h"
 
 namespace deformcd {

@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <limits>
 
-#include "byte_writer.h"
 #include "deformcd/error.h"
 #include "deformcd/io.h"
-#include "io_test_support.h"
+#include "io/byte_writer.h"
+#include "io/io_test_support.h"
 #include "support/mesh_fixtures.h"
 
 namespace deformcd {

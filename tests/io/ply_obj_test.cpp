@@ -4,10 +4,10 @@
 
 #include <cstdint>
 
-#include "byte_writer.h"
 #include "deformcd/error.h"
 #include "deformcd/io.h"
-#include "io_test_support.h"
+#include "io/byte_writer.h"
+#include "io/io_test_support.h"
 #include "support/mesh_fixtures.h"
 
 namespace deformcd {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "deformcd/io.h"
-#include "io_test_support.h"
+#include "io/io_test_support.h"
 
 namespace deformcd {
 namespace {

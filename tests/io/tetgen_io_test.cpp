@@ -7,7 +7,7 @@
 
 #include "deformcd/error.h"
 #include "deformcd/io.h"
-#include "io_test_support.h"
+#include "io/io_test_support.h"
 #include "support/mesh_fixtures.h"
 
 namespace deformcd {

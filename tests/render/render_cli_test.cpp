@@ -11,7 +11,7 @@
 
 #include "deformcd/render/image.h"
 #include "gl/gl_test_context.h"
-#include "pixel_checks.h"
+#include "render/pixel_checks.h"
 #include "support/cli_runner.h"
 #include "support/temp_dir.h"
 

@@ -20,7 +20,7 @@
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
 #include "gl/gl_test_context.h"
-#include "pixel_checks.h"
+#include "render/pixel_checks.h"
 #include "support/world_fixtures.h"
 
 namespace fs = std::filesystem;

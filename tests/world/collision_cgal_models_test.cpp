@@ -23,13 +23,13 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
-#include "cgal_contact_oracle.h"
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
 #include "support/contact_compare.h"
 #include "support/tri_tri_zone.h"
 #include "support/triangle_separation.h"
+#include "world/cgal_contact_oracle.h"
 
 namespace fs = std::filesystem;
 

@@ -1,9 +1,9 @@
-#include "collision/body_pairs.h"
+#include "core/collision/body_pairs.h"
 
 #include <algorithm>
 #include <numeric>
 
-#include "collision/broad_phase.h"
+#include "core/collision/broad_phase.h"
 
 namespace deformcd::collision {
 

@@ -1,4 +1,4 @@
-#include "collision/bvh.h"
+#include "core/collision/bvh.h"
 
 #include <algorithm>
 #include <limits>
@@ -6,7 +6,7 @@
 
 #include <glm/common.hpp>
 
-#include "collision/broad_phase.h"
+#include "core/collision/broad_phase.h"
 #include "deformcd/error.h"
 
 namespace deformcd::collision {

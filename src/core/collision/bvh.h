@@ -13,9 +13,9 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "broad_phase.h"
+#include "core/collision/broad_phase.h"
+#include "core/collision/vertex_positions.h"
 #include "deformcd/gpu_layout.h"
-#include "vertex_positions.h"
 
 namespace deformcd::collision {
 

@@ -1,4 +1,4 @@
-#include "collision/bvh_upkeep.h"
+#include "core/collision/bvh_upkeep.h"
 
 #include <algorithm>
 #include <string>

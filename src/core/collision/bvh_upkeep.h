@@ -12,10 +12,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "bvh.h"
-#include "collision_data.h"
+#include "core/collision/bvh.h"
+#include "core/collision/collision_data.h"
+#include "core/collision/vertex_positions.h"
 #include "deformcd/gpu_layout.h"
-#include "vertex_positions.h"
 
 namespace deformcd::collision {
 

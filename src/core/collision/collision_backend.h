@@ -11,7 +11,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "collision_data.h"
+#include "core/collision/collision_data.h"
 #include "deformcd/collision.h"
 #include "deformcd/gpu_layout.h"
 

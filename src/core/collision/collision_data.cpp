@@ -1,10 +1,10 @@
-#include "collision/collision_data.h"
+#include "core/collision/collision_data.h"
 
 #include <algorithm>
 #include <tuple>
 
-#include "collision/bvh.h"
-#include "collision/leaf_boxes.h"
+#include "core/collision/bvh.h"
+#include "core/collision/leaf_boxes.h"
 #include "deformcd/error.h"
 
 namespace deformcd::collision {

@@ -10,9 +10,9 @@
 
 #include <glm/vec2.hpp>
 
+#include "core/collision/vertex_positions.h"
 #include "deformcd/detector.h"
 #include "deformcd/gpu_layout.h"
-#include "vertex_positions.h"
 
 namespace deformcd::collision {
 

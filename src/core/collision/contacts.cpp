@@ -1,4 +1,4 @@
-#include "collision/contacts.h"
+#include "core/collision/contacts.h"
 
 #include <algorithm>
 #include <tuple>

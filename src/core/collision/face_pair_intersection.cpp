@@ -1,4 +1,4 @@
-#include "collision/face_pair_intersection.h"
+#include "core/collision/face_pair_intersection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "collision/tri_tri_primitives.h"
+#include "core/collision/tri_tri_primitives.h"
 
 namespace deformcd::collision {
 

@@ -16,9 +16,9 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "core/collision/tri_tri_intersection.h"
+#include "core/collision/vertex_positions.h"
 #include "deformcd/gpu_layout.h"
-#include "tri_tri_intersection.h"
-#include "vertex_positions.h"
 
 namespace deformcd::collision {
 

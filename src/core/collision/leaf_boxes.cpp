@@ -1,4 +1,4 @@
-#include "collision/leaf_boxes.h"
+#include "core/collision/leaf_boxes.h"
 
 #include <algorithm>
 #include <cmath>

@@ -18,8 +18,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "core/collision/vertex_positions.h"
 #include "deformcd/gpu_layout.h"
-#include "vertex_positions.h"
 
 namespace deformcd::collision {
 

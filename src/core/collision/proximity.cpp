@@ -1,4 +1,4 @@
-#include "proximity.h"
+#include "core/collision/proximity.h"
 
 #include <algorithm>
 #include <map>

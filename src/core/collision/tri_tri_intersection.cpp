@@ -1,4 +1,4 @@
-#include "collision/tri_tri_intersection.h"
+#include "core/collision/tri_tri_intersection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "collision/tri_tri_plane_step.h"
-#include "collision/tri_tri_primitives.h"
+#include "core/collision/tri_tri_plane_step.h"
+#include "core/collision/tri_tri_primitives.h"
 
 // Tolerances and the uncertain zone. Nothing is compared with an absolute epsilon: every
 // tolerance is a dimensionless constant times the pair's own lengths, so scaling the pair scales

@@ -6,8 +6,8 @@
 // as not (a third of the test's own time). Written without branches on the geometry, so that a
 // loop over many pairs runs straight through and keeps the survivors.
 
-#include "tri_tri_intersection.h"
-#include "tri_tri_primitives.h"
+#include "core/collision/tri_tri_intersection.h"
+#include "core/collision/tri_tri_primitives.h"
 
 namespace deformcd::collision {
 

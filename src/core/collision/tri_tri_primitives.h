@@ -10,7 +10,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "tri_tri_intersection.h"
+#include "core/collision/tri_tri_intersection.h"
 
 namespace deformcd::collision::detail {
 

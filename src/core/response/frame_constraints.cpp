@@ -1,4 +1,4 @@
-#include "frame_constraints.h"
+#include "core/response/frame_constraints.h"
 
 namespace deformcd::response {
 

@@ -4,8 +4,8 @@
 // (src/cpu/cpu_contact_response.h) and the GL backend implement it over the simulation's own
 // positions and velocities, in place.
 
-#include "contact_constraints.h"
-#include "frame_constraints.h"
+#include "core/response/contact_constraints.h"
+#include "core/response/frame_constraints.h"
 
 namespace deformcd::response {
 

@@ -1,4 +1,4 @@
-#include "frozen_bodies.h"
+#include "core/sim/frozen_bodies.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,4 +1,4 @@
-#include "node_force_lists.h"
+#include "core/sim/node_force_lists.h"
 
 #include <algorithm>
 #include <bit>

@@ -1,4 +1,4 @@
-#include "simulation_backend.h"
+#include "core/sim/simulation_backend.h"
 
 #include "deformcd/error.h"
 

@@ -11,8 +11,8 @@
 
 #include <glm/vec4.hpp>
 
+#include "core/sim/mass_spring.h"
 #include "deformcd/simulation_state.h"
-#include "mass_spring.h"
 
 namespace deformcd::sim {
 

@@ -1,4 +1,4 @@
-#include "stability_estimate.h"
+#include "core/sim/stability_estimate.h"
 
 #include <algorithm>
 #include <cmath>

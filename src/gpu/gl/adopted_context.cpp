@@ -10,7 +10,7 @@
 
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"
-#include "egl_display.h"
+#include "gpu/gl/egl_display.h"
 
 namespace deformcd::gl {
 

@@ -10,7 +10,7 @@
 
 #include "deformcd/error.h"
 #include "deformcd/gl/ssbo.h"
-#include "simulation_upload_checks.h"
+#include "gpu/gl/simulation_upload_checks.h"
 
 namespace deformcd::gl {
 

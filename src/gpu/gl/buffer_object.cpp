@@ -3,11 +3,11 @@
 #include <string>
 #include <utility>
 
-#include "buffer_from.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/ssbo.h"
-#include "fault_injection.h"
-#include "gl_check.h"
+#include "gpu/gl/buffer_from.h"
+#include "gpu/gl/fault_injection.h"
+#include "gpu/gl/gl_check.h"
 
 namespace deformcd::gl {
 

@@ -1,4 +1,4 @@
-#include "bvh_work_order.h"
+#include "gpu/gl/bvh_work_order.h"
 
 #include <algorithm>
 

@@ -8,10 +8,10 @@
 
 #include <glm/vec2.hpp>
 
-#include "collision_dispatch_plan.h"
-#include "collision_work_buffers.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
+#include "gpu/gl/collision_dispatch_plan.h"
+#include "gpu/gl/collision_work_buffers.h"
 
 namespace deformcd::gl {
 

@@ -1,4 +1,4 @@
-#include "collision_dispatch_plan.h"
+#include "gpu/gl/collision_dispatch_plan.h"
 
 #include <algorithm>
 #include <string>

@@ -1,13 +1,13 @@
-#include "collision_upload_checks.h"
+#include "gpu/gl/collision_upload_checks.h"
 
 #include <algorithm>
 #include <string>
 
-#include "collision_work_buffers.h"
 #include "core/collision/broad_phase.h"
 #include "core/collision/bvh.h"
 #include "deformcd/error.h"
 #include "deformcd/gpu_layout.h"
+#include "gpu/gl/collision_work_buffers.h"
 
 namespace deformcd::gl {
 

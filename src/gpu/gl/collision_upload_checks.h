@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/collision/collision_data.h"
-#include "simulation_upload_checks.h"
+#include "gpu/gl/simulation_upload_checks.h"
 
 namespace deformcd::gl {
 

@@ -1,4 +1,4 @@
-#include "compute_program.h"
+#include "gpu/gl/compute_program.h"
 
 #include <epoxy/gl.h>
 
@@ -7,9 +7,9 @@
 #include <utility>
 
 #include "deformcd/error.h"
-#include "gl_check.h"
-#include "program_building.h"
-#include "shader_preprocessor.h"
+#include "gpu/gl/gl_check.h"
+#include "gpu/gl/program_building.h"
+#include "gpu/gl/shader_preprocessor.h"
 
 namespace deformcd::gl {
 

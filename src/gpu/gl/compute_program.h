@@ -9,8 +9,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "program_building.h"
-#include "shader_library.h"
+#include "gpu/gl/program_building.h"
+#include "gpu/gl/shader_library.h"
 
 namespace deformcd::gl {
 

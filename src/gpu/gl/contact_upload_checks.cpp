@@ -1,4 +1,4 @@
-#include "contact_upload_checks.h"
+#include "gpu/gl/contact_upload_checks.h"
 
 #include <string>
 

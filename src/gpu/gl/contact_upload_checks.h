@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/response/frame_constraints.h"
-#include "simulation_upload_checks.h"
+#include "gpu/gl/simulation_upload_checks.h"
 
 namespace deformcd::gl {
 

@@ -11,7 +11,7 @@
 
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"
-#include "egl_platforms.h"
+#include "gpu/gl/egl_platforms.h"
 
 // LeakSanitizer's entry points, present only in sanitizer builds (weak: null otherwise). Their
 // names are the sanitizer runtime's, hence reserved identifiers.

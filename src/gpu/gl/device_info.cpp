@@ -5,7 +5,7 @@
 #include <string>
 
 #include "deformcd/gl/context.h"
-#include "gl_check.h"
+#include "gpu/gl/gl_check.h"
 
 namespace deformcd::gl {
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "deformcd/error.h"
-#include "egl_display.h"
-#include "egl_headless_context.h"
-#include "egl_platforms.h"
+#include "gpu/gl/egl_display.h"
+#include "gpu/gl/egl_headless_context.h"
+#include "gpu/gl/egl_platforms.h"
 
 // From EGL_EXT_device_drm_render_node, newer than libepoxy 1.5's registry.
 #ifndef EGL_DRM_RENDER_NODE_FILE_EXT

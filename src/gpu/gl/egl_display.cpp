@@ -1,4 +1,4 @@
-#include "egl_display.h"
+#include "gpu/gl/egl_display.h"
 
 #include <map>
 #include <mutex>

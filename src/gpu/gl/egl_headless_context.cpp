@@ -1,4 +1,4 @@
-#include "egl_headless_context.h"
+#include "gpu/gl/egl_headless_context.h"
 
 #include <epoxy/gl.h>
 
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "deformcd/error.h"
-#include "fault_injection.h"
+#include "gpu/gl/fault_injection.h"
 
 namespace deformcd::gl::detail {
 

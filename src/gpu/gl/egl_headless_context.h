@@ -8,8 +8,8 @@
 #include <string>
 
 #include "deformcd/gl/context.h"
-#include "egl_display.h"
-#include "gl_debug_log.h"
+#include "gpu/gl/egl_display.h"
+#include "gpu/gl/gl_debug_log.h"
 
 namespace deformcd::gl::detail {
 

@@ -4,9 +4,9 @@
 #include <epoxy/egl.h>
 
 #include "deformcd/error.h"
-#include "egl_display.h"
-#include "egl_headless_context.h"
-#include "egl_platforms.h"
+#include "gpu/gl/egl_display.h"
+#include "gpu/gl/egl_headless_context.h"
+#include "gpu/gl/egl_platforms.h"
 
 namespace deformcd::gl::detail {
 

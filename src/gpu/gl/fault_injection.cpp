@@ -1,4 +1,4 @@
-#include "fault_injection.h"
+#include "gpu/gl/fault_injection.h"
 
 #include <array>
 #include <atomic>

@@ -1,4 +1,4 @@
-#include "gl_check.h"
+#include "gpu/gl/gl_check.h"
 
 #include <epoxy/gl.h>
 
@@ -6,7 +6,7 @@
 #include <string>
 
 #include "deformcd/error.h"
-#include "gl_debug_log.h"
+#include "gpu/gl/gl_debug_log.h"
 
 namespace deformcd::gl::detail {
 

@@ -1,4 +1,4 @@
-#include "gl_collision.h"
+#include "gpu/gl/gl_collision.h"
 
 #include <epoxy/gl.h>
 
@@ -8,12 +8,12 @@
 #include <string>
 #include <utility>
 
-#include "buffer_from.h"
-#include "buffer_limit.h"
 #include "core/collision/broad_phase.h"
 #include "deformcd/error.h"
-#include "device_summary.h"
-#include "gl_check.h"
+#include "gpu/gl/buffer_from.h"
+#include "gpu/gl/buffer_limit.h"
+#include "gpu/gl/device_summary.h"
+#include "gpu/gl/gl_check.h"
 
 namespace deformcd::gl {
 

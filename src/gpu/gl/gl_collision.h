@@ -46,17 +46,17 @@
 #include <string_view>
 #include <vector>
 
-#include "bvh_work_order.h"
-#include "collision_buffers.h"
-#include "collision_upload_checks.h"
-#include "compute_program.h"
 #include "core/collision/bvh_upkeep.h"
 #include "core/collision/collision_backend.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/device_info.h"
-#include "gl_position_staging.h"
-#include "gl_proximity.h"
-#include "gl_vertex_check.h"
+#include "gpu/gl/bvh_work_order.h"
+#include "gpu/gl/collision_buffers.h"
+#include "gpu/gl/collision_upload_checks.h"
+#include "gpu/gl/compute_program.h"
+#include "gpu/gl/gl_position_staging.h"
+#include "gpu/gl/gl_proximity.h"
+#include "gpu/gl/gl_vertex_check.h"
 
 namespace deformcd::gl {
 

@@ -10,10 +10,10 @@
 #include <span>
 #include <string>
 
-#include "buffer_from.h"
 #include "deformcd/error.h"
-#include "gl_check.h"
-#include "gl_collision.h"
+#include "gpu/gl/buffer_from.h"
+#include "gpu/gl/gl_check.h"
+#include "gpu/gl/gl_collision.h"
 
 namespace deformcd::gl {
 

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "deformcd/error.h"
-#include "gl_check.h"
-#include "gl_collision.h"
+#include "gpu/gl/gl_check.h"
+#include "gpu/gl/gl_collision.h"
 
 namespace deformcd::gl {
 

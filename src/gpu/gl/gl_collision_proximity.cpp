@@ -4,7 +4,7 @@
 
 #include <epoxy/gl.h>
 
-#include "gl_collision.h"
+#include "gpu/gl/gl_collision.h"
 
 namespace deformcd::gl {
 

@@ -1,4 +1,4 @@
-#include "gl_contact_response.h"
+#include "gpu/gl/gl_contact_response.h"
 
 #include <epoxy/gl.h>
 
@@ -7,10 +7,10 @@
 #include <string>
 #include <utility>
 
-#include "buffer_from.h"
-#include "buffer_limit.h"
-#include "contact_upload_checks.h"
 #include "deformcd/error.h"
+#include "gpu/gl/buffer_from.h"
+#include "gpu/gl/buffer_limit.h"
+#include "gpu/gl/contact_upload_checks.h"
 
 namespace deformcd::gl {
 

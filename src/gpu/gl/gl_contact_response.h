@@ -27,13 +27,13 @@
 
 #include <glm/vec4.hpp>
 
-#include "compute_program.h"
 #include "core/response/response_backend.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/device_info.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
-#include "gl_simulation.h"
+#include "gpu/gl/compute_program.h"
+#include "gpu/gl/gl_simulation.h"
 
 namespace deformcd::gl {
 

@@ -1,4 +1,4 @@
-#include "gl_debug_log.h"
+#include "gpu/gl/gl_debug_log.h"
 
 #include <epoxy/gl.h>
 

@@ -1,4 +1,4 @@
-#include "gl_position_staging.h"
+#include "gpu/gl/gl_position_staging.h"
 
 #include <epoxy/gl.h>
 
@@ -6,9 +6,9 @@
 #include <string>
 #include <utility>
 
-#include "buffer_from.h"
 #include "deformcd/error.h"
-#include "gl_check.h"
+#include "gpu/gl/buffer_from.h"
+#include "gpu/gl/gl_check.h"
 
 namespace deformcd::gl {
 

@@ -17,7 +17,7 @@
 #include "core/collision/collision_backend.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
-#include "position_layout.h"
+#include "gpu/gl/position_layout.h"
 
 namespace deformcd::gl {
 

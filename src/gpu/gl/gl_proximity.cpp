@@ -1,13 +1,13 @@
-#include "gl_proximity.h"
+#include "gpu/gl/gl_proximity.h"
 
 #include <epoxy/gl.h>
 
 #include <algorithm>
 #include <string>
 
-#include "buffer_from.h"
 #include "deformcd/error.h"
-#include "gl_check.h"
+#include "gpu/gl/buffer_from.h"
+#include "gpu/gl/gl_check.h"
 
 namespace deformcd::gl {
 

@@ -23,13 +23,13 @@
 #include <span>
 #include <vector>
 
-#include "compute_program.h"
 #include "core/collision/collision_data.h"
 #include "core/collision/proximity.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/device_info.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
+#include "gpu/gl/compute_program.h"
 
 namespace deformcd::gl {
 

@@ -1,4 +1,4 @@
-#include "gl_simulation.h"
+#include "gpu/gl/gl_simulation.h"
 
 #include <epoxy/gl.h>
 
@@ -6,14 +6,14 @@
 #include <span>
 #include <utility>
 
-#include "buffer_from.h"
-#include "buffer_limit.h"
 #include "core/sim/node_force_lists.h"
 #include "deformcd/error.h"
 #include "deformcd/gl/device_info.h"
-#include "device_summary.h"
-#include "gl_check.h"
-#include "simulation_upload_checks.h"
+#include "gpu/gl/buffer_from.h"
+#include "gpu/gl/buffer_limit.h"
+#include "gpu/gl/device_summary.h"
+#include "gpu/gl/gl_check.h"
+#include "gpu/gl/simulation_upload_checks.h"
 
 namespace deformcd::gl {
 

@@ -21,13 +21,13 @@
 #include <glm/ext/vector_uint4.hpp>
 #include <glm/vec4.hpp>
 
-#include "compute_program.h"
 #include "core/sim/frozen_bodies.h"
 #include "core/sim/simulation_backend.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/device_info.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
+#include "gpu/gl/compute_program.h"
 
 namespace deformcd::gl {
 

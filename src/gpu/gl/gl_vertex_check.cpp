@@ -1,15 +1,15 @@
-#include "gl_vertex_check.h"
+#include "gpu/gl/gl_vertex_check.h"
 
 #include <epoxy/gl.h>
 
 #include <algorithm>
 #include <vector>
 
-#include "buffer_from.h"
-#include "collision_dispatch_plan.h"
-#include "collision_work_buffers.h"
 #include "deformcd/gpu_layout.h"
-#include "gl_check.h"
+#include "gpu/gl/buffer_from.h"
+#include "gpu/gl/collision_dispatch_plan.h"
+#include "gpu/gl/collision_work_buffers.h"
+#include "gpu/gl/gl_check.h"
 
 namespace deformcd::gl {
 

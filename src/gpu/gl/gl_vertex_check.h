@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <optional>
 
-#include "compute_program.h"
 #include "deformcd/gl/ssbo.h"
-#include "gl_position_staging.h"
+#include "gpu/gl/compute_program.h"
+#include "gpu/gl/gl_position_staging.h"
 
 namespace deformcd::gl {
 

@@ -1,4 +1,4 @@
-#include "position_layout.h"
+#include "gpu/gl/position_layout.h"
 
 #include <algorithm>
 #include <limits>

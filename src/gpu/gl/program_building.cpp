@@ -1,4 +1,4 @@
-#include "program_building.h"
+#include "gpu/gl/program_building.h"
 
 #include <epoxy/gl.h>
 
@@ -8,9 +8,9 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "deformcd/error.h"
-#include "fault_injection.h"
-#include "gl_check.h"
-#include "shader_log.h"
+#include "gpu/gl/fault_injection.h"
+#include "gpu/gl/gl_check.h"
+#include "gpu/gl/shader_log.h"
 
 namespace deformcd::gl {
 

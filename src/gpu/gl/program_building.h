@@ -16,7 +16,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "shader_preprocessor.h"
+#include "gpu/gl/shader_preprocessor.h"
 
 namespace deformcd::gl {
 

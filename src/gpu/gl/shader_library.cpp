@@ -1,4 +1,4 @@
-#include "shader_library.h"
+#include "gpu/gl/shader_library.h"
 
 #include <cstdlib>
 #include <fstream>
@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "deformcd/error.h"
-#include "embedded_shaders.h"
+#include "gpu/gl/embedded_shaders.h"
 
 namespace deformcd::gl {
 

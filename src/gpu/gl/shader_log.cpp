@@ -1,4 +1,4 @@
-#include "shader_log.h"
+#include "gpu/gl/shader_log.h"
 
 #include <cctype>
 #include <string>

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "shader_preprocessor.h"
+#include "gpu/gl/shader_preprocessor.h"
 
 namespace deformcd::gl {
 

@@ -1,11 +1,11 @@
-#include "shader_preprocessor.h"
+#include "gpu/gl/shader_preprocessor.h"
 
 #include <algorithm>
 #include <optional>
 #include <string>
 
 #include "deformcd/error.h"
-#include "shader_library.h"
+#include "gpu/gl/shader_library.h"
 
 namespace deformcd::gl {
 

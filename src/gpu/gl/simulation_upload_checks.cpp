@@ -1,4 +1,4 @@
-#include "simulation_upload_checks.h"
+#include "gpu/gl/simulation_upload_checks.h"
 
 #include <string>
 

@@ -4,7 +4,7 @@
 
 #include <utility>
 
-#include "gl_check.h"
+#include "gpu/gl/gl_check.h"
 
 namespace deformcd::gl {
 

@@ -18,7 +18,7 @@
 #include "core/collision/face_pair_intersection.h"
 #include "core/collision/vertex_positions.h"
 #include "deformcd/error.h"
-#include "detector_scenes.h"
+#include "detector/detector_scenes.h"
 #include "support/contact_compare.h"
 
 #ifdef DEFORMCD_TEST_GL

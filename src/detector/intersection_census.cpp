@@ -4,8 +4,8 @@
 #include <string>
 #include <utility>
 
-#include "closed_surface_inside.h"
 #include "deformcd/error.h"
+#include "detector/closed_surface_inside.h"
 
 namespace deformcd {
 

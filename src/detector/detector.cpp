@@ -7,7 +7,6 @@
 
 #include <glm/common.hpp>
 
-#include "backend_choice.h"
 #include "core/collision/contacts.h"
 #include "core/collision/primitive_distance.h"
 #include "core/geometry.h"
@@ -16,7 +15,8 @@
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"  // declarations only: fine without the GL backend
 #include "deformcd/limits.h"
-#include "detector_impl.h"
+#include "detector/backend_choice.h"
+#include "detector/detector_impl.h"
 #ifdef DEFORMCD_HAS_GL
 #include "gpu/gl/gl_collision.h"
 #include "gpu/gl/gl_proximity.h"

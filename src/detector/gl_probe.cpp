@@ -1,4 +1,4 @@
-#include "gl_probe.h"
+#include "detector/gl_probe.h"
 
 #include <fcntl.h>
 #include <poll.h>

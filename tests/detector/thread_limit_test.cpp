@@ -10,7 +10,7 @@
 #include "deformcd/error.h"
 #include "deformcd/limits.h"
 #include "deformcd/world.h"
-#include "detector_scenes.h"
+#include "detector/detector_scenes.h"
 #include "support/world_fixtures.h"
 
 namespace deformcd {

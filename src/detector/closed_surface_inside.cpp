@@ -1,4 +1,4 @@
-#include "closed_surface_inside.h"
+#include "detector/closed_surface_inside.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,8 +13,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "collision/closed_surface_inside.h"
 #include "deformcd/error.h"
+#include "detector/closed_surface_inside.h"
 
 namespace deformcd {
 namespace {

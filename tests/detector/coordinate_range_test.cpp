@@ -14,7 +14,7 @@
 #include "deformcd/detector.h"
 #include "deformcd/error.h"
 #include "deformcd/limits.h"
-#include "detector_scenes.h"
+#include "detector/detector_scenes.h"
 
 namespace deformcd {
 namespace {

@@ -1,4 +1,4 @@
-#include "backend_choice.h"
+#include "detector/backend_choice.h"
 
 #include <algorithm>
 #include <cctype>
@@ -7,7 +7,7 @@
 
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"  // declarations only: fine without the GL backend
-#include "gl_probe.h"
+#include "detector/gl_probe.h"
 #ifdef DEFORMCD_HAS_GL
 #include "deformcd/gl/device_info.h"
 #endif

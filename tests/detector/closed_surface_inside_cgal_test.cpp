@@ -1,4 +1,4 @@
-// The intersection census's inside test (src/collision/closed_surface_inside.h) against CGAL's
+// The intersection census's inside test (src/detector/closed_surface_inside.h) against CGAL's
 // Side_of_triangle_mesh with exact predicates, on a real model's closed surface: random points
 // through its box, and points a hair off its faces and at its vertices, where a rounding
 // decision would go wrong.
@@ -17,9 +17,9 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "collision/closed_surface_inside.h"
 #include "deformcd/body.h"
 #include "deformcd/io.h"
+#include "detector/closed_surface_inside.h"
 
 namespace deformcd {
 namespace {
