@@ -37,33 +37,14 @@
 
 #include "deformcd/backend.h"
 #include "deformcd/collision.h"
+#include "deformcd/collision_mesh.h"
 #include "deformcd/gpu_layout.h"
-#include "deformcd/mesh.h"
 
 namespace deformcd {
 
 namespace gl {
 class Context;
 }
-
-/// One mesh as the detector sees it: triangles indexing its vertices [0, vertex_count).
-struct CollisionMesh {
-  std::uint32_t vertex_count = 0;  ///< the mesh's vertices are 0 .. vertex_count - 1
-  /// Counter-clockwise or not, in any order: contacts name them by their index here.
-  std::vector<Triangle> triangles = {};
-  /// Also test the mesh's triangles against each other (triangles sharing an edge are never a
-  /// contact; triangles sharing a vertex are when they also meet elsewhere).
-  bool self_collision = false;
-  /// For messages ("mesh 1 ('cloth')"); may be empty.
-  std::string name = {};
-};
-
-/// Two meshes whose triangles are tested against each other (a != b; a == b means the mesh
-/// with itself, as CollisionMesh::self_collision).
-struct MeshPair {
-  std::uint32_t a = 0;  ///< a mesh index
-  std::uint32_t b = 0;  ///< the other mesh index (== a: the mesh with itself)
-};
 
 /// How a Detector runs: backend, broad phase, which mesh pairs, threads.
 struct DetectorOptions {

@@ -11,7 +11,7 @@
 #include <glm/vec2.hpp>
 
 #include "core/collision/vertex_positions.h"
-#include "deformcd/detector.h"
+#include "deformcd/collision_mesh.h"
 #include "deformcd/gpu_layout.h"
 
 namespace deformcd::collision {
