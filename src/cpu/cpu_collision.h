@@ -60,10 +60,10 @@ class CpuCollision final : public collision::CollisionBackend {
   std::vector<collision::MeshVertices> vertices_;  // per mesh: the caller's array
   std::vector<std::uint32_t> vertex_counts_;       // per mesh
 
-  std::vector<gpu::Box> boxes_;              // SSBO 4
-  std::vector<std::int32_t> mask_;           // SSBO 11, one mesh pair's 64 x 64
-  std::vector<std::uint32_t> flags_;         // SSBO 5
-  std::vector<gpu::FacePair> pairs_;         // SSBO 10
+  std::vector<gpu::Box> boxes_;              // 64 leaf boxes per mesh
+  std::vector<std::int32_t> mask_;           // one mesh pair's 64 x 64 leaf-box overlaps
+  std::vector<std::uint32_t> flags_;         // per face: nonzero when it collides
+  std::vector<gpu::FacePair> pairs_;         // the intersecting face pairs
   std::vector<gpu::FacePair> sort_scratch_;  // the radix sort's second buffer
   FaceGeometryCache geometry_;               // per face, this pass
   gpu::CollisionCounters counters_{};

@@ -36,15 +36,15 @@ class CpuContactResponse final : public response::ResponseBackend {
   SimulationState& state_;
   std::shared_ptr<Executor> executor_;
   const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
-  std::vector<glm::vec4> frame_start_;                       // SSBO 34
-  std::vector<glm::vec4> corrections_;                       // SSBO 30
-  std::vector<glm::vec4> impulses_;     // SSBO 37: two per constraint, what it gave this substep
-  std::vector<std::uint32_t> counts_;   // SSBO 33
+  std::vector<glm::vec4> frame_start_;  // per node: position at the frame's start, w = reach
+  std::vector<glm::vec4> corrections_;  // two per corner (slot 4 p + k): position, velocity change
+  std::vector<glm::vec4> impulses_;     // two per constraint: what it gave this substep
+  std::vector<std::uint32_t> counts_;   // per node: its active constraints this substep
   std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep
   std::vector<std::uint32_t> acting_;   // the active constraints, ascending
   std::vector<std::uint32_t> touched_;  // the nodes of active constraints, as first named
   std::vector<std::uint32_t> watched_;  // the nodes with a finite reach, ascending
-  std::vector<float> deviation_;        // SSBO 36: per node, from its straight path
+  std::vector<float> deviation_;        // per node: its distance from its straight path
   // Per touched node n, its active slots: active_slots_[slot_begin_[n] .. + counts_[n]).
   std::vector<std::uint32_t> slot_begin_;
   std::vector<std::uint32_t> active_slots_;

@@ -16,9 +16,9 @@ namespace deformcd::cpu {
 
 // The leaf-box lists of every body (SimulationState::box_faces, face_boxes, box_rows).
 struct LeafBoxRows {
-  const gpu::BoxFace* box_faces;  // SSBO 9
-  const glm::uvec2* face_boxes;   // SSBO 21, per global face
-  const glm::uvec2* box_rows;     // SSBO 24, per global leaf box: first row, row count
+  const gpu::BoxFace* box_faces;  // rows, box by box
+  const glm::uvec2* face_boxes;   // per global face: the leaf boxes listing it
+  const glm::uvec2* box_rows;     // per global leaf box: first row, row count
 };
 
 class OctreeCompactPass {

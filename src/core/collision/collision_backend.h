@@ -65,7 +65,7 @@ class CollisionBackend {
   /// The last pass's intersecting face pairs (face indices over every mesh, face_a < face_b),
   /// in no particular order.
   virtual void download_face_pairs(std::vector<gpu::FacePair>& out) = 0;
-  /// The last pass's per-face flags (SSBO 5): nonzero for a face in at least one contact.
+  /// The last pass's per-face flags: nonzero for a face in at least one contact.
   virtual void download_face_flags(std::vector<std::uint32_t>& out) = 0;
   /// The leaf boxes as the last octree pass computed them (64 per mesh).
   virtual void download_boxes(std::vector<gpu::Box>& out) = 0;

@@ -17,18 +17,18 @@
 namespace deformcd::collision {
 
 struct CollisionData {
-  std::vector<gpu::Face> faces;       ///< SSBO 7: mesh by mesh; Face::body is the mesh
+  std::vector<gpu::Face> faces;       ///< mesh by mesh; Face::body is the mesh
   std::vector<gpu::MeshInfo> meshes;  ///< per mesh (position_* set by the GL backend)
-  /// SSBO 22: the mesh pairs to test, sorted by (a, b), a <= b ((m, m): m with itself).
+  /// The mesh pairs to test, sorted by (a, b), a <= b ((m, m): m with itself).
   std::vector<gpu::BodyPair> mesh_pairs;
   std::vector<std::string> mesh_names;  ///< "mesh 1 ('cloth')", for messages
   // Built on a pose by build_hierarchies (empty before):
-  /// SSBO 9: the BoundingBox Face List, mesh by mesh, and within a mesh box by box (Fig. 7).
+  /// The BoundingBox Face List, mesh by mesh, and within a mesh box by box (Fig. 7).
   std::vector<gpu::BoxFace> box_faces;
-  std::vector<glm::uvec2> face_boxes;   ///< SSBO 21: per face, bit k set if leaf box k lists it
-  std::vector<glm::uvec2> box_rows;     ///< SSBO 24: per leaf box, first row in box_faces, count
-  std::vector<gpu::BvhNode> bvh_nodes;  ///< SSBO 25: every mesh's BVH, mesh by mesh
-  std::vector<gpu::BodyBvh> mesh_bvhs;  ///< SSBO 27: per mesh
+  std::vector<glm::uvec2> face_boxes;   ///< per face, bit k set if leaf box k lists it
+  std::vector<glm::uvec2> box_rows;     ///< per leaf box, first row in box_faces, count
+  std::vector<gpu::BvhNode> bvh_nodes;  ///< every mesh's BVH, mesh by mesh
+  std::vector<gpu::BodyBvh> mesh_bvhs;  ///< per mesh
 
   [[nodiscard]] std::size_t mesh_count() const { return meshes.size(); }
   [[nodiscard]] bool has_hierarchies() const { return !mesh_bvhs.empty(); }

@@ -14,8 +14,8 @@
 namespace deformcd::response {
 
 struct FrameConstraints {
-  std::vector<gpu::ContactPair> pairs;  ///< SSBO 29, in the proximity search's order
-  /// SSBO 35, per node: the velocity of its straight path over the search window (xyz, m/s:
+  std::vector<gpu::ContactPair> pairs;  ///< in the proximity search's order
+  /// Per node: the velocity of its straight path over the search window (xyz, m/s:
   /// its velocity where the window starts) and its reach (w, m; infinite for a node on no
   /// collision surface): a free node stays within the reach of its window-start position
   /// carried along that path; the proximity search assumed no more.
@@ -24,9 +24,9 @@ struct FrameConstraints {
 
 /// Per node, the corners of the constraints it is in.
 struct NodeContactLists {
-  /// SSBO 31: node n's corners are list[offset[n] .. offset[n + 1]).
+  /// Node n's corners are list[offset[n] .. offset[n + 1]).
   std::vector<std::uint32_t> offset;
-  /// SSBO 32: slots 4 p + k (pair p's node k), ascending within each node.
+  /// Slots 4 p + k (pair p's node k), ascending within each node.
   std::vector<std::uint32_t> list;
 };
 

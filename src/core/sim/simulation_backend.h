@@ -46,12 +46,12 @@ class SimulationBackend {
   /// given their masses back when it wakes. Throws Error when the range is outside the state.
   virtual void set_inverse_masses(std::uint32_t first, std::span<const float> inverse_mass) = 0;
 
-  /// GL buffer name of the node positions (SSBO 0), or 0 when the backend is not GL.
+  /// GL buffer name of the node positions, or 0 when the backend is not GL.
   [[nodiscard]] virtual std::uint32_t gl_position_buffer() const { return 0; }
   /// The node positions in host memory (vec4 per node), where a CPU backend steps them in
   /// place (they do not move after upload), or null when the backend is not the CPU.
   [[nodiscard]] virtual const glm::vec4* host_positions() const { return nullptr; }
-  /// GL buffer name of the node velocities (SSBO 1), or 0 when the backend is not GL.
+  /// GL buffer name of the node velocities, or 0 when the backend is not GL.
   [[nodiscard]] virtual std::uint32_t gl_velocity_buffer() const { return 0; }
   /// The state a CPU backend steps, whose positions and velocities (vec4 per node, in node
   /// order) stay valid between substeps, so that a contact response can correct them in

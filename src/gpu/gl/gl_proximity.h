@@ -33,14 +33,25 @@
 
 namespace deformcd::gl {
 
-// shaders/proximity/proximity_buffers.glsl's BINDING_PROXIMITY_*.
+// The search's own buffers: shaders/proximity/proximity_buffers.glsl's BINDING_PROXIMITY_*, at
+// binding points the collision passes' and the contact response's private buffers also use
+// (every pass binds its buffers before it dispatches).
+
+// uint per face: its collision::primitive_owners bits
 inline constexpr std::uint32_t kProximityOwnersBinding = 29;
+// vec4 per vertex: its motion (xyz, m), its reach (w, m)
 inline constexpr std::uint32_t kProximityMotionBinding = 30;
+// uint per mesh pair + 1: its first work item
 inline constexpr std::uint32_t kProximityPairFirstBinding = 31;
+// uint per work item: its candidates
 inline constexpr std::uint32_t kProximityCountsBinding = 32;
+// uint per work item + 1: exclusive scan of the counts
 inline constexpr std::uint32_t kProximityOffsetsBinding = 33;
+// collision::ProximityCandidate per candidate
 inline constexpr std::uint32_t kProximityCandidatesBinding = 34;
+// uint per mesh: its first vertex in the motion buffer
 inline constexpr std::uint32_t kProximityVertexFirstBinding = 35;
+// uint per internal BVH node, deepest level first
 inline constexpr std::uint32_t kProximityLevelsBinding = 36;
 
 // The order in which the search refits its boxes over the trees it queries (bvh_work_order.h's
