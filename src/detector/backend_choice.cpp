@@ -8,31 +8,26 @@
 #include "deformcd/error.h"
 #include "deformcd/gl/context.h"  // declarations only: fine without the GL backend
 #include "detector/gl_probe.h"
-#ifdef DEFORMCD_HAS_GL
-#include "deformcd/gl/device_info.h"
-#endif
 
 namespace deformcd {
 
 namespace {
 
 BackendChoice choose_gl(gl::Context* context) {
-#ifdef DEFORMCD_HAS_GL
+  if (!gl_backend_built()) {
+    throw GlError(
+        "this deformcd was built without the OpenGL backend (DEFORMCD_WITH_GL=OFF); the CPU "
+        "backend (--backend cpu) is available");
+  }
   BackendChoice choice;
   choice.kind = BackendKind::kGl;
   if (context == nullptr) {
-    choice.owned_context = gl::create_headless_context();
+    choice.owned_context = make_headless_gl_context();
     context = choice.owned_context.get();
   }
   context->make_current();
   choice.context = context;
   return choice;
-#else
-  (void)context;
-  throw GlError(
-      "this deformcd was built without the OpenGL backend (DEFORMCD_WITH_GL=OFF); the CPU "
-      "backend (--backend cpu) is available");
-#endif
 }
 
 BackendChoice cpu_with_notice(std::string notice) {
@@ -94,16 +89,20 @@ BackendChoice choose_backend(BackendKind kind, gl::Context* context) {
     cpu.notice = std::string("OpenGL 4.3 is not available, using the CPU backend: ") + e.what();
     return cpu;
   }
-#ifdef DEFORMCD_HAS_GL
-  const std::string renderer = gl::query_device_info(*choice.context).renderer;
+  const std::string renderer = gl_renderer(*choice.context);
   if (is_software_renderer(renderer)) return cpu_with_notice(software_notice(renderer));
-#endif
   return choice;
 }
 
 AutoBackend choose_auto_backend() {
   BackendChoice choice = choose_backend(BackendKind::kAuto, nullptr);
   return {choice.kind, std::move(choice.notice)};
+}
+
+std::string headless_gl_renderer() {
+  const std::unique_ptr<gl::Context> context = make_headless_gl_context();
+  context->make_current();
+  return gl_renderer(*context);
 }
 
 }  // namespace deformcd

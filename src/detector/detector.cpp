@@ -17,10 +17,6 @@
 #include "deformcd/limits.h"
 #include "detector/backend_choice.h"
 #include "detector/detector_impl.h"
-#ifdef DEFORMCD_HAS_GL
-#include "gpu/gl/gl_collision.h"
-#include "gpu/gl/gl_proximity.h"
-#endif
 
 namespace deformcd {
 
@@ -40,14 +36,6 @@ std::string describe(const glm::vec3& p) {
 
 }  // namespace
 
-void Detector::Impl::GlProximityDeleter::operator()(gl::GlProximity* search) const {
-#ifdef DEFORMCD_HAS_GL
-  delete search;  // NOLINT(cppcoreguidelines-owning-memory): the unique_ptr's deleter
-#else
-  (void)search;  // never made without the GL backend
-#endif
-}
-
 std::unique_ptr<Detector::Impl> Detector::Impl::create(std::vector<CollisionMesh> meshes,
                                                        const DetectorOptions& options,
                                                        BackendKind kind, gl::Context* context,
@@ -64,13 +52,8 @@ std::unique_ptr<Detector::Impl> Detector::Impl::create(std::vector<CollisionMesh
   for (std::size_t m = 0; m < impl->meshes.size(); ++m)
     impl->sources[m].vertex_count = impl->meshes[m].vertex_count;
   if (kind == BackendKind::kGl) {
-#ifdef DEFORMCD_HAS_GL
     impl->context = context;
-    impl->backend = std::make_unique<gl::GlCollision>(*context);
-#else
-    (void)context;
-    throw GlError("this deformcd was built without the OpenGL backend (DEFORMCD_WITH_GL=OFF)");
-#endif
+    impl->backend = make_gl_collision(*context);
   } else {
     impl->backend = std::make_unique<cpu::CpuCollision>(executor);
   }
@@ -418,17 +401,14 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
   if (d.check_positions) d.check_finite();
   std::vector<collision::ProximityCandidate> found;
   bool searched = false;
-#ifdef DEFORMCD_HAS_GL
-  if (auto* gl_collision = dynamic_cast<gl::GlCollision*>(d.backend.get())) {
+  if (is_gl_collision(*d.backend)) {
     // On the GPU over the backend's trees and positions (staged as a pass stages them).
     if (!d.prepared) d.prepare();
     d.make_current();
-    if (!d.gl_proximity) d.gl_proximity.reset(new gl::GlProximity(*d.context, d.data));
-    const gl::ProximityRefitOrder order = gl_collision->prepare_proximity();
-    found = d.gl_proximity->find_bound(order, reach, motion, mesh_pairs);
+    if (!d.gl_proximity) d.gl_proximity = make_gl_proximity(*d.context, d.data);
+    found = find_gl_proximity(*d.backend, *d.gl_proximity, reach, motion, mesh_pairs);
     searched = true;
   }
-#endif
   // The distances: the CPU search returns those its filter computed; after a GL search, on the
   // host from the positions, a GL buffer's read back whole (one copy of vertex_count vertices
   // per mesh) rather than the candidates' own vertices (4 per candidate), since the candidates

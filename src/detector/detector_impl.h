@@ -11,19 +11,11 @@
 #include "cpu/cpu_proximity.h"
 #include "cpu/executor.h"
 #include "deformcd/detector.h"
+#include "detector/backend_choice.h"
 
 namespace deformcd {
 
-namespace gl {
-class GlProximity;
-}
-
 struct Detector::Impl {
-  /// Deletes a GL proximity search (defined where its type is complete: detector.cpp).
-  struct GlProximityDeleter {
-    void operator()(gl::GlProximity* search) const;
-  };
-
   /// A detector on backend `kind` (kGl or kCpu, already chosen) running in `context` (kGl) or on
   /// `executor`'s threads (kCpu). `check_positions`: whether detect() checks that positions are
   /// finite (a World checks its own state instead).
@@ -44,7 +36,7 @@ struct Detector::Impl {
   std::unique_ptr<cpu::CpuProximity> proximity;  // CPU: made by the first find_proximity()
   // GL: made by the first find_proximity(), over the GL backend's trees and positions; after
   // the backend (destroyed before it, while the context lives).
-  std::unique_ptr<gl::GlProximity, GlProximityDeleter> gl_proximity;
+  GlProximityPtr gl_proximity;
   /// The last find_proximity()'s inputs, for widen_proximity(): the positions it searched (per
   /// mesh, copied), each vertex's motion and reach (the motion's order), the mesh pairs it
   /// searched (indices into data.mesh_pairs), and whether the CPU search's boxes are from it

@@ -12,26 +12,19 @@
 #include <cstring>
 #include <exception>
 
-#include "deformcd/error.h"
-#ifdef DEFORMCD_HAS_GL
-#include "deformcd/gl/context.h"
-#include "deformcd/gl/device_info.h"
-#endif
+#include "detector/backend_choice.h"
 
 namespace deformcd {
 
 namespace {
 
-#ifdef DEFORMCD_HAS_GL
 // In the child: one status byte ('R' renderer, 'N' no GL) then the text, then _exit (no
 // destructors, no atexit handlers of the parent's libraries, no flushing its stdio buffers).
 [[noreturn]] void run_probe_child(int out) {
   char status = 'N';
   std::string text;
   try {
-    const std::unique_ptr<gl::Context> context = gl::create_headless_context();
-    context->make_current();
-    text = gl::query_device_info(*context).renderer;
+    text = headless_gl_renderer();
     status = 'R';
   } catch (const std::exception& e) {
     text = e.what();
@@ -67,13 +60,12 @@ bool read_answer(int in, std::chrono::steady_clock::time_point deadline, std::st
     answer.append(buffer.data(), static_cast<std::size_t>(n));
   }
 }
-#endif
 
 }  // namespace
 
 GlProbe probe_gl_in_child(int timeout_ms) {
   GlProbe probe;
-#ifdef DEFORMCD_HAS_GL
+  if (!gl_backend_built()) return probe;  // nothing to look for: kNotRun
   std::array<int, 2> fds{};
   if (::pipe2(fds.data(), O_CLOEXEC) != 0) return probe;
   const pid_t pid = ::fork();
@@ -110,9 +102,6 @@ GlProbe probe_gl_in_child(int timeout_ms) {
     probe.outcome = answer[0] == 'R' ? GlProbe::Outcome::kRenderer : GlProbe::Outcome::kNoGl;
     probe.text = answer.substr(1);
   }
-#else
-  (void)timeout_ms;
-#endif
   return probe;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // The auto backend's look for a GL 4.3 device, made in a forked child process so that a driver
 // crashing while it sets up a context (Mesa's llvmpipe under `ulimit -v 250000` dies of SIGSEGV)
-// takes down the child, not the caller: the caller then runs on the CPU with a notice.
+// takes down the child, not the caller: the caller then runs on the CPU with a notice. The child
+// asks backend_choice.h's headless_gl_renderer(); a build without the GL backend makes no child.
 
 #include <string>
 
@@ -13,7 +14,8 @@ struct GlProbe {
     kRenderer,  ///< a context was had; `text` is its GL_RENDERER
     kNoGl,      ///< no GL 4.3 context (GlError); `text` is the error
     kCrashed,   ///< the child died (a signal) or did not answer; `text` says how
-    kNotRun,    ///< no child could be made (fork or pipe failed): probe in the process instead
+    kNotRun,    ///< no child was made (no GL backend built, or fork or pipe failed): probe
+                ///< in the process instead
   };
   Outcome outcome = Outcome::kNotRun;
   std::string text;

@@ -1,6 +1,6 @@
 #pragma once
-// Creates a world's simulation backend on the backend already chosen (backend_choice.h). The
-// only place in the World that knows whether the GL backend was compiled in.
+// Creates a world's simulation backend and contact response on the backend already chosen, the
+// GL ones through backend_choice.h (which alone knows whether the GL backend was compiled in).
 
 #include <memory>
 
