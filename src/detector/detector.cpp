@@ -71,6 +71,13 @@ void Detector::Impl::push_sources(std::vector<PositionSource> next) {
   sources = std::move(next);
 }
 
+void Detector::Impl::require_mesh(std::size_t mesh, const std::string& operation) const {
+  if (mesh >= meshes.size()) {
+    throw InputError(operation, "mesh " + std::to_string(mesh) + " does not exist (there are " +
+                                    std::to_string(meshes.size()) + " meshes)");
+  }
+}
+
 void Detector::Impl::require_positions() const {
   for (std::size_t m = 0; m < sources.size(); ++m) {
     if (sources[m].kind == PositionSource::Kind::kNone) {
@@ -203,11 +210,7 @@ std::size_t Detector::face_count() const {
 }
 
 void Detector::set_positions(std::size_t mesh, const HostPositions& positions) {
-  if (mesh >= impl_->meshes.size()) {
-    throw InputError("set_positions", "mesh " + std::to_string(mesh) +
-                                          " does not exist (there are " +
-                                          std::to_string(impl_->meshes.size()) + " meshes)");
-  }
+  impl_->require_mesh(mesh, "set_positions");
   const std::string& label = label_of(impl_->data, mesh);
   if (positions.data == nullptr) throw InputError(label, "positions: null array");
   if (positions.stride_bytes < 3 * sizeof(float) || positions.stride_bytes % sizeof(float) != 0) {
@@ -234,11 +237,7 @@ void Detector::set_positions(std::size_t mesh, std::span<const glm::vec3> v) {
 }
 
 void Detector::set_positions(std::size_t mesh, const GlPositions& positions) {
-  if (mesh >= impl_->meshes.size()) {
-    throw InputError("set_positions", "mesh " + std::to_string(mesh) +
-                                          " does not exist (there are " +
-                                          std::to_string(impl_->meshes.size()) + " meshes)");
-  }
+  impl_->require_mesh(mesh, "set_positions");
   const std::string& label = label_of(impl_->data, mesh);
   if (impl_->backend->name() != "gl") {
     throw Error(label + ": positions in a GL buffer need the GL backend (this detector runs on " +

@@ -59,6 +59,8 @@ struct Detector::Impl {
 
   void make_current() const;
   void push_sources(std::vector<collision::PositionSource> next);
+  /// Throws InputError (`operation`: "mesh N does not exist ...") unless mesh `mesh` exists.
+  void require_mesh(std::size_t mesh, const std::string& operation) const;
   void require_positions() const;
   void check_finite();
   void prepare();

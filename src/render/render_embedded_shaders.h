@@ -4,16 +4,13 @@
 // tree), and the shader library that finds them along with deformcd_gl's shared files.
 
 #include <span>
-#include <string_view>
 
+#include "gpu/gl/embedded_shaders.h"
 #include "gpu/gl/shader_library.h"
 
 namespace deformcd::render {
 
-struct EmbeddedShader {
-  std::string_view name;    // path relative to shaders/, e.g. "render/surface.vert"
-  std::string_view source;  // the file's text
-};
+using gl::EmbeddedShader;  // one entry per file, as deformcd_gl's
 
 // Every embedded render shader, in the order CMake listed them.
 std::span<const EmbeddedShader> embedded_shaders() noexcept;

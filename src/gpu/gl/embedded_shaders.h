@@ -1,6 +1,7 @@
 #pragma once
 // The GLSL files under shaders/, embedded at build time by cmake/EmbedShaders.cmake (the
-// definition is generated into the build tree).
+// definition is generated into the build tree). EmbeddedShader is also the entry of the
+// renderer's table (render/render_embedded_shaders.h).
 
 #include <span>
 #include <string_view>

@@ -3,7 +3,9 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <deque>
 #include <optional>
+#include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -76,7 +78,89 @@ std::optional<std::string> link_failure_log(std::uint32_t program,
   return map_driver_log(info_log(program, glGetProgramiv, glGetProgramInfoLog), source);
 }
 
-int ProgramUniforms::location(std::string_view name) {
+namespace {
+
+std::string_view stage_name(std::uint32_t stage) {
+  switch (stage) {
+    case GL_COMPUTE_SHADER:
+      return "compute";
+    case GL_VERTEX_SHADER:
+      return "vertex";
+    case GL_FRAGMENT_SHADER:
+      return "fragment";
+    default:
+      return "GL";
+  }
+}
+
+// A compiled shader object, deleted on scope exit (the program keeps the code once linked).
+class ShaderObject {
+ public:
+  ShaderObject(const ShaderStage& stage, const ShaderLibrary& library)
+      : source_(preprocess_shader(stage.name, library)),
+        shader_(compile_shader_stage(stage.stage, stage_name(stage.stage), stage.name, source_)) {}
+  ~ShaderObject() { glDeleteShader(shader_); }
+  ShaderObject(const ShaderObject&) = delete;
+  ShaderObject& operator=(const ShaderObject&) = delete;
+
+  [[nodiscard]] GLuint name() const { return shader_; }
+  [[nodiscard]] const PreprocessedShader& source() const { return source_; }
+
+ private:
+  PreprocessedShader source_;
+  GLuint shader_ = 0;
+};
+
+}  // namespace
+
+Program::Program(std::initializer_list<ShaderStage> stages, const ShaderLibrary& library,
+                 std::string_view what, std::string owner)
+    : owner_(std::move(owner)) {
+  std::deque<ShaderObject> shaders;  // compiled in order, deleted when the program has them
+  for (const ShaderStage& stage : stages)
+    shaders.emplace_back(stage, library);
+  program_ = DEFORMCD_GL_CHECK(glCreateProgram());
+  try {
+    for (const ShaderObject& shader : shaders)
+      DEFORMCD_GL_CHECK(glAttachShader(program_, shader.name()));
+    DEFORMCD_GL_CHECK(glLinkProgram(program_));
+    for (const ShaderObject& shader : shaders)
+      DEFORMCD_GL_CHECK(glDetachShader(program_, shader.name()));
+  } catch (...) {
+    // A throwing constructor gets no destructor call.
+    glDeleteProgram(std::exchange(program_, 0));
+    throw;
+  }
+  if (const std::optional<std::string> log = link_failure_log(program_, shaders.back().source())) {
+    glDeleteProgram(std::exchange(program_, 0));
+    throw GlError("linking " + std::string(what) + " failed:\n" + *log);
+  }
+}
+
+Program::~Program() {
+  if (program_ != 0) glDeleteProgram(program_);
+}
+
+Program::Program(Program&& other) noexcept
+    : program_(std::exchange(other.program_, 0)),
+      owner_(std::move(other.owner_)),
+      locations_(std::move(other.locations_)) {}
+
+Program& Program::operator=(Program&& other) noexcept {
+  if (this != &other) {
+    if (program_ != 0) glDeleteProgram(program_);
+    program_ = std::exchange(other.program_, 0);
+    owner_ = std::move(other.owner_);
+    locations_ = std::move(other.locations_);
+  }
+  return *this;
+}
+
+void Program::use() const {
+  DEFORMCD_GL_CHECK(glUseProgram(program_));
+}
+
+int Program::location(std::string_view name) {
   if (auto it = locations_.find(name); it != locations_.end()) return it->second;
   const std::string key(name);
   const GLint location = DEFORMCD_GL_CHECK(glGetUniformLocation(program_, key.c_str()));
@@ -88,27 +172,27 @@ int ProgramUniforms::location(std::string_view name) {
   return location;
 }
 
-void ProgramUniforms::set(std::string_view name, std::uint32_t value) {
+void Program::set_uniform(std::string_view name, std::uint32_t value) {
   DEFORMCD_GL_CHECK(glProgramUniform1ui(program_, location(name), value));
 }
 
-void ProgramUniforms::set(std::string_view name, std::int32_t value) {
+void Program::set_uniform(std::string_view name, std::int32_t value) {
   DEFORMCD_GL_CHECK(glProgramUniform1i(program_, location(name), value));
 }
 
-void ProgramUniforms::set(std::string_view name, float value) {
+void Program::set_uniform(std::string_view name, float value) {
   DEFORMCD_GL_CHECK(glProgramUniform1f(program_, location(name), value));
 }
 
-void ProgramUniforms::set(std::string_view name, const glm::vec3& value) {
+void Program::set_uniform(std::string_view name, const glm::vec3& value) {
   DEFORMCD_GL_CHECK(glProgramUniform3fv(program_, location(name), 1, glm::value_ptr(value)));
 }
 
-void ProgramUniforms::set(std::string_view name, const glm::vec4& value) {
+void Program::set_uniform(std::string_view name, const glm::vec4& value) {
   DEFORMCD_GL_CHECK(glProgramUniform4fv(program_, location(name), 1, glm::value_ptr(value)));
 }
 
-void ProgramUniforms::set(std::string_view name, const glm::mat4& value) {
+void Program::set_uniform(std::string_view name, const glm::mat4& value) {
   DEFORMCD_GL_CHECK(
       glProgramUniformMatrix4fv(program_, location(name), 1, GL_FALSE, glm::value_ptr(value)));
 }
