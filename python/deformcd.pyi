@@ -48,6 +48,7 @@ class _ResponseCounts(TypedDict):
     untangle: int
     searches: int
     widenings: int
+    self_searches: int
     asleep: int
 
 class _Counts(TypedDict):

@@ -159,8 +159,13 @@ void print_response(std::ostream& out, const SceneBench& b) {
         << ", widenings "
         << static_cast<double>(
                std::accumulate(r.widenings.begin(), r.widenings.end(), std::uint64_t{0})) /
-               frames
-        << " a frame\n";
+               frames;
+    const std::uint64_t self_searches =
+        std::accumulate(r.self_searches.begin(), r.self_searches.end(), std::uint64_t{0});
+    if (self_searches > 0) {
+      out << ", bodies searched against themselves " << static_cast<double>(self_searches) / frames;
+    }
+    out << " a frame\n";
     // The frames in contact apart: the response costs little in the others.
     const auto in_contact = static_cast<std::size_t>(
         std::count_if(r.constraints.begin(), r.constraints.end(), [](auto c) { return c > 0; }));
@@ -228,6 +233,7 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
         per_frame["response_ms"] = milliseconds(r.response_s);
         per_frame["searches"] = r.searches;
         per_frame["widenings"] = r.widenings;
+        per_frame["self_searches"] = r.self_searches;
         per_frame["constraints"] = r.constraints;
       }
       add_intersection_fields(per_frame, r.intersections);

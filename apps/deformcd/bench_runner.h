@@ -37,10 +37,12 @@ struct MethodRun {
   /// the projections, included in simulation_s (the stage step() runs). Empty without.
   std::vector<double> proximity_s;
   std::vector<double> response_s;
-  /// Per frame 1..N with contact response: the proximity searches and the widenings around
-  /// nodes that strayed (World::response_counts()). Empty without.
+  /// Per frame 1..N with contact response: the proximity searches, the widenings around
+  /// nodes that strayed and the bodies searched against themselves (World::response_counts()).
+  /// Empty without.
   std::vector<std::uint64_t> searches;
   std::vector<std::uint64_t> widenings;
+  std::vector<std::uint64_t> self_searches;
   /// Per frame 1..N with contact response: the constraints the frame ended with (proximity and
   /// untangling pairs, World::response_counts()). Empty without.
   std::vector<std::uint64_t> constraints;

@@ -105,6 +105,17 @@ struct ProximityPair {
   friend bool operator==(const ProximityPair&, const ProximityPair&) = default;
 };
 
+/// Which of a detector's mesh pairs a proximity search looks at (Detector::find_proximity);
+/// by default every pair detect() tests.
+struct ProximityPairs {
+  /// The pairs of two different meshes.
+  bool between = true;
+  /// Per mesh (or empty: every mesh), whether its pairs with itself are searched (for a mesh
+  /// with self-collision): a response that holds some bodies' self-contact pairs from a search
+  /// of their own leaves them out.
+  std::span<const std::uint8_t> within = {};
+};
+
 /// Collision detection between triangle meshes whose positions the caller owns (host arrays
 /// or GL buffers), on the GL or the CPU backend, with the same contacts on both: see
 /// docs/detector.md. Move-only; calls on one detector must not overlap.
@@ -180,15 +191,18 @@ class Detector {
   /// `still` (one flag per mesh, or none) names meshes that do not move over the period (a
   /// fixed base, a sleeping body): the pairs between two of them, and a still mesh's pairs
   /// with itself, are not searched for (the rest are the same pairs in the same order), since
-  /// no response could move them apart. Throws InputError for lists of the wrong length, a
-  /// negative or non-finite reach or a non-finite motion.
+  /// no response could move them apart. `pairs` narrows the mesh pairs further (the pairs
+  /// between meshes, or some meshes' with themselves, left out). Throws InputError for lists of
+  /// the wrong length, a negative or non-finite reach or a non-finite motion.
   [[nodiscard]] std::vector<ProximityPair> find_proximity(std::span<const float> reach,
                                                           std::span<const glm::vec3> motion = {},
-                                                          std::span<const std::uint8_t> still = {});
+                                                          std::span<const std::uint8_t> still = {},
+                                                          const ProximityPairs& pairs = {});
   /// Raises the reach of some vertices in the last find_proximity() (`vertices` numbered as
   /// its motion, mesh 0's first; `reach` one per vertex named, m, >= 0) and returns the pairs
   /// that involve one of them: exactly the pairs involving them that find_proximity() would
-  /// return with those reaches, on the positions, motions and still meshes it was given (kept
+  /// return with those reaches, on the positions, motions, still meshes and mesh pairs it was
+  /// given (kept
   /// from then: the meshes may have moved since), in an order of its own (by the pair's
   /// triangles). The
   /// other pairs of the last search stand as they were. For a contact response whose vertex

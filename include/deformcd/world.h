@@ -88,6 +88,10 @@ struct ResponseCounts {
   /// Times in the frame a search was widened instead: around the nodes that strayed, only
   /// their pairs found again with larger reaches (Detector::widen_proximity).
   std::uint64_t widenings = 0;
+  /// Bodies searched against themselves in the frame (with self-contact): a body's
+  /// self-contact pairs are kept from one such search until its surface has deformed (or turned)
+  /// by a margin, not searched again every window.
+  std::uint64_t self_searches = 0;
   /// Bodies asleep after the frame (ResponseSettings::sleep).
   std::uint64_t asleep = 0;
   /// m: the closest two primitives of a proximity constraint were when the frame's searches

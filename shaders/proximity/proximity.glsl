@@ -3,7 +3,8 @@
 // reach_box and the swept corners, is proximity_vertices.glsl; the distances
 // common/primitive_distance.glsl), with the same tests in the same order on the same floats,
 // so that the GL search finds exactly the CPU's candidates (CpuProximity::find). Change both
-// files together.
+// files together. (The C++ template's `wanted` filter is the CPU's widening's alone: a GL
+// search keeps every candidate.)
 //
 // An including shader must define
 //   void proximity_emit(ProximityCandidate c);

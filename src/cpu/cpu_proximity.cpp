@@ -192,10 +192,17 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
         boxes_[i] = {glm::min(l.min, r.min), glm::max(l.max, r.max)};
       }
     }
-    // The face pairs with a widened face, as find() orders each pair's faces (the first mesh's
-    // face first; within one mesh the lower face first), sorted.
+    // Each widened face's face pairs, with the pair's faces as find() orders them (the first
+    // mesh's face first; within one mesh the lower face first), sorted: the order does not
+    // depend on the trees (which the GL and CPU backends rebuild on schedules of their own). A
+    // pair of two widened faces is met from both: each keeps the candidates it is responsible
+    // for (below), so that every candidate comes once.
+    std::vector<std::uint8_t> face_widened(data_.faces.size(), 0u);
+    for (const std::uint32_t face : faces)
+      face_widened[face] = 1u;
     struct FacePair {
-      std::uint32_t mesh_pair, a, b;
+      std::uint32_t mesh_pair, a, b;  // the pair's faces
+      std::uint32_t from;             // the widened face that met it
       // clang-tidy's modernize-use-nullptr flags a defaulted <=> (the literal 0 the synthesized
       // comparison compares against): a false positive, as in proximity.h.
       // NOLINTNEXTLINE(modernize-use-nullptr)
@@ -207,48 +214,51 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
       for (const std::uint32_t face : faces) {
         const std::uint32_t mesh = data_.faces[face].body;
         if (mesh != mp.a && mesh != mp.b) continue;
-        const gpu::Box& box = boxes_[leaf_of_[face]];
-        if (mp.a == mp.b) {
-          collision::query_bvh(
-              nodes.data(), boxes_.data(), upkeep_.tree(mp.b).root, box, [&](std::uint32_t other) {
+        const bool first = mesh == mp.a;
+        collision::query_bvh(
+            nodes.data(), boxes_.data(), upkeep_.tree(first ? mp.b : mp.a).root,
+            boxes_[leaf_of_[face]], [&](std::uint32_t other) {
+              if (mp.a == mp.b) {
                 if (other != face)
-                  pairs.push_back({p, std::min(face, other), std::max(face, other)});
-              });
-        } else if (mesh == mp.a) {
-          collision::query_bvh(nodes.data(), boxes_.data(), upkeep_.tree(mp.b).root, box,
-                               [&](std::uint32_t other) {
-                                 pairs.push_back({p, face, other});
-                               });
-        } else {
-          collision::query_bvh(nodes.data(), boxes_.data(), upkeep_.tree(mp.a).root, box,
-                               [&](std::uint32_t other) {
-                                 pairs.push_back({p, other, face});
-                               });
-        }
+                  pairs.push_back({p, std::min(face, other), std::max(face, other), face});
+              } else {
+                pairs.push_back({p, first ? face : other, first ? other : face, face});
+              }
+            });
       }
     }
     std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
     for (const FacePair& fp : pairs) {
       want_primitives(fp.a);
       want_primitives(fp.b);
     }
     sweep_primitives_of_met_faces();
+    const auto widened_vertex = [&](std::uint32_t mesh, std::uint32_t v) {
+      return is_widened[vertex_first_[mesh] + v] != 0u;
+    };
     for (const FacePair& fp : pairs) {
+      // A candidate involves a widened vertex when its vertex (or an edge's end) is one, or its
+      // face has one as a corner. The widened face that owns such a vertex or edge emits it; a
+      // candidate whose widened part is only the face (or the second edge) is emitted from that.
+      const auto responsible = [&](const collision::ProximityCandidate& c) {
+        if (c.kind == gpu::kContactVertexFace) {
+          if (widened_vertex(c.mesh_a, c.vertices[0])) return fp.from != c.face_b;
+          return face_widened[c.face_b] != 0u && fp.from == c.face_b;
+        }
+        if (widened_vertex(c.mesh_a, c.vertices[0]) || widened_vertex(c.mesh_a, c.vertices[1]))
+          return fp.from == fp.a;
+        return (widened_vertex(c.mesh_b, c.vertices[2]) ||
+                widened_vertex(c.mesh_b, c.vertices[3])) &&
+               fp.from == fp.b;
+      };
       collision::emit_face_pair_candidates(
           data_.faces[fp.a], swept_[fp.a], primitives_[fp.a], fp.a, owners_[fp.a],
           data_.faces[fp.b], swept_[fp.b], primitives_[fp.b], fp.b, owners_[fp.b],
           [&](const collision::ProximityCandidate& c, float distance) {
-            const std::uint32_t first_b = c.kind == gpu::kContactEdgeEdge ? 2u : 1u;
-            bool involved = false;
-            for (std::uint32_t k = 0; k < 4u; ++k) {
-              const std::uint32_t mesh = k < first_b ? c.mesh_a : c.mesh_b;
-              involved = involved || is_widened[vertex_first_[mesh] + c.vertices[k]] != 0u;
-            }
-            if (!involved) return;
             out.push_back(c);
             distances.push_back(distance);
-          });
+          },
+          responsible);
     }
   });
   return out;

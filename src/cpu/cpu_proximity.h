@@ -40,8 +40,9 @@ class CpuProximity {
   /// After a search over the same positions, motion and mesh pairs, whose reaches have since
   /// been raised for the vertices of `widened` (mesh, vertex): the candidates find() would now
   /// give that involve one of them, with their distances in `distances`. Only the faces that
-  /// have one of them as a corner are swept again and query the trees. Ordered by face pair
-  /// (mesh pair by mesh pair, then by the pair's two faces), whatever the thread count.
+  /// have one of them as a corner are swept again and query the trees, and of their face pairs
+  /// only the candidates involving a widened vertex are tested. Ordered by face pair (mesh pair
+  /// by mesh pair, then by the pair's two faces), whatever the thread count and the trees.
   /// `boxes_current`: the trees' boxes are from that search (a find() on the CPU); else (the
   /// search ran on GL) they are refitted first.
   [[nodiscard]] std::vector<collision::ProximityCandidate> widen(

@@ -340,7 +340,8 @@ static std::vector<ProximityPair> to_proximity_pairs(
 
 std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach,
                                                     std::span<const glm::vec3> motion,
-                                                    std::span<const std::uint8_t> still) {
+                                                    std::span<const std::uint8_t> still,
+                                                    const ProximityPairs& pairs) {
   Impl& d = *impl_;
   const std::size_t vertices = d.vertex_first.back();
   // One reach per mesh, or one per vertex: per vertex from here on.
@@ -394,7 +395,13 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
                                            std::to_string(d.meshes.size()) + ") or none, not " +
                                            std::to_string(still.size()));
   }
-  std::vector<std::uint32_t> mesh_pairs = collision::searched_mesh_pairs(d.data, still);
+  if (!pairs.within.empty() && pairs.within.size() != d.meshes.size()) {
+    throw InputError("find_proximity", "takes one self-pair flag per mesh (" +
+                                           std::to_string(d.meshes.size()) + ") or none, not " +
+                                           std::to_string(pairs.within.size()));
+  }
+  std::vector<std::uint32_t> mesh_pairs =
+      collision::searched_mesh_pairs(d.data, still, pairs.between, pairs.within);
   d.require_positions();
   d.complete();  // a GL pass may still read the buffers the search and the read-back read
   if (d.check_positions) d.check_finite();

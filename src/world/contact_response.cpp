@@ -11,6 +11,7 @@
 #include "core/response/contact_constraints.h"
 #include "deformcd/error.h"
 #include "world/body_sleep.h"
+#include "world/self_contact.h"
 
 namespace deformcd {
 
@@ -132,7 +133,8 @@ float mean_surface_edge(const Body& body) {
 ContactResponse::ContactResponse(const ResponseSettings& settings,
                                  const std::vector<BodyInit>& bodies, const SimulationState& state,
                                  const StepSettings& step, sim::SimulationBackend& simulation,
-                                 std::unique_ptr<response::ResponseBackend> backend)
+                                 std::unique_ptr<response::ResponseBackend> backend,
+                                 bool self_contact)
     : settings_(settings),
       step_(step),
       simulation_(simulation),
@@ -180,6 +182,10 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
         merged.push_back(e);
       }
     }
+  }
+  if (self_contact) {
+    self_contact_ = std::make_unique<SelfContact>(objects_, on_surface_, thickness_,
+                                                  std::vector<std::uint8_t>(bodies.size(), 1u));
   }
   max_untangle_step_ = settings.untangle_step * smallest_edge;
   smallest_edge_ = smallest_edge;
@@ -379,6 +385,7 @@ void ContactResponse::search() {
   counts_ = {};
   counts_.searches = searches;
   counts_.widenings = frame_so_far.widenings;
+  counts_.self_searches = frame_so_far.self_searches;
   counts_.closest_distance = frame_so_far.closest_distance;  // the frame's, not the window's
   counts_.closest_thickness = frame_so_far.closest_thickness;
   // The positions now: the window's start, kept for the side each vertex-face pair's vertex
@@ -395,8 +402,49 @@ void ContactResponse::search() {
   std::vector<std::uint8_t> still(objects_.size());
   for (std::uint32_t b = 0; b < still.size(); ++b)
     still[b] = immovable(b) ? 1u : 0u;
-  for (const ProximityPair& p : detector.find_proximity(reach, motion, still))
+  // Bodies that move as a whole keep their pairs with themselves from a search of their own
+  // (SelfContact); the window's search finds the others' and the pairs between bodies, and
+  // widen() widens it.
+  std::vector<std::uint8_t> search_self;
+  if (self_contact_) {
+    std::vector<std::uint8_t> movable(objects_.size());
+    for (std::uint32_t b = 0; b < movable.size(); ++b)
+      movable[b] = 1u - still[b];
+    SelfContact::Plan plan = self_contact_->plan(window_start_, c.node_motion, window, movable);
+    if (std::find(plan.search.begin(), plan.search.end(), 1u) != plan.search.end()) {
+      self_contact_->take(detector.find_proximity(self_contact_->search_reach(), {}, {},
+                                                  {.between = false, .within = plan.search}),
+                          window_start_, plan.search);
+      for (std::uint32_t b = 0; b < plan.search.size(); ++b) {
+        if (plan.search[b] == 0u) continue;
+        plan.kept[b] = 1u;
+        ++counts_.self_searches;
+      }
+    }
+    self_kept_ = std::move(plan.kept);
+    search_self.resize(objects_.size());
+    for (std::uint32_t b = 0; b < objects_.size(); ++b)
+      search_self[b] = 1u - self_kept_[b];
+  }
+  for (const ProximityPair& p :
+       detector.find_proximity(reach, motion, still, {.within = search_self}))
     add_proximity_pair(p, c);
+  for (std::uint32_t b = 0; b < self_kept_.size(); ++b) {
+    if (self_kept_[b] == 0u) continue;
+    const std::uint32_t first = objects_[b].node_offset;
+    for (ProximityPair p : self_contact_->pairs(b)) {
+      // Its distance where this window starts (the constraint's gap is measured from there),
+      // not on the positions of the search that found it.
+      const glm::vec3 corners[4] = {
+          window_start_[first + p.vertices[0]], window_start_[first + p.vertices[1]],
+          window_start_[first + p.vertices[2]], window_start_[first + p.vertices[3]]};
+      p.distance = collision::primitive_distance(p.kind == ProximityPair::Kind::kEdgeEdge
+                                                     ? gpu::kContactEdgeEdge
+                                                     : gpu::kContactVertexFace,
+                                                 corners);
+      add_proximity_pair(p, c);
+    }
+  }
   // Untangling: each vertex of an intersecting face against the other face, unless it is one
   // of that face's own corners (self-intersections of faces sharing a node).
   for (const Contact& contact : intersections) {
@@ -426,6 +474,15 @@ void ContactResponse::search() {
   }
   constraints_ = std::move(c);
   backend_->begin_frame(constraints_);
+}
+
+bool ContactResponse::self_pairs_hold(float h) {
+  if (std::find(self_kept_.begin(), self_kept_.end(), 1u) == self_kept_.end()) return true;
+  const std::vector<glm::vec4>& x = positions();
+  const std::vector<glm::vec4>& v = velocities();
+  for (std::uint32_t b = 0; b < self_kept_.size(); ++b)
+    if (self_kept_[b] != 0u && !self_contact_->holds(b, x, v, h)) return false;
+  return true;
 }
 
 ContactResponse::~ContactResponse() = default;
@@ -545,11 +602,14 @@ void ContactResponse::widen() {
     search();
     return;
   }
-  // Their old pairs go; the widened search's come instead. The others' pairs, and the
-  // untangling constraints, stand.
+  // Their old pairs go; the widened search's come instead. The others' pairs, a kept body's
+  // pairs with itself (which still hold) and the untangling constraints stand.
   std::vector<gpu::ContactPair>& pairs = constraints_.pairs;
   std::erase_if(pairs, [&](const gpu::ContactPair& p) {
     if (p.kind == gpu::kContactUntangle) return false;
+    const std::uint32_t body = node_body_[p.nodes[0]];
+    if (body == node_body_[p.nodes[3]] && !self_kept_.empty() && self_kept_[body] != 0u)
+      return false;
     const bool gone = strayed[p.nodes[0]] != 0u || strayed[p.nodes[1]] != 0u ||
                       strayed[p.nodes[2]] != 0u || strayed[p.nodes[3]] != 0u;
     if (gone) --(p.kind == gpu::kContactEdgeEdge ? counts_.edge_edge : counts_.vertex_face);
@@ -575,7 +635,7 @@ void ContactResponse::project(float h, bool more_substeps) {
   ++substep_;
   const bool strayed = backend_->project(k, settings_.iterations);
   if (!more_substeps) return;  // the next begin_frame() searches
-  if (substep_ >= window_end_) {
+  if (substep_ >= window_end_ || !self_pairs_hold(h)) {
     search();
   } else if (strayed) {
     widen();

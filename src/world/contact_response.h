@@ -21,6 +21,7 @@
 namespace deformcd {
 
 class BodySleep;
+class SelfContact;
 class TangledPrimitives;
 
 class ContactResponse {
@@ -30,11 +31,13 @@ class ContactResponse {
   static constexpr float kWindowEdges = 1.0f;
 
   /// `bodies` as the world got them, `state` as assembled from them (node offsets, node
-  /// bodies); `simulation` is read for velocities; `backend` corrects its state.
+  /// bodies); `simulation` is read for velocities; `backend` corrects its state. With
+  /// `self_contact` each body's surface is kept apart from itself too (the detector must search
+  /// each body against itself; SelfContact keeps the pairs of bodies moving as a whole).
   ContactResponse(const ResponseSettings& settings, const std::vector<BodyInit>& bodies,
                   const SimulationState& state, const StepSettings& step,
                   sim::SimulationBackend& simulation,
-                  std::unique_ptr<response::ResponseBackend> backend);
+                  std::unique_ptr<response::ResponseBackend> backend, bool self_contact);
   ~ContactResponse();
   ContactResponse(const ContactResponse&) = delete;
   ContactResponse& operator=(const ContactResponse&) = delete;
@@ -88,6 +91,9 @@ class ContactResponse {
   /// of `body` (global nodes), inside it by a margin: where its vertex-face pair holds it.
   [[nodiscard]] bool over_a_face_beside(std::uint32_t body, std::uint32_t e0, std::uint32_t e1,
                                         const glm::dvec3& p) const;
+  /// Whether every body keeping its pairs with itself still may over the next substep, of
+  /// length h (SelfContact::holds), on the positions and velocities now.
+  [[nodiscard]] bool self_pairs_hold(float h);
   /// Appends proximity pair p as a constraint of c (unless its primitives are tangled).
   void add_proximity_pair(const ProximityPair& p, response::FrameConstraints& c);
   /// Notes that a constraint of the frame joins bodies a and b (for the sleeping islands).
@@ -129,6 +135,8 @@ class ContactResponse {
   int substep_ = 0;                             // substeps projected in the frame
   int window_end_ = 0;                          // the substep the window ends after
   float smallest_edge_ = 0.0f;                  // the smallest body's mean surface edge
+  std::unique_ptr<SelfContact> self_contact_;   // with self-contact
+  std::vector<std::uint8_t> self_kept_;         // per body: its pairs with itself are kept ones
   ResponseCounts counts_;
   std::unique_ptr<BodySleep> sleep_;  // with ResponseSettings::sleep
   std::vector<std::uint8_t> linked_;  // bodies x bodies: joined by a constraint in the frame

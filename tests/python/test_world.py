@@ -172,6 +172,7 @@ def test_stage_times_and_response_counts(tmp_path):
         w.step()
         c = w.response_counts()
         pairs.append(c["vertex_face"] + c["edge_edge"])
+        assert c["self_searches"] == 0  # no self-collision in this scene
     times = w.last_frame_times()
     assert times["simulation_s"] > 0 and times["collision_s"] > 0 and times["response_s"] > 0
     assert max(pairs) > 0 and w.counts()["contacts"] == 0  # the response kept them apart

@@ -130,11 +130,13 @@ std::vector<std::uint32_t> vertex_firsts(const CollisionData& data) {
 }
 
 std::vector<std::uint32_t> searched_mesh_pairs(const CollisionData& data,
-                                               std::span<const std::uint8_t> still) {
+                                               std::span<const std::uint8_t> still, bool between,
+                                               std::span<const std::uint8_t> within) {
   std::vector<std::uint32_t> searched;
   searched.reserve(data.mesh_pairs.size());
   for (std::uint32_t p = 0; p < data.mesh_pairs.size(); ++p) {
     const gpu::BodyPair& pair = data.mesh_pairs[p];
+    if (pair.a == pair.b ? !within.empty() && within[pair.a] == 0u : !between) continue;
     if (still.empty() || still[pair.a] == 0u || still[pair.b] == 0u) searched.push_back(p);
   }
   return searched;

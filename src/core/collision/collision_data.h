@@ -47,9 +47,12 @@ struct CollisionData {
 
 /// The mesh pairs a proximity search looks at (indices into data.mesh_pairs, ascending): every
 /// pair but those of two meshes flagged in `still` (one flag per mesh, or none: every pair),
-/// a still mesh with itself included. Meshes that do not move cannot come closer.
-[[nodiscard]] std::vector<std::uint32_t> searched_mesh_pairs(const CollisionData& data,
-                                                             std::span<const std::uint8_t> still);
+/// a still mesh with itself among them (meshes that do not move cannot come closer); of those,
+/// the pairs of two different meshes when `between`, and a mesh with itself when `within` flags
+/// it (one flag per mesh, or none: every mesh).
+[[nodiscard]] std::vector<std::uint32_t> searched_mesh_pairs(
+    const CollisionData& data, std::span<const std::uint8_t> still, bool between = true,
+    std::span<const std::uint8_t> within = {});
 
 /// Builds the leaf-box lists and the BVHs of every mesh on `pose`.
 void build_hierarchies(CollisionData& data, VertexPositions pose);

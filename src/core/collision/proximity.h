@@ -161,6 +161,11 @@ inline SweptPrimitives sweep_primitives(const SweptFace& s) {
   return p;
 }
 
+/// A filter that keeps every candidate (emit_face_pair_candidates' default).
+struct EveryCandidate {
+  constexpr bool operator()(const ProximityCandidate& /*candidate*/) const { return true; }
+};
+
 /// The candidates of one face pair (fa of mesh a, fb of mesh b, swept as sa and sb with
 /// primitive boxes pa and pb, whose boxes overlap; for one mesh, fa < fb, and pairs of surface
 /// neighbours are left out, so that two faces sharing a corner still give their other primitives'
@@ -170,33 +175,34 @@ inline SweptPrimitives sweep_primitives(const SweptFace& s) {
 /// grown by its reach (a vertex's own, the largest of an edge's or a face's vertices'); a pair
 /// whose boxes overlap is kept unless its distance where the period starts, less what the motions
 /// can close of it (closing_speed), exceeds the sum of the two reaches. A pair that comes within
-/// that sum at some moment of the period is always emitted.
-template <class Emit>
+/// that sum at some moment of the period is always emitted. Only the candidates `wanted` keeps
+/// are looked at (a widened search keeps those of some vertices; the GLSL mirror, which
+/// always searches whole, has no filter).
+template <class Emit, class Wanted = EveryCandidate>
 void emit_face_pair_candidates(const gpu::Face& fa, const SweptFace& sa, const SweptPrimitives& pa,
                                std::uint32_t index_a, std::uint32_t owners_a, const gpu::Face& fb,
                                const SweptFace& sb, const SweptPrimitives& pb,
-                               std::uint32_t index_b, std::uint32_t owners_b, const Emit& emit) {
+                               std::uint32_t index_b, std::uint32_t owners_b, const Emit& emit,
+                               const Wanted& wanted = {}) {
   const glm::vec3* xa = sa.x;
   const glm::vec3* xb = sb.x;
   for (std::uint32_t k = 0; k < 3u; ++k) {
-    if ((owners_a & (kOwnsVertex0 << k)) != 0u && boxes_overlap(pa.vertex_box[k], sb.box))
-      emit_if_within_reach(ProximityCandidate{gpu::kContactVertexFace,
-                                              fa.body,
-                                              fb.body,
-                                              index_b,
-                                              {face_corner(fa, k), fb.a, fb.b, fb.c}},
-                           std::array{xa[k], xb[0], xb[1], xb[2]}.data(),
+    if ((owners_a & (kOwnsVertex0 << k)) == 0u || !boxes_overlap(pa.vertex_box[k], sb.box))
+      continue;
+    const ProximityCandidate c{
+        gpu::kContactVertexFace, fa.body, fb.body, index_b, {face_corner(fa, k), fb.a, fb.b, fb.c}};
+    if (wanted(c))
+      emit_if_within_reach(c, std::array{xa[k], xb[0], xb[1], xb[2]}.data(),
                            std::array{xa[3u + k], xb[3], xb[4], xb[5]}.data(),
                            sa.reach[k] + sb.face_reach, emit);
   }
   for (std::uint32_t k = 0; k < 3u; ++k) {
-    if ((owners_b & (kOwnsVertex0 << k)) != 0u && boxes_overlap(pb.vertex_box[k], sa.box))
-      emit_if_within_reach(ProximityCandidate{gpu::kContactVertexFace,
-                                              fb.body,
-                                              fa.body,
-                                              index_a,
-                                              {face_corner(fb, k), fa.a, fa.b, fa.c}},
-                           std::array{xb[k], xa[0], xa[1], xa[2]}.data(),
+    if ((owners_b & (kOwnsVertex0 << k)) == 0u || !boxes_overlap(pb.vertex_box[k], sa.box))
+      continue;
+    const ProximityCandidate c{
+        gpu::kContactVertexFace, fb.body, fa.body, index_a, {face_corner(fb, k), fa.a, fa.b, fa.c}};
+    if (wanted(c))
+      emit_if_within_reach(c, std::array{xb[k], xa[0], xa[1], xa[2]}.data(),
                            std::array{xb[3u + k], xa[3], xa[4], xa[5]}.data(),
                            sb.reach[k] + sa.face_reach, emit);
   }
@@ -208,14 +214,15 @@ void emit_face_pair_candidates(const gpu::Face& fa, const SweptFace& sa, const S
       if ((owners_b & (kOwnsEdge0 << j)) == 0u) continue;
       const std::uint32_t j1 = (j + 1u) % 3u;
       const float reach_b = glm::max(sb.reach[j], sb.reach[j1]);
-      if (boxes_overlap(pa.edge_box[i], pb.edge_box[j]))
-        emit_if_within_reach(ProximityCandidate{gpu::kContactEdgeEdge,
-                                                fa.body,
-                                                fb.body,
-                                                0u,
-                                                {face_corner(fa, i), face_corner(fa, i1),
-                                                 face_corner(fb, j), face_corner(fb, j1)}},
-                             std::array{xa[i], xa[i1], xb[j], xb[j1]}.data(),
+      if (!boxes_overlap(pa.edge_box[i], pb.edge_box[j])) continue;
+      const ProximityCandidate c{
+          gpu::kContactEdgeEdge,
+          fa.body,
+          fb.body,
+          0u,
+          {face_corner(fa, i), face_corner(fa, i1), face_corner(fb, j), face_corner(fb, j1)}};
+      if (wanted(c))
+        emit_if_within_reach(c, std::array{xa[i], xa[i1], xb[j], xb[j1]}.data(),
                              std::array{xa[3u + i], xa[3u + i1], xb[3u + j], xb[3u + j1]}.data(),
                              reach_a + reach_b, emit);
     }
