@@ -50,8 +50,10 @@ enum Binding : std::uint32_t {
   kBodyBvh = 27,            ///< BodyBvh per body
   kCandidatePair = 28,      ///< glm::uvec2 per candidate face pair (global face indices)
   // Contact response (beyond the paper).
-  kContactPair = 29,        ///< ContactPair per contact constraint of the frame
-  kContactCorrection = 30,  ///< glm::vec4 per constraint corner (4 p + k): xyz, w = counts
+  kContactPair = 29,  ///< ContactPair per contact constraint of the frame
+  /// two glm::vec4 per constraint corner (slot 4 p + k): 2 slot its position change, 2 slot + 1
+  /// its velocity change (xyz); the w of constraint p's first (8 p) > 0 when it acts
+  kContactCorrection = 30,
   kNodeContactOffset = 31,  ///< uint per node + 1: CSR offsets into kNodeContactList
   kNodeContactList = 32,    ///< uint per (node, constraint corner): the slot 4 p + k, sorted
   kNodeContactCount = 33,   ///< uint per node: its active constraints this substep
