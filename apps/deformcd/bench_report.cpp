@@ -180,7 +180,7 @@ void print_response(std::ostream& out, const SceneBench& b) {
       if (apart != 0) out << "; the other " << apart << ": " << r.response_ratio(false) << " x";
     }
     out << '\n' << std::defaultfloat;
-    print_intersection_summary(out, r.intersections);
+    print_intersection_summary(out, r.intersections, r.inverted_tetrahedra);
   }
 }
 
@@ -236,7 +236,7 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
         per_frame["self_searches"] = r.self_searches;
         per_frame["constraints"] = r.constraints;
       }
-      add_intersection_fields(per_frame, r.intersections);
+      add_intersection_fields(per_frame, r.intersections, r.inverted_tetrahedra);
       methods[name] = {{"total_s", r.total_s()},
                        {"simulation_s", r.total_simulation_s()},
                        {"collision_s", r.total_collision_s()},

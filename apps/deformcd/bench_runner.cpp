@@ -40,7 +40,7 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
   World world(bodies, settings, world_options);
   device = world.device();
   StageDeviceTimer timer(world.backend_name() == "gl");
-  BenchIntersections census(world);
+  BenchIntersections census(world, bodies);
   MethodRun run;
   run.method = method;
   for (int f = 0; f < frames; ++f) {
@@ -75,7 +75,7 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
     if (const auto s = timer.seconds(BenchStage::kCollision)) run.collision_device_s.push_back(*s);
     run.contacts.push_back(counts.contacts);
     run.candidates.push_back(counts.candidates);
-    census.record(run.intersections);  // untimed
+    census.record(run.intersections, run.inverted_tetrahedra);  // untimed
     frame_done();
   }
   return run;

@@ -46,8 +46,10 @@ struct MethodRun {
   /// Per frame 1..N with contact response: the constraints the frame ended with (proximity and
   /// untangling pairs, World::response_counts()). Empty without.
   std::vector<std::uint64_t> constraints;
-  /// Per frame 1..N with contact response: the intersection census (bench_intersections.h).
+  /// Per frame 1..N with contact response: the intersection census and the tetrahedra turned
+  /// inside out (bench_intersections.h).
   std::vector<IntersectionCensus> intersections;
+  std::vector<std::uint64_t> inverted_tetrahedra;
 
   [[nodiscard]] double total_simulation_s() const;
   [[nodiscard]] double total_collision_s() const;

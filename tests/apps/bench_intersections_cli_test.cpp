@@ -42,13 +42,31 @@ TEST(BenchIntersectionsCli, ResponseSceneReportsTheCensusEveryFrame) {
       << r.output;
   const nlohmann::json per_frame = bvh_per_frame(json);
   for (const char* key :
-       {"intersecting_pairs_between", "intersecting_pairs_self", "inside_vertices"}) {
+       {"intersecting_pairs_between", "intersecting_pairs_self", "inside_vertices",
+        "inverted_tetrahedra"}) {
     ASSERT_EQ(per_frame.at(key).size(), 2u) << key;
   }
   for (int f = 0; f < 2; ++f) {
     EXPECT_GT(per_frame["intersecting_pairs_between"][f].get<std::uint64_t>(), 0u);
     EXPECT_GT(per_frame["inside_vertices"][f].get<std::uint64_t>(), 0u);
   }
+}
+
+// The stack's soft bodies are crushed where they land (frames 5-10): tetrahedra turn inside
+// out, none before. The census counts them, as a user must see them: there the surfaces fold
+// through themselves, which no contact response between surface primitives undoes.
+TEST(BenchIntersectionsCli, CrushedBodiesShowTheirInvertedTetrahedra) {
+  deformcd::test::TempDir dir;
+  const fs::path json = dir.path() / "bench.json";
+  const CliRun r =
+      run_cli("bench " + scene_file("stack") +
+              " --backend cpu --methods bvh --threads 2 --frames 12 --json " + json.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find(" tetrahedra inverted"), std::string::npos) << r.output;
+  const nlohmann::json inverted = bvh_per_frame(json).at("inverted_tetrahedra");
+  ASSERT_EQ(inverted.size(), 12u);
+  EXPECT_EQ(inverted[0].get<std::uint64_t>(), 0u);
+  EXPECT_GT(inverted[11].get<std::uint64_t>(), 10u);
 }
 
 TEST(BenchIntersectionsCli, SceneWithoutResponseHasNoCensus) {
