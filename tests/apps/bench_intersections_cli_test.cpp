@@ -41,9 +41,8 @@ TEST(BenchIntersectionsCli, ResponseSceneReportsTheCensusEveryFrame) {
             std::string::npos)
       << r.output;
   const nlohmann::json per_frame = bvh_per_frame(json);
-  for (const char* key :
-       {"intersecting_pairs_between", "intersecting_pairs_self", "inside_vertices",
-        "inverted_tetrahedra"}) {
+  for (const char* key : {"intersecting_pairs_between", "intersecting_pairs_self",
+                          "inside_vertices", "inverted_tetrahedra"}) {
     ASSERT_EQ(per_frame.at(key).size(), 2u) << key;
   }
   for (int f = 0; f < 2; ++f) {
