@@ -202,13 +202,11 @@ class Detector {
   /// its motion, mesh 0's first; `reach` one per vertex named, m, >= 0) and returns the pairs
   /// that involve one of them: exactly the pairs involving them that find_proximity() would
   /// return with those reaches, on the positions, motions, still meshes and mesh pairs it was
-  /// given (kept
-  /// from then: the meshes may have moved since), in an order of its own (by the pair's
-  /// triangles). The
-  /// other pairs of the last search stand as they were. For a contact response whose vertex
-  /// strayed beyond its reach: only the triangles at those vertices query the hierarchies,
-  /// instead of a new search over every triangle. The reaches stay raised for the next call.
-  /// On either backend the work is the CPU's (a few triangles). Throws Error before a
+  /// given (kept from then: the meshes may have moved since), in an order of its own (by the
+  /// pair's triangles). The other pairs of the last search stand as they were. For a contact
+  /// response whose vertex strayed beyond its reach: only the triangles at those vertices query the
+  /// hierarchies, instead of a new search over every triangle. The reaches stay raised for the next
+  /// call. On either backend the work is the CPU's (a few triangles). Throws Error before a
   /// find_proximity(), InputError for a vertex out of range or a negative or non-finite reach.
   [[nodiscard]] std::vector<ProximityPair> widen_proximity(std::span<const std::uint32_t> vertices,
                                                            std::span<const float> reach);

@@ -183,10 +183,8 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
       }
     }
   }
-  if (self_contact) {
-    self_contact_ = std::make_unique<SelfContact>(objects_, on_surface_, thickness_,
-                                                  std::vector<std::uint8_t>(bodies.size(), 1u));
-  }
+  if (self_contact)
+    self_contact_ = std::make_unique<SelfContact>(objects_, on_surface_, thickness_);
   max_untangle_step_ = settings.untangle_step * smallest_edge;
   smallest_edge_ = smallest_edge;
   linked_.assign(bodies.size() * bodies.size(), 0u);

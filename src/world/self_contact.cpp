@@ -30,49 +30,51 @@ glm::dquat nearest_rotation(const glm::dmat3& a, glm::dquat q) {
   return q;
 }
 
+// A node's position (glm::vec3, or glm::vec4's xyz) in double.
+template <class X>
+glm::dvec3 at(const X& x) {
+  return glm::dvec3(glm::vec3(x));
+}
+
 }  // namespace
 
 SelfContact::SelfContact(const std::vector<gpu::ObjectInfo>& objects,
-                         std::vector<std::uint8_t> on_surface, std::vector<float> thickness,
-                         std::vector<std::uint8_t> enabled)
+                         const std::vector<std::uint8_t>& on_surface, std::vector<float> thickness)
     : objects_(objects),
-      on_surface_(std::move(on_surface)),
       thickness_(std::move(thickness)),
-      enabled_(std::move(enabled)),
-      searched_(objects.size(), 0u),
+      surface_(objects.size()),
       reference_(objects.size()),
       rotation_(objects.size(), glm::dquat(1.0, 0.0, 0.0, 0.0)),
-      pairs_(objects.size()) {}
+      pairs_(objects.size()) {
+  for (std::size_t b = 0; b < objects_.size(); ++b) {
+    const gpu::ObjectInfo& o = objects_[b];
+    for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i)
+      if (on_surface[i] != 0u) surface_[b].push_back(i);
+  }
+}
 
 template <class X>
 double SelfContact::drift(std::uint32_t body, const std::vector<X>& x) {
-  // In double, summed in node order: the centroids, then the rotation of the covariance's polar
-  // decomposition, which takes the reference offsets to the positions' (warm-started).
-  const gpu::ObjectInfo& o = objects_[body];
+  // In double, summed in surface order: the centroids, then the rotation of the covariance's
+  // polar decomposition, which takes the reference offsets to the positions' (warm-started).
+  const std::vector<std::uint32_t>& surface = surface_[body];
   const std::vector<glm::vec3>& p = reference_[body];
+  if (surface.empty()) return 0.0;
   glm::dvec3 x_sum(0.0), p_sum(0.0);
-  double count = 0.0;
-  for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
-    if (on_surface_[i] == 0u) continue;
-    x_sum += glm::dvec3(glm::vec3(x[i]));
-    p_sum += glm::dvec3(p[i - o.node_offset]);
-    count += 1.0;
+  for (std::size_t k = 0; k < surface.size(); ++k) {
+    x_sum += at(x[surface[k]]);
+    p_sum += glm::dvec3(p[k]);
   }
-  if (count == 0.0) return 0.0;
+  const auto count = static_cast<double>(surface.size());
   const glm::dvec3 x_mid = x_sum / count, p_mid = p_sum / count;
   glm::dmat3 covariance(0.0);
-  for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
-    if (on_surface_[i] == 0u) continue;
-    covariance += glm::outerProduct(glm::dvec3(glm::vec3(x[i])) - x_mid,
-                                    glm::dvec3(p[i - o.node_offset]) - p_mid);
-  }
+  for (std::size_t k = 0; k < surface.size(); ++k)
+    covariance += glm::outerProduct(at(x[surface[k]]) - x_mid, glm::dvec3(p[k]) - p_mid);
   rotation_[body] = nearest_rotation(covariance, rotation_[body]);
   const glm::dmat3 back = glm::transpose(glm::mat3_cast(rotation_[body]));
   double most = 0.0;
-  for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
-    if (on_surface_[i] == 0u) continue;
-    const double d = glm::length(back * (glm::dvec3(glm::vec3(x[i])) - x_mid) + p_mid -
-                                 glm::dvec3(p[i - o.node_offset]));
+  for (std::size_t k = 0; k < surface.size(); ++k) {
+    const double d = glm::length(back * (at(x[surface[k]]) - x_mid) + p_mid - glm::dvec3(p[k]));
     if (!(d <= most)) most = d;  // NaN stays (and fails every bound)
   }
   return most;
@@ -84,24 +86,21 @@ double SelfContact::deformation(std::uint32_t body, const std::vector<X>& x,
   // The best rigid fit to the surface's velocities: the mean velocity, and the angular velocity
   // for which inertia x omega = angular momentum (unit masses). A turn by `turn` radians leaves
   // the straight path by at most turn^2 of the radius (for turn <= 1/2).
-  const gpu::ObjectInfo& o = objects_[body];
+  const std::vector<std::uint32_t>& surface = surface_[body];
+  if (surface.empty()) return 0.0;
   glm::dvec3 x_sum(0.0), v_sum(0.0);
-  double count = 0.0;
-  for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
-    if (on_surface_[i] == 0u) continue;
-    x_sum += glm::dvec3(glm::vec3(x[i]));
-    v_sum += glm::dvec3(node_motion[i]);
-    count += 1.0;
+  for (const std::uint32_t i : surface) {
+    x_sum += at(x[i]);
+    v_sum += at(node_motion[i]);
   }
-  if (count == 0.0) return 0.0;
+  const auto count = static_cast<double>(surface.size());
   const glm::dvec3 x_mid = x_sum / count, v_mid = v_sum / count;
   glm::dmat3 inertia(0.0);
   glm::dvec3 momentum(0.0);
-  for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
-    if (on_surface_[i] == 0u) continue;
-    const glm::dvec3 r = glm::dvec3(glm::vec3(x[i])) - x_mid;
+  for (const std::uint32_t i : surface) {
+    const glm::dvec3 r = at(x[i]) - x_mid;
     inertia += glm::dmat3(glm::dot(r, r)) - glm::outerProduct(r, r);
-    momentum += glm::cross(r, glm::dvec3(node_motion[i]) - v_mid);
+    momentum += glm::cross(r, at(node_motion[i]) - v_mid);
   }
   const double det = glm::determinant(inertia);
   const double scale = inertia[0][0] + inertia[1][1] + inertia[2][2];
@@ -111,10 +110,9 @@ double SelfContact::deformation(std::uint32_t body, const std::vector<X>& x,
   const double turn = glm::length(omega) * static_cast<double>(window);
   if (!(turn <= 0.5)) return INFINITY;  // NaN too
   double most = 0.0;
-  for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
-    if (on_surface_[i] == 0u) continue;
-    const glm::dvec3 r = glm::dvec3(glm::vec3(x[i])) - x_mid;
-    const double d = glm::length(glm::dvec3(node_motion[i]) - v_mid - glm::cross(omega, r)) *
+  for (const std::uint32_t i : surface) {
+    const glm::dvec3 r = at(x[i]) - x_mid;
+    const double d = glm::length(at(node_motion[i]) - v_mid - glm::cross(omega, r)) *
                          static_cast<double>(window) +
                      turn * turn * glm::length(r);
     if (!(d <= most)) most = d;
@@ -128,10 +126,10 @@ SelfContact::Plan SelfContact::plan(const std::vector<glm::vec3>& x,
   Plan plan{std::vector<std::uint8_t>(objects_.size(), 0u),
             std::vector<std::uint8_t>(objects_.size(), 0u)};
   for (std::uint32_t b = 0; b < objects_.size(); ++b) {
-    if (enabled_[b] == 0u || movable[b] == 0u) continue;
+    if (movable[b] == 0u) continue;
     const double margin = kMargin * thickness_[b];
     const double deforms = deformation(b, x, node_motion, window);
-    if (searched_[b] != 0u && drift(b, x) + deforms <= margin) {
+    if (has_references(b) && drift(b, x) + deforms <= margin) {
       plan.kept[b] = 1u;
     } else if (deforms <= 0.5 * margin) {
       plan.search[b] = 1u;
@@ -141,7 +139,8 @@ SelfContact::Plan SelfContact::plan(const std::vector<glm::vec3>& x,
 }
 
 std::vector<float> SelfContact::search_reach() const {
-  std::vector<float> reach(on_surface_.size());
+  std::vector<float> reach(
+      objects_.empty() ? 0u : objects_.back().node_offset + objects_.back().node_count);
   for (std::uint32_t b = 0; b < objects_.size(); ++b) {
     const gpu::ObjectInfo& o = objects_[b];
     std::fill(reach.begin() + o.node_offset, reach.begin() + o.node_offset + o.node_count,
@@ -154,13 +153,11 @@ void SelfContact::take(const std::vector<ProximityPair>& found, const std::vecto
                        const std::vector<std::uint8_t>& searched) {
   for (std::uint32_t b = 0; b < objects_.size(); ++b) {
     if (searched[b] == 0u) continue;
-    const gpu::ObjectInfo& o = objects_[b];
-    reference_[b].resize(o.node_count);
-    for (std::uint32_t i = 0; i < o.node_count; ++i)
-      reference_[b][i] = x[o.node_offset + i];
+    reference_[b].clear();
+    for (const std::uint32_t i : surface_[b])
+      reference_[b].push_back(x[i]);
     rotation_[b] = glm::dquat(1.0, 0.0, 0.0, 0.0);
     pairs_[b].clear();
-    searched_[b] = 1u;
   }
   for (const ProximityPair& p : found)
     if (p.mesh_a == p.mesh_b && searched[p.mesh_a] != 0u) pairs_[p.mesh_a].push_back(p);
@@ -168,7 +165,7 @@ void SelfContact::take(const std::vector<ProximityPair>& found, const std::vecto
 
 bool SelfContact::holds(std::uint32_t body, const std::vector<glm::vec4>& x,
                         const std::vector<glm::vec4>& v, float h) {
-  return searched_[body] != 0u &&
+  return has_references(body) &&
          drift(body, x) + deformation(body, x, v, h) <= kMargin * thickness_[body];
 }
 

@@ -38,10 +38,10 @@ class SelfContact {
   /// thickness + 2 d) and keeps them longer.
   static constexpr float kMargin = 0.5f;
 
-  /// `objects` where each body's nodes start; `on_surface` per node; `thickness` per body (m);
-  /// `enabled` per body: searched against itself.
-  SelfContact(const std::vector<gpu::ObjectInfo>& objects, std::vector<std::uint8_t> on_surface,
-              std::vector<float> thickness, std::vector<std::uint8_t> enabled);
+  /// Every body searched against itself: `objects` where each body's nodes start; `on_surface`
+  /// per node; `thickness` per body (m).
+  SelfContact(const std::vector<gpu::ObjectInfo>& objects,
+              const std::vector<std::uint8_t>& on_surface, std::vector<float> thickness);
 
   /// Per body, for a window starting at node positions `x`, the nodes at velocities
   /// node_motion.xyz (m/s), `window` seconds long: `kept`, its pairs are expected to hold
@@ -85,14 +85,17 @@ class SelfContact {
   [[nodiscard]] double deformation(std::uint32_t body, const std::vector<X>& x,
                                    const std::vector<glm::vec4>& node_motion, float window) const;
 
+  /// Whether body b has been searched against itself (a body without surface needs no search).
+  [[nodiscard]] bool has_references(std::uint32_t body) const {
+    return !reference_[body].empty() || surface_[body].empty();
+  }
+
   std::vector<gpu::ObjectInfo> objects_;
-  std::vector<std::uint8_t> on_surface_;           // per node
-  std::vector<float> thickness_;                   // per body
-  std::vector<std::uint8_t> enabled_;              // per body
-  std::vector<std::uint8_t> searched_;             // per body: has references
-  std::vector<std::vector<glm::vec3>> reference_;  // per body, per node: P_i
-  std::vector<glm::dquat> rotation_;               // per body: the last fit's (a warm start)
-  std::vector<std::vector<ProximityPair>> pairs_;  // per body
+  std::vector<float> thickness_;                     // per body
+  std::vector<std::vector<std::uint32_t>> surface_;  // per body: its surface nodes (global)
+  std::vector<std::vector<glm::vec3>> reference_;    // per body, per surface node: P_i
+  std::vector<glm::dquat> rotation_;                 // per body: the last fit's (a warm start)
+  std::vector<std::vector<ProximityPair>> pairs_;    // per body
 };
 
 }  // namespace deformcd

@@ -85,8 +85,7 @@ class SelfContactTest : public ::testing::Test {
     pose_ = l_.rest;
     detector_->set_positions(0, std::span<const glm::vec3>(pose_));
     self_ = std::make_unique<SelfContact>(l_.state.objects, l_.on_surface,
-                                          std::vector<float>{l_.thickness},
-                                          std::vector<std::uint8_t>{1u});
+                                          std::vector<float>{l_.thickness});
     const std::vector<std::uint8_t> all{1u};
     self_->take(detector_->find_proximity(self_->search_reach(), {}, {}, {.between = false}),
                 l_.rest, all);
