@@ -244,15 +244,20 @@ inline constexpr std::uint32_t kContactEdgeEdge = 1;
 /// ContactPair::kind: a vertex of a face that intersects another body's face, pushed out
 /// through that face's plane (untangling from the exact intersection list).
 inline constexpr std::uint32_t kContactUntangle = 2;
+/// ContactPair::kind: a tetrahedron kept from collapsing below a floor volume (its corners a,
+/// b, c, d as gpu::Tetra names them), pushed back along its volume's gradient.
+inline constexpr std::uint32_t kContactVolume = 3;
 
-/// 48 bytes. One contact constraint (global node indices): kContactVertexFace and
-/// kContactUntangle: vertex, face a, b, c; kContactEdgeEdge: edge (a0, a1), edge (b0, b1).
+/// 48 bytes. One constraint of the contact response (global node indices): kContactVertexFace
+/// and kContactUntangle: vertex, face a, b, c; kContactEdgeEdge: edge (a0, a1), edge (b0, b1);
+/// kContactVolume: the tetrahedron's corners.
 struct ContactPair {
   std::uint32_t nodes[4];  ///< global node indices, as the struct's comment orders them
-  std::uint32_t kind;      ///< kContactVertexFace, kContactEdgeEdge or kContactUntangle
-  float thickness;         ///< m: the distance the constraint keeps
+  std::uint32_t kind;      ///< one of the gpu::kContact* constants
+  /// m: the distance the constraint keeps (kContactVolume: m^3, the least volume it keeps).
+  float thickness;
   /// m: the primitives' distance less the thickness where the search window starts (-inf for
-  /// kContactUntangle: always awake).
+  /// kContactUntangle and kContactVolume: always awake).
   float gap;
   /// m/s: the most the nodes' straight paths (their velocities where the window starts) can
   /// close of the distance per second (collision::closing_speed).
@@ -262,7 +267,9 @@ struct ContactPair {
   /// that started behind it is on the far side of a thin part, or inside the body (where the
   /// untangling constraints take it out). 0 for other kinds.
   float side;
-  float pad0;  ///< std430 padding
+  /// kContactVolume: m, the most one projection moves a node (the tetrahedron's mean rest edge
+  /// length: a tetrahedron collapsed to a line has gradients near zero). 0 for other kinds.
+  float step_limit;
   float pad1;  ///< std430 padding
   float pad2;  ///< std430 padding
 };

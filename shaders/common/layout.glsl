@@ -112,17 +112,19 @@ struct ObjectInfo {
 #define CONTACT_VERTEX_FACE 0u  // vertex against a face, one-sided along its outward normal
 #define CONTACT_EDGE_EDGE 1u    // two edges, apart along the line of their closest points
 #define CONTACT_UNTANGLE 2u     // vertex of an intersecting face, out through the other's plane
+#define CONTACT_VOLUME 3u       // tetrahedron kept above a floor volume, along its gradient
 
-// 48 bytes. One contact constraint (global node indices): vertex, face a, b, c (vertex-face,
-// untangle) or edge (a0, a1), edge (b0, b1) (edge-edge).
+// 48 bytes. One constraint of the contact response (global node indices): vertex, face a, b, c
+// (vertex-face, untangle), edge (a0, a1), edge (b0, b1) (edge-edge) or a tetrahedron's corners
+// (volume).
 struct ContactPair {
   uvec4 nodes;
   uint kind;
-  float thickness;      // m: the distance the constraint keeps
-  float gap;            // m: distance less thickness at the window's start (-inf: untangle)
+  float thickness;      // m: the distance the constraint keeps (volume: m^3, the least volume)
+  float gap;            // m: distance less thickness at the window's start (-inf: untangle, volume)
   float closing_speed;  // m/s: how fast the nodes' straight paths can close the distance
   float side;           // vertex-face: 1 when the vertex started the window in front of the face
-  float pad0;
+  float step_limit;     // volume: m, the most one projection moves a node
   float pad1;
   float pad2;
 };

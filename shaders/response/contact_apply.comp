@@ -2,9 +2,11 @@
 // The contact response's node pass: one invocation per node sums its constraints' corrections
 // over its CSR list in list order (gather_correction in src/core/response/contact_constraints.h,
 // written out here because GLSL cannot pass a buffer to a function), applies the sums to its
-// own position and velocity (apply_correction) and, in a projection's last iteration
-// (u_watch_reach), flags a stray beyond its reach (strayed). Slots of constraints that do not act (the flag in
-// the w of a constraint's first slot) are skipped, as the CPU skips them.
+// own position and velocity (apply_correction) and, in a projection's last pass
+// (u_watch_reach), flags a stray beyond its reach (strayed). Only the slots of one group's
+// constraints, [u_pair_begin, u_pair_end), are summed (the contacts, then the volume
+// constraints: contact_pairs.comp); slots of constraints that do not act (the flag in the w of
+// a constraint's first slot) are skipped, as the CPU skips them.
 // Each invocation reads and writes only its own node's position and velocity.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
@@ -38,6 +40,8 @@ layout(std430, binding = BINDING_NODE_MOTION) readonly buffer NodeMotion {
 };
 
 uniform uint u_node_count;
+uniform uint u_pair_begin;
+uniform uint u_pair_end;
 uniform float u_elapsed;
 uniform bool u_watch_reach;
 
@@ -51,7 +55,9 @@ void main() {
   precise vec3 dv = vec3(0.0);
   for (uint e = begin; e < end; ++e) {
     const uint slot = node_contact_list[e];
-    if (!(corrections[8u * (slot / 4u)].w > 0.0)) continue;
+    const uint p = slot / 4u;
+    if (p < u_pair_begin || p >= u_pair_end) continue;  // another group's
+    if (!(corrections[8u * p].w > 0.0)) continue;
     dx += corrections[2u * slot].xyz;
     dv += corrections[2u * slot + 1u].xyz;
   }
@@ -60,7 +66,7 @@ void main() {
   apply_correction(position, velocity, dx, dv);
   // Every writer writes the same 1, so the flag is the same whatever the order.
   if (u_watch_reach && strayed(position, frame_start[i], node_motion[i], u_elapsed)) {
-    node_contact_count[u_node_count] = 1u;
+    node_contact_count[2u * u_node_count] = 1u;
   }
   positions[i] = position;
   velocities[i] = velocity;

@@ -157,14 +157,70 @@ bool contact_clear(ContactPair pair, vec3 x[4]) {
   return height > 0.0 && height2 > bound;
 }
 
-// contact_active: whether the constraint acts now (its distance along n below its thickness).
+// tetrahedron_volume, line for line: the volume of tetrahedron x (positive as gpu::Tetra orders
+// its corners) and its gradient g[k] = dV/dx_k.
+float tetrahedron_volume(vec3 x[4], out vec3 g[4]) {
+  precise vec3 ab = x[1] - x[0], ac = x[2] - x[0], ad = x[3] - x[0];
+  precise vec3 g1 = exact_cross(ac, ad) / 6.0;
+  precise vec3 g2 = exact_cross(ad, ab) / 6.0;
+  precise vec3 g3 = exact_cross(ab, ac) / 6.0;
+  precise vec3 g0 = -(g1 + g2 + g3);
+  g = vec3[4](g0, g1, g2, g3);
+  precise float volume = exact_dot(ab, g1);
+  return volume;
+}
+
+// contact_active: whether the constraint acts now (its distance along n below its thickness; a
+// volume constraint's tetrahedron below its floor).
 bool contact_active(ContactPair pair, vec4 position[4]) {
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
+  if (pair.kind == CONTACT_VOLUME) {
+    vec3 g[4];
+    return tetrahedron_volume(x, g) < pair.thickness;
+  }
   if (contact_clear(pair, x)) return false;
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
   float c = 0.0;
   return contact_geometry(pair, x, n, b, c) && c < 0.0;
+}
+
+// solve_volume, line for line: a volume constraint's corrections (the tetrahedron's collapse
+// rate cancelled, the volume below its floor restored by position alone, along the gradient,
+// mass split, no node moved more than step_limit in one iteration).
+void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
+                  ContactConstants k, inout vec4 given[2], inout vec4 correction[8]) {
+  const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
+  vec3 g[4];
+  precise float volume = tetrahedron_volume(x, g);
+  precise float weight = 0.0;
+  precise float rate = 0.0;
+  precise float lever = 0.0;  // the largest w_k |g_k|
+  for (int i = 0; i < 4; ++i) {
+    precise float g2 = exact_dot(g[i], g[i]);
+    weight += float(count[i]) * position[i].w * g2;
+    rate += exact_dot(g[i], velocity[i].xyz);
+    lever = distance_max(lever, position[i].w * sqrt(g2));
+  }
+  if (!(weight > 0.0)) return;  // every node fixed, or a tetrahedron collapsed to a point
+  precise float speed = distance_max(given[0].x - rate, 0.0) - given[0].x;
+  precise float push =
+      distance_max(given[0].y - ((volume - pair.thickness) + speed * k.h), 0.0) - given[0].y;
+  precise float move = lever * abs(speed * k.h + push) / weight;
+  if (move > pair.step_limit) {
+    precise float scale = pair.step_limit / move;
+    speed *= scale;
+    push *= scale;
+  }
+  given[0].x += speed;
+  given[0].y += push;
+  for (int i = 0; i < 4; ++i) {
+    precise float share = position[i].w / weight;
+    precise vec3 dv = (share * speed) * g[i];
+    precise vec3 dx = dv * k.h + (share * push) * g[i];
+    correction[2 * i] = vec4(dx, 0.0);
+    correction[2 * i + 1] = vec4(dv, 0.0);
+  }
 }
 
 // solve_contact, line for line: corrections of the four nodes into correction[2 k] (position
@@ -185,6 +241,10 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   if (first_iteration) {
     given[0] = vec4(0.0);
     given[1] = vec4(0.0);
+  }
+  if (pair.kind == CONTACT_VOLUME) {
+    solve_volume(pair, position, velocity, count, k, given, correction);
+    return;
   }
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
   vec3 n = vec3(0.0);

@@ -4,7 +4,9 @@
 // the w of its first slot, 8 p) reads its four nodes' positions and velocities and writes their
 // corrections to the constraint's own slots: corner 4 p + k's at 2 (4 p + k) (position) and
 // 2 (4 p + k) + 1 (velocity) (solve_contact), the flag kept for the next iteration, and what it
-// has given over the substep's iterations to its own impulse slots 2 p and 2 p + 1. An inactive
+// has given over the substep's iterations to its own impulse slots 2 p and 2 p + 1. One dispatch
+// covers one group, constraints [u_pair_begin, u_pair_end): the contacts (u_group 0) or the
+// volume constraints (1), its nodes weighing by their counts in the group. An inactive
 // constraint is left alone, as the CPU backend leaves it: the node pass skips its slots. No two
 // invocations write the same slot, and nothing here writes a node.
 #include "common/layout.glsl"
@@ -31,7 +33,9 @@ layout(std430, binding = BINDING_CONTACT_IMPULSE) buffer ContactImpulses {
   vec4 impulses[];
 };
 
-uniform uint u_pair_count;
+uniform uint u_pair_begin;
+uniform uint u_pair_end;
+uniform uint u_group;
 uniform float u_h;
 uniform float u_friction_static;
 uniform float u_friction_dynamic;
@@ -41,8 +45,8 @@ uniform bool u_first_iteration;
 uniform bool u_last_iteration;
 
 void main() {
-  const uint p = gl_GlobalInvocationID.x;
-  if (p >= u_pair_count) return;  // the last work group reaches past the end
+  const uint p = u_pair_begin + gl_GlobalInvocationID.x;
+  if (p >= u_pair_end) return;  // the last work group reaches past the end
   if (!(corrections[8u * p].w > 0.0)) return;  // not acting in this substep
   const ContactPair pair = pairs[p];
   vec4 x[4], v[4];
@@ -51,7 +55,7 @@ void main() {
     v[i] = velocities[pair.nodes[i]];
   }
   uint count[4];
-  for (uint i = 0u; i < 4u; ++i) count[i] = node_contact_count[pair.nodes[i]];
+  for (uint i = 0u; i < 4u; ++i) count[i] = node_contact_count[2u * pair.nodes[i] + u_group];
   vec4 correction[8];
   vec4 given[2] = vec4[2](impulses[2u * p], impulses[2u * p + 1u]);
   solve_contact(pair, x, v, count,

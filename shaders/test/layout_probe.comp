@@ -124,7 +124,7 @@ void main() {
   contact_pairs[i].gap = probef(i, 6u);
   contact_pairs[i].closing_speed = probef(i, 7u);
   contact_pairs[i].side = probef(i, 8u);
-  contact_pairs[i].pad0 = probef(i, 9u);
+  contact_pairs[i].step_limit = probef(i, 9u);
   contact_pairs[i].pad1 = probef(i, 10u);
   contact_pairs[i].pad2 = probef(i, 11u);
 
@@ -185,5 +185,6 @@ void main() {
     bindings[52] = CONTACT_VERTEX_FACE;
     bindings[53] = CONTACT_EDGE_EDGE;
     bindings[54] = CONTACT_UNTANGLE;
+    bindings[55] = CONTACT_VOLUME;
   }
 }

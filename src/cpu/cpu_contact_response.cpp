@@ -14,6 +14,7 @@ CpuContactResponse::CpuContactResponse(SimulationState& state, std::shared_ptr<E
     : state_(state), executor_(std::move(executor)) {}
 
 void CpuContactResponse::take(const response::FrameConstraints& constraints) {
+  first_volume_ = response::first_volume_constraint(constraints.pairs);
   constraints_ = &constraints;
   // Not cleared: a projection writes every slot of the constraints it solves and reads no other.
   corrections_.resize(8u * constraints_->pairs.size());
@@ -27,7 +28,7 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   const std::size_t nodes = state_.positions.size();
   frame_start_.resize(nodes);
   deviation_.assign(nodes, 0.0f);
-  counts_.assign(nodes, 0u);
+  counts_.assign(2u * nodes, 0u);
   slot_begin_.resize(nodes);
   slot_cursor_.resize(nodes);
   touched_.clear();
@@ -91,53 +92,67 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
     for (std::uint32_t p = 0; p < pairs.size(); ++p)
       if (active_[p] != 0u) acting_.push_back(p);
     for (const std::uint32_t n : touched_)
-      counts_[n] = 0u;
+      counts_[2u * n] = counts_[2u * n + 1u] = 0u;
     touched_.clear();
     for (const std::uint32_t p : acting_) {
+      const std::uint32_t group = p < first_volume_ ? 0u : 1u;
       for (const std::uint32_t n : pairs[p].nodes) {
-        if (counts_[n]++ == 0u) touched_.push_back(n);
+        if (counts_[2u * n] + counts_[2u * n + 1u] == 0u) touched_.push_back(n);
+        ++counts_[2u * n + group];
       }
     }
     std::uint32_t slots = 0;
     for (const std::uint32_t n : touched_) {
       slot_begin_[n] = slots;
       slot_cursor_[n] = slots;
-      slots += counts_[n];
+      slots += counts_[2u * n] + counts_[2u * n + 1u];
     }
     // Each node's active slots, ascending (constraints in order, corners in order): its list's
     // order without the inactive slots, so the sums are the GL node pass's, without walking
-    // the slots of the many candidates that do not act.
+    // the slots of the many candidates that do not act. The contacts come first: the volume
+    // constraints are last in the list.
     active_slots_.resize(slots);
     for (const std::uint32_t p : acting_)
       for (std::uint32_t corner = 0; corner < 4u; ++corner)
         active_slots_[slot_cursor_[pairs[p].nodes[corner]]++] = 4u * p + corner;
+    const std::size_t split = static_cast<std::size_t>(
+        std::lower_bound(acting_.begin(), acting_.end(), first_volume_) - acting_.begin());
     for (int iteration = 0; iteration < iterations; ++iteration) {
-      parallel_for(
-          acting_.size(),
-          [&](std::size_t a) {
-            const std::uint32_t p = acting_[a];
-            const gpu::ContactPair& pair = pairs[p];
-            glm::vec4 x[4], v[4];
-            for (std::uint32_t i = 0; i < 4u; ++i) {
-              x[i] = state_.positions[pair.nodes[i]];
-              v[i] = state_.velocities[pair.nodes[i]];
-            }
-            const std::uint32_t count[4] = {counts_[pair.nodes[0]], counts_[pair.nodes[1]],
-                                            counts_[pair.nodes[2]], counts_[pair.nodes[3]]};
-            response::solve_contact(pair, x, v, count, k, iteration == 0,
-                                    iteration + 1 == iterations, &impulses_[2u * p],
-                                    &corrections_[8u * p]);
-          },
-          256);
-      // The node pass, over the nodes with an active constraint (the others' sums are zero).
-      parallel_for(touched_.size(), [&](std::size_t t) {
-        const std::uint32_t i = touched_[t];
-        glm::vec3 dx(0.0f), dv(0.0f);
-        response::gather_correction(active_slots_.data(), slot_begin_[i],
-                                    slot_begin_[i] + counts_[i], active_.data(),
-                                    corrections_.data(), dx, dv);
-        response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv);
-      });
+      // The contacts, then the volume constraints on the positions the contacts left.
+      for (std::uint32_t group = 0; group < 2u; ++group) {
+        const std::size_t first = group == 0u ? 0u : split;
+        const std::size_t last = group == 0u ? split : acting_.size();
+        if (first == last) continue;
+        parallel_for(
+            last - first,
+            [&](std::size_t a) {
+              const std::uint32_t p = acting_[first + a];
+              const gpu::ContactPair& pair = pairs[p];
+              glm::vec4 x[4], v[4];
+              std::uint32_t count[4];
+              for (std::uint32_t i = 0; i < 4u; ++i) {
+                x[i] = state_.positions[pair.nodes[i]];
+                v[i] = state_.velocities[pair.nodes[i]];
+                count[i] = counts_[2u * pair.nodes[i] + group];
+              }
+              response::solve_contact(pair, x, v, count, k, iteration == 0,
+                                      iteration + 1 == iterations, &impulses_[2u * p],
+                                      &corrections_[8u * p]);
+            },
+            256);
+        // The node pass, over the nodes with an active constraint of the group (the others'
+        // sums are zero).
+        parallel_for(touched_.size(), [&](std::size_t t) {
+          const std::uint32_t i = touched_[t];
+          const std::uint32_t begin = slot_begin_[i] + (group == 0u ? 0u : counts_[2u * i]);
+          const std::uint32_t end = begin + counts_[2u * i + group];
+          if (begin == end) return;
+          glm::vec3 dx(0.0f), dv(0.0f);
+          response::gather_correction(active_slots_.data(), begin, end, active_.data(),
+                                      corrections_.data(), dx, dv);
+          response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv);
+        });
+      }
     }
     // The strays, as GL's last node pass flags them: an untouched node is where the deviation
     // pass measured it. An unwatched node never strays (its reach is infinite).
@@ -145,7 +160,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       const std::uint32_t i = watched_[w];
       const glm::vec4& x = state_.positions[i];
       const bool beyond =
-          counts_[i] != 0u
+          counts_[2u * i] + counts_[2u * i + 1u] != 0u
               ? response::strayed(x, frame_start_[i], constraints_->node_motion[i], k.elapsed)
               : response::beyond_reach(deviation_[i], x, frame_start_[i]);
       if (beyond) any_strayed.store(true, std::memory_order_relaxed);

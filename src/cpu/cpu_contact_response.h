@@ -7,7 +7,9 @@
 // list's order, so the node pass adds the GL pass's terms in its order without walking the
 // inactive slots (on the impact scene that pass took a third of the projections' time). The
 // projections before the last visit only the nodes the active constraints touch: every other
-// node's corrections are zero, and only the last projection watches the reaches.
+// node's corrections are zero, and only the last projection watches the reaches. Each
+// projection solves the contacts, then the volume constraints (response::first_volume_constraint),
+// each group with its own counts and node pass.
 
 #include <memory>
 #include <vector>
@@ -39,13 +41,16 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::vector<glm::vec4> frame_start_;  // per node: position at the frame's start, w = reach
   std::vector<glm::vec4> corrections_;  // two per corner (slot 4 p + k): position, velocity change
   std::vector<glm::vec4> impulses_;     // two per constraint: what it gave this substep
-  std::vector<std::uint32_t> counts_;   // per node: its active constraints this substep
+  // Per node n: its active contacts (2 n) and volume constraints (2 n + 1) this substep.
+  std::vector<std::uint32_t> counts_;
+  std::size_t first_volume_ = 0;        // the first volume constraint (all after it are)
   std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep
   std::vector<std::uint32_t> acting_;   // the active constraints, ascending
   std::vector<std::uint32_t> touched_;  // the nodes of active constraints, as first named
   std::vector<std::uint32_t> watched_;  // the nodes with a finite reach, ascending
   std::vector<float> deviation_;        // per node: its distance from its straight path
-  // Per touched node n, its active slots: active_slots_[slot_begin_[n] .. + counts_[n]).
+  // Per touched node n, its active slots: active_slots_[slot_begin_[n] ..), the contacts'
+  // (counts_[2 n]) then the volume constraints' (counts_[2 n + 1]).
   std::vector<std::uint32_t> slot_begin_;
   std::vector<std::uint32_t> active_slots_;
   std::vector<std::uint32_t> slot_cursor_;  // the fill's per node position

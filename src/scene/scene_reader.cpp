@@ -128,6 +128,8 @@ ResponseSettings read_response(JsonFields f) {
   r.restitution = static_cast<float>(non_negative(f, "restitution", r.restitution));
   if (r.restitution > 1.0f) f.fail("restitution", "must be between 0 and 1");
   r.untangle_step = static_cast<float>(positive(f, "untangle_step", r.untangle_step));
+  r.volume_floor = static_cast<float>(non_negative(f, "volume_floor", r.volume_floor));
+  if (!(r.volume_floor < 1.0f)) f.fail("volume_floor", "must be below 1");
   r.iterations = f.integer("iterations").value_or(r.iterations);
   if (r.iterations < 1 || r.iterations > kMaxResponseIterations) {
     f.fail("iterations", "must be between 1 and " + std::to_string(kMaxResponseIterations));

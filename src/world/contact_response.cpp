@@ -105,6 +105,10 @@ void check_response_settings(const ResponseSettings& s) {
   check_value("restitution", s.restitution, 1.0f);
   check_value("untangle_step", s.untangle_step);
   if (!(s.untangle_step > 0.0f)) throw Error("response untangle_step must be positive, not 0");
+  check_value("volume_floor", s.volume_floor);
+  if (!(s.volume_floor < 1.0f)) {
+    throw Error("response volume_floor must be below 1, not " + std::to_string(s.volume_floor));
+  }
   if (s.iterations < 1 || s.iterations > kMaxResponseIterations) {
     throw Error("response iterations must be between 1 and " +
                 std::to_string(kMaxResponseIterations) + ", not " + std::to_string(s.iterations));
@@ -143,7 +147,9 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
       node_body_(state.node_body) {
   check_response_settings(settings);
   float smallest_edge = INFINITY;
-  for (const BodyInit& b : bodies) {
+  for (std::uint32_t body = 0; body < bodies.size(); ++body) {
+    const BodyInit& b = bodies[body];
+    add_volume_constraints(b.body, body, state.objects[body].node_offset);
     names_.push_back(b.name);
     const float edge = mean_surface_edge(b.body);
     mean_edge_.push_back(edge);
@@ -470,8 +476,32 @@ void ContactResponse::search() {
       }
     }
   }
+  append_volume_constraints(c);
   constraints_ = std::move(c);
   backend_->begin_frame(constraints_);
+}
+
+void ContactResponse::append_volume_constraints(response::FrameConstraints& c) const {
+  // Last in the list (the backends solve them after the contacts): every tetrahedron of a
+  // body that can move.
+  for (const VolumeFloor& v : volume_floors_)
+    if (!immovable(v.body)) c.pairs.push_back(v.pair);
+}
+
+void ContactResponse::add_volume_constraints(const Body& body, std::uint32_t index,
+                                             std::uint32_t node_offset) {
+  if (!(settings_.volume_floor > 0.0f)) return;
+  for (std::size_t t = 0; t < body.tetrahedra.size(); ++t) {
+    VolumeFloor v;
+    v.body = index;
+    for (std::uint32_t k = 0; k < 4u; ++k)
+      v.pair.nodes[k] = node_offset + body.tetrahedra[t][k];
+    v.pair.kind = gpu::kContactVolume;
+    v.pair.thickness = settings_.volume_floor * body.tet_rest_volume[t];
+    v.pair.gap = -INFINITY;  // always awake: the activity pass looks at its volume
+    v.pair.step_limit = body.tet_rest_edge[t];
+    volume_floors_.push_back(v);
+  }
 }
 
 bool ContactResponse::self_pairs_hold(float h) {
@@ -601,9 +631,11 @@ void ContactResponse::widen() {
     return;
   }
   // Their old pairs go; the widened search's come instead. The others' pairs, a kept body's
-  // pairs with itself (which still hold) and the untangling constraints stand.
+  // pairs with itself (which still hold) and the untangling constraints stand; the volume
+  // constraints go to the end again, after the new pairs.
   std::vector<gpu::ContactPair>& pairs = constraints_.pairs;
   std::erase_if(pairs, [&](const gpu::ContactPair& p) {
+    if (p.kind == gpu::kContactVolume) return true;
     if (p.kind == gpu::kContactUntangle) return false;
     const std::uint32_t body = node_body_[p.nodes[0]];
     if (body == node_body_[p.nodes[3]] && !self_kept_.empty() && self_kept_[body] != 0u)
@@ -615,6 +647,7 @@ void ContactResponse::widen() {
   });
   for (const ProximityPair& p : detector_->widen_proximity(strays, reach))
     add_proximity_pair(p, constraints_);
+  append_volume_constraints(constraints_);
   ++counts_.widenings;
   backend_->update_frame(constraints_);
 }

@@ -94,6 +94,11 @@ class ContactResponse {
   /// Whether every body keeping its pairs with itself still may over the next substep, of
   /// length h (SelfContact::holds), on the positions and velocities now.
   [[nodiscard]] bool self_pairs_hold(float h);
+  /// Lists a volume constraint for each tetrahedron of `body` (body `index`, its first node
+  /// node_offset), unless volume_floor is 0.
+  void add_volume_constraints(const Body& body, std::uint32_t index, std::uint32_t node_offset);
+  /// Appends the volume constraints of the bodies that can move to c (after every other).
+  void append_volume_constraints(response::FrameConstraints& c) const;
   /// Appends proximity pair p as a constraint of c (unless its primitives are tangled).
   void add_proximity_pair(const ProximityPair& p, response::FrameConstraints& c);
   /// Notes that a constraint of the frame joins bodies a and b (for the sleeping islands).
@@ -125,6 +130,13 @@ class ContactResponse {
   std::vector<glm::vec4> positions_;                // read back from a GL simulation
   std::vector<glm::vec4> last_velocities_;          // per node, at the last search
   float max_untangle_step_ = 0.0f;
+  /// A tetrahedron's volume constraint (kContactVolume) and its body: every window lists those
+  /// of the bodies that can move.
+  struct VolumeFloor {
+    gpu::ContactPair pair{};
+    std::uint32_t body = 0;
+  };
+  std::vector<VolumeFloor> volume_floors_;
   Detector* detector_ = nullptr;                // of the frame
   std::vector<Contact> intersections_;          // of the frame
   std::unique_ptr<TangledPrimitives> tangled_;  // of the frame's intersections

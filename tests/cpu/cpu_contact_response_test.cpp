@@ -1,15 +1,19 @@
 // The CPU contact response on hand-placed nodes: what its projections do to them (the GL
 // backend's agreement with it is tests/gl/gl_contact_response_test.cpp's).
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "core/response/contact_constraints.h"
 #include "core/response/frame_constraints.h"
 #include "cpu/cpu_contact_response.h"
+#include "deformcd/error.h"
 #include "gl/contact_test_worlds.h"
 
 namespace deformcd {
@@ -67,6 +71,161 @@ TEST(CpuContactResponse, ALightNodeIsNotThrownOffWhereItsEdgesHeavyEndIsStopped)
   // Moved back by the approach cancelled (1 m/s x h, about 1 mm), to the thickness or above.
   EXPECT_GT(state.positions[0].z, 0.009f);
   EXPECT_GT(state.positions[1].z, 0.009f);
+}
+
+// A tetrahedron's signed volume on the state's positions.
+float volume_of(const SimulationState& s, const gpu::ContactPair& p) {
+  const glm::vec3 x[4] = {glm::vec3(s.positions[p.nodes[0]]), glm::vec3(s.positions[p.nodes[1]]),
+                          glm::vec3(s.positions[p.nodes[2]]), glm::vec3(s.positions[p.nodes[3]])};
+  glm::vec3 g[4];
+  return response::tetrahedron_volume(x, g);
+}
+
+// One projection of the volume constraints alone on tetrahedra of a unit corner (rest volume
+// 1/6 x 0.01^3) whose apex is pushed toward, or through, the opposite face, each moving toward
+// it at 1 m/s: the inverted one and the collapsed one come back to (nearly) the floor, their
+// collapse stopped; one above the floor moving the same way is left alone; momentum is kept.
+TEST(VolumeConstraint, ACollapsedOrInvertedTetrahedronComesBackToItsFloorWithItsCollapseStopped) {
+  constexpr float kEdge = 0.01f;
+  constexpr float kRest = kEdge * kEdge * kEdge / 6.0f;
+  constexpr float kFloor = 0.3f * kRest;
+  // Apex heights over the base, in edges: inverted, collapsed below the floor, above it.
+  const float heights[3] = {-0.5f, 0.1f, 0.6f};
+  std::vector<glm::vec4> x, v;
+  response::FrameConstraints c;
+  for (int t = 0; t < 3; ++t) {
+    const glm::vec3 o(0.1f * static_cast<float>(t), 0.0f, 0.0f);
+    const std::uint32_t first = static_cast<std::uint32_t>(x.size());
+    x.emplace_back(o, 1.0f);
+    x.emplace_back(o + glm::vec3(kEdge, 0.0f, 0.0f), 2.0f);
+    x.emplace_back(o + glm::vec3(0.0f, kEdge, 0.0f), 1.0f);
+    x.emplace_back(o + glm::vec3(0.0f, 0.0f, heights[t] * kEdge), 0.5f);  // the apex
+    for (int k = 0; k < 3; ++k)
+      v.emplace_back(0.0f);
+    v.emplace_back(0.0f, 0.0f, -1.0f, 0.0f);
+    gpu::ContactPair p{};
+    for (std::uint32_t k = 0; k < 4u; ++k)
+      p.nodes[k] = first + k;
+    p.kind = gpu::kContactVolume;
+    p.thickness = kFloor;
+    p.gap = -INFINITY;
+    p.step_limit = kEdge;
+    c.pairs.push_back(p);
+  }
+  SimulationState state = test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1);
+  c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  ASSERT_LT(volume_of(state, c.pairs[0]), 0.0f) << "the first starts inverted";
+  const auto momentum = [&](const std::vector<glm::vec4>& values, int t) {
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < 4; ++k)
+      sum += glm::dvec3(glm::vec3(values[4 * t + k])) / static_cast<double>(x[4 * t + k].w);
+    return sum;
+  };
+  cpu::CpuContactResponse response(state, std::make_shared<cpu::Executor>(1));
+  response.begin_frame(c);
+  response::ContactConstants k{};
+  k.h = 1e-3f;
+  k.elapsed = k.h;
+  EXPECT_FALSE(response.project(k, 8));
+  for (int t = 0; t < 2; ++t) {
+    const float after = volume_of(state, c.pairs[t]);
+    EXPECT_GT(after, 0.95f * kFloor) << "tetrahedron " << t;
+    EXPECT_LT(after, 1.5f * kFloor) << "tetrahedron " << t << ": pushed past its floor";
+    // Its collapse rate (sum of g . v) is stopped, not turned into an expansion.
+    glm::vec3 corners[4], g[4];
+    for (int i = 0; i < 4; ++i)
+      corners[i] = glm::vec3(state.positions[4 * t + i]);
+    response::tetrahedron_volume(corners, g);
+    float rate = 0.0f;
+    for (int i = 0; i < 4; ++i)
+      rate += glm::dot(g[i], glm::vec3(state.velocities[4 * t + i]));
+    EXPECT_NEAR(rate, 0.0f, 1e-3f * kEdge * kEdge) << "tetrahedron " << t;
+    // Within the rounding of coordinates near 0.2 m (an ulp is 1.5e-8 m).
+    EXPECT_LT(glm::length(momentum(state.positions, t) - momentum(x, t)), 1e-7) << t;
+    EXPECT_LT(glm::length(momentum(state.velocities, t) - momentum(v, t)), 1e-6) << t;
+  }
+  for (int n = 8; n < 12; ++n) {
+    EXPECT_EQ(state.positions[n], x[n]) << "above its floor: node " << n << " moved";
+    EXPECT_EQ(state.velocities[n], v[n]) << "above its floor: node " << n;
+  }
+}
+
+// A tetrahedron flattened to a line has volume gradients near zero, and 1 / their square would
+// throw its corners: no corner moves more than step_limit in one iteration.
+TEST(VolumeConstraint, ATetrahedronFlattenedToALineMovesNoCornerMoreThanItsStepLimit) {
+  const std::vector<glm::vec4> x = {{0.0f, 0.0f, 0.0f, 1.0f},
+                                    {0.01f, 1e-6f, 0.0f, 1.0f},
+                                    {0.02f, 0.0f, 1e-6f, 1.0f},
+                                    {0.03f, -1e-6f, -1e-6f, 1.0f}};
+  const std::vector<glm::vec4> v(4, glm::vec4(0.0f));
+  SimulationState state = test::free_nodes(x, v, {0, 0, 0, 0}, 1);
+  response::FrameConstraints c;
+  gpu::ContactPair p{};
+  for (std::uint32_t k = 0; k < 4u; ++k)
+    p.nodes[k] = k;
+  p.kind = gpu::kContactVolume;
+  p.thickness = 1e-7f;
+  p.gap = -INFINITY;
+  p.step_limit = 0.002f;
+  c.pairs = {p};
+  c.node_motion.assign(4, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  cpu::CpuContactResponse response(state, std::make_shared<cpu::Executor>(1));
+  response.begin_frame(c);
+  response::ContactConstants k{};
+  k.h = 1e-3f;
+  k.elapsed = k.h;
+  (void)response.project(k, 1);
+  float largest = 0.0f;
+  for (int i = 0; i < 4; ++i)
+    largest = std::max(largest, glm::length(glm::vec3(state.positions[i] - x[i])));
+  EXPECT_GT(largest, 0.5f * p.step_limit) << "the constraint should act";
+  EXPECT_LE(largest, 1.0001f * p.step_limit);
+}
+
+// The projections of contacts and volume constraints together give the same bits on one and on
+// eight threads (each constraint writes its own slots; each node sums its list in order).
+TEST(VolumeConstraint, OneAndEightThreadsGiveTheSameBits) {
+  const tbb::global_control allow_eight(tbb::global_control::max_allowed_parallelism, 8);
+  const test::RandomContacts set = test::random_contacts(21, 2000, 8000, 4000);
+  std::vector<SimulationState> states(2, set.world);
+  const int threads[2] = {1, 8};
+  for (int r = 0; r < 2; ++r) {
+    cpu::CpuContactResponse response(states[r], std::make_shared<cpu::Executor>(threads[r]));
+    response.begin_frame(set.constraints);
+    response::ContactConstants k{};
+    k.h = 1e-3f;
+    k.friction_static = 0.5f;
+    k.friction_dynamic = 0.4f;
+    k.max_untangle_step = 1e-3f;
+    for (int s = 1; s <= 3; ++s) {
+      k.elapsed = k.h * static_cast<float>(s);
+      (void)response.project(k, 8);
+    }
+  }
+  EXPECT_EQ(test::bitwise_differences(states[0].positions, states[1].positions), 0u);
+  EXPECT_EQ(test::bitwise_differences(states[0].velocities, states[1].velocities), 0u);
+  EXPECT_GT(test::bitwise_differences(states[0].positions, set.world.positions), 1000u)
+      << "the projections should move the nodes";
+}
+
+// The backends solve the volume constraints as the list's last group: one before a contact is
+// refused, naming both.
+TEST(VolumeConstraint, AVolumeConstraintBeforeAContactIsRefused) {
+  std::vector<gpu::ContactPair> pairs(3);
+  pairs[1].kind = gpu::kContactVolume;
+  pairs[2].kind = gpu::kContactEdgeEdge;
+  try {
+    (void)response::first_volume_constraint(pairs);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("constraint 2 (kind 1) follows volume constraint 1"),
+              std::string::npos)
+        << e.what();
+  }
+  pairs[2].kind = gpu::kContactVolume;
+  EXPECT_EQ(response::first_volume_constraint(pairs), 1u);
+  pairs.resize(1);
+  EXPECT_EQ(response::first_volume_constraint(pairs), 1u);
 }
 
 // contact_clear, the activity pass's bound before the geometry, never clears a constraint that

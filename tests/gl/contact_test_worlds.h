@@ -5,6 +5,7 @@
 // comparison of two node arrays.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <random>
@@ -216,11 +217,34 @@ struct RandomContacts {
   response::FrameConstraints constraints;
 };
 
-/// `pairs` constraints of every kind on `nodes` nodes packed into a 5 cm cube (so that most
-/// constraints are active and nodes are shared by many), with random velocities, about a
-/// tenth of the nodes fixed, three bodies of different motion bounds.
-inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes,
-                                      std::uint32_t pairs) {
+/// The volume constraints (gpu::kContactVolume) of every tetrahedron of `world`, each kept at
+/// `floor` x its volume in `world`'s positions, its corners moved at most `step_limit` an
+/// iteration.
+inline std::vector<gpu::ContactPair> volume_constraints(const SimulationState& world, float floor,
+                                                        float step_limit) {
+  std::vector<gpu::ContactPair> out;
+  for (const gpu::Tetra& t : world.tets) {
+    gpu::ContactPair pair{};
+    pair.nodes[0] = t.a;
+    pair.nodes[1] = t.b;
+    pair.nodes[2] = t.c;
+    pair.nodes[3] = t.d;
+    pair.kind = gpu::kContactVolume;
+    pair.thickness = floor * t.rest_volume;
+    pair.gap = -INFINITY;
+    pair.step_limit = step_limit;
+    out.push_back(pair);
+  }
+  return out;
+}
+
+/// `pairs` constraints of every contact kind on `nodes` nodes packed into a 5 cm cube (so that
+/// most constraints are active and nodes are shared by many), with random velocities, about a
+/// tenth of the nodes fixed, three bodies of different motion bounds; then `volumes` volume
+/// constraints on random corners (either orientation, so that about half start inverted),
+/// their floors and step limits drawn so that most act and some are limited.
+inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, std::uint32_t pairs,
+                                      std::uint32_t volumes = 0) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   std::uniform_int_distribution<std::uint32_t> node(0, nodes - 1);
@@ -247,6 +271,21 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes,
     // Most vertex-face constraints started in front of their faces, some behind.
     if (pair.kind == gpu::kContactVertexFace) pair.side = unit(rng) < 0.8f ? 1.0f : 0.0f;
     pair.thickness = 0.005f + 0.03f * unit(rng);
+    out.constraints.pairs.push_back(pair);
+  }
+  for (std::uint32_t p = 0; p < volumes; ++p) {
+    gpu::ContactPair pair{};
+    for (int k = 0; k < 4; ++k) {
+      std::uint32_t n = 0;
+      do {
+        n = node(rng);
+      } while (std::find(pair.nodes, pair.nodes + k, n) != pair.nodes + k);
+      pair.nodes[k] = n;
+    }
+    pair.kind = gpu::kContactVolume;
+    pair.thickness = 4e-6f * unit(rng);  // m^3: random corners span up to about 2e-5
+    pair.gap = -INFINITY;
+    pair.step_limit = 0.002f + 0.02f * unit(rng);
     out.constraints.pairs.push_back(pair);
   }
   // Paths as well as reaches: the watched centre moves along them.

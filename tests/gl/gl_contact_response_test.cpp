@@ -161,8 +161,17 @@ TEST_F(GlContactResponseTest, RandomDenseConstraintSetsEqualTheCpuBitForBit) {
     const test::RandomContacts set = test::random_contacts(seed, 300, 1500);
     expect_agreement(context(), set.world, set.constraints, "seed " + std::to_string(seed));
   }
+  // With volume constraints after the contacts (their own group and counts).
+  for (std::uint32_t seed : {4u, 5u}) {
+    const test::RandomContacts set = test::random_contacts(seed, 300, 1500, 600);
+    expect_agreement(context(), set.world, set.constraints,
+                     "seed " + std::to_string(seed) + " with volume constraints");
+  }
+  // Volume constraints alone.
+  const test::RandomContacts volumes = test::random_contacts(6, 300, 0, 800);
+  expect_agreement(context(), volumes.world, volumes.constraints, "volume constraints alone");
   // Many work groups, most nodes in several constraints.
-  const test::RandomContacts large = test::random_contacts(11, 5000, 20000);
+  const test::RandomContacts large = test::random_contacts(11, 5000, 20000, 5000);
   expect_agreement(context(), large.world, large.constraints, "5000 nodes, 20000 constraints");
 }
 
@@ -180,6 +189,10 @@ TEST_F(GlContactResponseTest, InsideASimulationLoopEqualsTheCpuEverySubstep) {
       test::random_contacts(5, static_cast<std::uint32_t>(world.node_count()), 800).constraints;
   c.node_motion = test::node_motion_of_bodies(
       {glm::vec4(0.1f, 0.0f, 0.0f, 0.01f), glm::vec4(-0.1f, 0.0f, 0.0f, 0.004f)}, world.node_body);
+  // And every tetrahedron kept at 0.97 x its rest volume: the grids' own, squeezed by the
+  // contacts and gravity, so that many act.
+  for (const gpu::ContactPair& v : test::volume_constraints(world, 0.97f, 0.01f))
+    c.pairs.push_back(v);
 
   SideBySide both(context(), world);
   const sim::SubstepConstants substep = test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f});
@@ -375,8 +388,12 @@ TEST(ContactUploadChecks, AcceptFittingConstraintsAndNameWhatDoesNotFit) {
   EXPECT_NE(message(short_motion, 30).find("node_motion has 29 entries for 30 nodes"),
             std::string::npos);
   FrameConstraints c = set.constraints;
-  c.pairs[7].kind = 3;
-  EXPECT_NE(message(c, 30).find("constraint 7 has kind 3"), std::string::npos);
+  c.pairs[7].kind = 4;
+  EXPECT_NE(message(c, 30).find("constraint 7 has kind 4"), std::string::npos);
+  c = set.constraints;
+  c.pairs[7].kind = gpu::kContactVolume;  // a volume constraint before contacts
+  EXPECT_NE(message(c, 30).find("constraint 8 (kind"), std::string::npos);
+  EXPECT_NE(message(c, 30).find("follows volume constraint 7"), std::string::npos);
   c = set.constraints;
   c.pairs[5].nodes[1] = 30;
   EXPECT_NE(message(c, 30).find("constraint 5 has node 30, but there are 30 nodes"),

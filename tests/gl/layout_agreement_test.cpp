@@ -40,7 +40,7 @@ struct ProbeOutput {
 };
 
 constexpr std::uint32_t kBindingCount = gpu::kContactImpulse + 1;
-constexpr std::uint32_t kConstantCount = 17;
+constexpr std::uint32_t kConstantCount = 18;
 
 // Runs shaders/test/layout_probe.comp over `count` elements of each struct.
 ProbeOutput run_layout_probe(std::uint32_t count) {
@@ -194,6 +194,7 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
     EXPECT_EQ(cp.gap, probef(i, 6));
     EXPECT_EQ(cp.closing_speed, probef(i, 7));
     EXPECT_EQ(cp.side, probef(i, 8));
+    EXPECT_EQ(cp.step_limit, probef(i, 9));
     EXPECT_EQ(cp.pad2, probef(i, 11));
   }
 }
@@ -236,6 +237,7 @@ TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
   EXPECT_EQ(constants[14], gpu::kContactVertexFace) << "CONTACT_VERTEX_FACE";
   EXPECT_EQ(constants[15], gpu::kContactEdgeEdge) << "CONTACT_EDGE_EDGE";
   EXPECT_EQ(constants[16], gpu::kContactUntangle) << "CONTACT_UNTANGLE";
+  EXPECT_EQ(constants[17], gpu::kContactVolume) << "CONTACT_VOLUME";
 }
 
 }  // namespace

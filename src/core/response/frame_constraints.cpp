@@ -1,6 +1,24 @@
 #include "core/response/frame_constraints.h"
 
+#include <string>
+
+#include "deformcd/error.h"
+
 namespace deformcd::response {
+
+std::size_t first_volume_constraint(const std::vector<gpu::ContactPair>& pairs) {
+  std::size_t first = pairs.size();
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    if (pairs[p].kind == gpu::kContactVolume) {
+      if (first == pairs.size()) first = p;
+    } else if (first < p) {
+      throw Error("FrameConstraints: constraint " + std::to_string(p) + " (kind " +
+                  std::to_string(pairs[p].kind) + ") follows volume constraint " +
+                  std::to_string(first) + "; the volume constraints must come last");
+    }
+  }
+  return first;
+}
 
 NodeContactLists index_constraints_by_node(std::uint32_t node_count,
                                            const std::vector<gpu::ContactPair>& pairs) {

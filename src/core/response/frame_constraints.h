@@ -4,6 +4,7 @@
 // through in a fixed order (GL 4.3 has no float atomics, and the sum must not depend on the
 // schedule; the CPU backend lists only the active constraints' corners, every substep).
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,11 @@ struct FrameConstraints {
   /// carried along that path; the proximity search assumed no more.
   std::vector<glm::vec4> node_motion;
 };
+
+/// The index of `pairs`' first volume constraint (gpu::kContactVolume), pairs.size() when
+/// there is none. Throws Error when another kind follows one: the backends solve the volume
+/// constraints after the contacts, as the last group of the list.
+[[nodiscard]] std::size_t first_volume_constraint(const std::vector<gpu::ContactPair>& pairs);
 
 /// Per node, the corners of the constraints it is in.
 struct NodeContactLists {

@@ -21,7 +21,7 @@ void check_pairs(const response::FrameConstraints& c, std::uint32_t node_count) 
   for (std::size_t p = 0; p < c.pairs.size(); ++p) {
     const gpu::ContactPair& pair = c.pairs[p];
     if (pair.kind != gpu::kContactVertexFace && pair.kind != gpu::kContactEdgeEdge &&
-        pair.kind != gpu::kContactUntangle) {
+        pair.kind != gpu::kContactUntangle && pair.kind != gpu::kContactVolume) {
       misfit("constraint " + std::to_string(p) + " has kind " + std::to_string(pair.kind) +
              ", none of gpu::kContact*");
     }
@@ -38,6 +38,7 @@ void check_pairs(const response::FrameConstraints& c, std::uint32_t node_count) 
 
 void check_constraints_fit(const response::FrameConstraints& c, std::uint32_t node_count) {
   check_pairs(c, node_count);
+  (void)response::first_volume_constraint(c.pairs);  // throws when a contact follows one
   if (c.node_motion.size() != node_count) {
     misfit("node_motion has " + std::to_string(c.node_motion.size()) + " entries for " +
            std::to_string(node_count) + " nodes");
@@ -53,7 +54,7 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
       {"Contact Correction", gpu::kContactCorrection, 8u * pairs, sizeof(glm::vec4)},
       {"Node Contact Offset", gpu::kNodeContactOffset, nodes + 1u, sizeof(std::uint32_t)},
       {"Node Contact List", gpu::kNodeContactList, 4u * pairs, sizeof(std::uint32_t)},
-      {"Node Contact Count", gpu::kNodeContactCount, nodes + 1u, sizeof(std::uint32_t)},
+      {"Node Contact Count", gpu::kNodeContactCount, 2u * nodes + 1u, sizeof(std::uint32_t)},
       {"Frame Start", gpu::kFrameStart, nodes, sizeof(glm::vec4)},
       {"Node Motion", gpu::kNodeMotion, nodes, sizeof(glm::vec4)},
       {"Node Deviation", gpu::kNodeDeviation, nodes, sizeof(float)},

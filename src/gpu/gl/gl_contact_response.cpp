@@ -99,7 +99,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   auto new_corrections = grow(buffers_.corrections, 8u * pairs, gpu::kContactCorrection);
   auto new_offset = grow(buffers_.node_offset, nodes + 1u, gpu::kNodeContactOffset);
   auto new_list = grow(buffers_.node_list, lists.list.size(), gpu::kNodeContactList);
-  auto new_count = grow(buffers_.node_count, nodes + 1u, gpu::kNodeContactCount);
+  auto new_count = grow(buffers_.node_count, 2u * nodes + 1u, gpu::kNodeContactCount);
   auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
   auto new_motion = grow(buffers_.node_motion, nodes, gpu::kNodeMotion);
   auto new_deviation = grow(buffers_.node_deviation, nodes, gpu::kNodeDeviation);
@@ -123,11 +123,12 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   buffers_.node_motion->upload(std::span<const glm::vec4>(constraints.node_motion));
 
   pair_count_ = static_cast<std::uint32_t>(pairs);
+  first_volume_ = static_cast<std::uint32_t>(response::first_volume_constraint(constraints.pairs));
   node_count_ = sim.node_count;
   frame_positions_ = sim.positions.name();
   activity_.set_uniform("u_pair_count", pair_count_);
-  pairs_.set_uniform("u_pair_count", pair_count_);
   count_.set_uniform("u_node_count", node_count_);
+  count_.set_uniform("u_first_volume", first_volume_);
   apply_.set_uniform("u_node_count", node_count_);
   frame_start_.set_uniform("u_node_count", node_count_);
   frame_start_.set_uniform("u_keep_positions", keep_positions ? 1u : 0u);
@@ -191,20 +192,34 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   pairs_.set_uniform("u_restitution", k.restitution);
   pairs_.set_uniform("u_max_untangle_step", k.max_untangle_step);
   apply_.set_uniform("u_elapsed", k.elapsed);
+  // Each iteration solves the contacts, then the volume constraints on the positions the
+  // contacts left (the CPU backend's order); a group without constraints is skipped, except
+  // that the last node pass always runs (it watches the reaches).
+  const std::uint32_t group_begin[2] = {0u, first_volume_};
+  const std::uint32_t group_end[2] = {first_volume_, pair_count_};
+  const std::uint32_t last_group = first_volume_ < pair_count_ ? 1u : 0u;
   for (int iteration = 0; iteration < iterations; ++iteration) {
-    if (pair_count_ > 0) {
-      pairs_.set_uniform("u_first_iteration", static_cast<std::uint32_t>(iteration == 0));
-      pairs_.set_uniform("u_last_iteration",
-                         static_cast<std::uint32_t>(iteration + 1 == iterations));
-      pairs_.dispatch_covering(pair_count_);
-      storage_barrier();  // the node pass reads the corrections
+    for (std::uint32_t group = 0; group <= last_group; ++group) {
+      const bool last = iteration + 1 == iterations && group == last_group;
+      if (group_begin[group] == group_end[group] && !last) continue;
+      if (group_begin[group] < group_end[group]) {
+        pairs_.set_uniform("u_pair_begin", group_begin[group]);
+        pairs_.set_uniform("u_pair_end", group_end[group]);
+        pairs_.set_uniform("u_group", group);
+        pairs_.set_uniform("u_first_iteration", static_cast<std::uint32_t>(iteration == 0));
+        pairs_.set_uniform("u_last_iteration",
+                           static_cast<std::uint32_t>(iteration + 1 == iterations));
+        pairs_.dispatch_covering(group_end[group] - group_begin[group]);
+        storage_barrier();  // the node pass reads the corrections
+      }
+      // Only the last pass's positions are the projection's: it alone watches the reaches.
+      apply_.set_uniform("u_pair_begin", group_begin[group]);
+      apply_.set_uniform("u_pair_end", group_end[group]);
+      apply_.set_uniform("u_watch_reach", static_cast<std::uint32_t>(last));
+      apply_.dispatch_covering(node_count_);
+      // The next solve pass reads the corrected nodes and overwrites the corrections read here.
+      if (!last) storage_barrier();
     }
-    // Only the last iteration's positions are the projection's: it alone watches the reaches.
-    apply_.set_uniform("u_watch_reach", static_cast<std::uint32_t>(iteration + 1 == iterations));
-    apply_.dispatch_covering(node_count_);
-    // The next iteration's solve pass reads the corrected nodes and overwrites the corrections
-    // read here.
-    if (iteration + 1 < iterations) storage_barrier();
   }
   // The next substep (and the next projection's pair pass), the collision shaders and renderers
   // drawing from SSBO 0 read the corrected nodes; the next pair pass overwrites the corrections
@@ -213,7 +228,7 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
                  GL_BUFFER_UPDATE_BARRIER_BIT);
   // The stray flag: the one wait of a projection (a new search must start before the next
   // substep when it is set).
-  return buffers_.node_count->download(node_count_, 1)[0] != 0u;
+  return buffers_.node_count->download(2u * std::size_t{node_count_}, 1)[0] != 0u;
 }
 
 std::vector<glm::vec4> GlContactResponse::download_frame_start() const {

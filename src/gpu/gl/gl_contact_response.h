@@ -109,6 +109,8 @@ class GlContactResponse final : public response::ResponseBackend {
   // node count or buffers differ), whose frame starts would be stale.
   bool frame_ready_ = false;
   std::uint32_t pair_count_ = 0;
+  std::uint32_t first_volume_ =
+      0;  // the first volume constraint (response::first_volume_constraint)
   std::uint32_t node_count_ = 0;
   std::uint32_t frame_positions_ = 0;  // the simulation's SSBO 0 name at begin_frame
 };
