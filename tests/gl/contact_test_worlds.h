@@ -257,9 +257,7 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
     body.push_back(i % 3u);
   }
   RandomContacts out{free_nodes(std::move(x), std::move(v), std::move(body), 3), {}};
-  for (std::uint32_t p = 0; p < pairs; ++p) {
-    gpu::ContactPair pair{};
-    // Four different nodes.
+  const auto four_different_nodes = [&](gpu::ContactPair& pair) {
     for (int k = 0; k < 4; ++k) {
       std::uint32_t n = 0;
       do {
@@ -267,6 +265,10 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
       } while (std::find(pair.nodes, pair.nodes + k, n) != pair.nodes + k);
       pair.nodes[k] = n;
     }
+  };
+  for (std::uint32_t p = 0; p < pairs; ++p) {
+    gpu::ContactPair pair{};
+    four_different_nodes(pair);
     pair.kind = p % 3u;
     // Most vertex-face constraints started in front of their faces, some behind.
     if (pair.kind == gpu::kContactVertexFace) pair.side = unit(rng) < 0.8f ? 1.0f : 0.0f;
@@ -275,13 +277,7 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
   }
   for (std::uint32_t p = 0; p < volumes; ++p) {
     gpu::ContactPair pair{};
-    for (int k = 0; k < 4; ++k) {
-      std::uint32_t n = 0;
-      do {
-        n = node(rng);
-      } while (std::find(pair.nodes, pair.nodes + k, n) != pair.nodes + k);
-      pair.nodes[k] = n;
-    }
+    four_different_nodes(pair);
     pair.kind = gpu::kContactVolume;
     pair.thickness = 4e-6f * unit(rng);  // m^3: random corners span up to about 2e-5
     pair.gap = -INFINITY;
