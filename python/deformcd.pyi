@@ -49,6 +49,7 @@ class _ResponseCounts(TypedDict):
     searches: int
     widenings: int
     self_searches: int
+    substeps: int
     asleep: int
 
 class _Counts(TypedDict):

@@ -165,6 +165,14 @@ void print_response(std::ostream& out, const SceneBench& b) {
     if (self_searches > 0) {
       out << ", bodies searched against themselves " << static_cast<double>(self_searches) / frames;
     }
+    const auto [fewest, most] = std::minmax_element(r.substeps.begin(), r.substeps.end());
+    if (fewest != r.substeps.end() && *fewest != *most) {  // motion-bounded substeps
+      out << ", substeps "
+          << static_cast<double>(
+                 std::accumulate(r.substeps.begin(), r.substeps.end(), std::uint64_t{0})) /
+                 frames
+          << " (" << *fewest << "-" << *most << ")";
+    }
     out << " a frame\n";
     // The frames in contact apart: the response costs little in the others.
     const auto in_contact = static_cast<std::size_t>(
@@ -234,6 +242,7 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
         per_frame["searches"] = r.searches;
         per_frame["widenings"] = r.widenings;
         per_frame["self_searches"] = r.self_searches;
+        per_frame["substeps"] = r.substeps;
         per_frame["constraints"] = r.constraints;
       }
       add_intersection_fields(per_frame, r.intersections, r.inverted_tetrahedra);

@@ -58,6 +58,7 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
       run.searches.push_back(counts.searches);
       run.widenings.push_back(counts.widenings);
       run.self_searches.push_back(counts.self_searches);
+      run.substeps.push_back(counts.substeps);
       run.constraints.push_back(counts.vertex_face + counts.edge_edge + counts.untangle);
     }
 

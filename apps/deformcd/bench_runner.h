@@ -43,6 +43,7 @@ struct MethodRun {
   std::vector<std::uint64_t> searches;
   std::vector<std::uint64_t> widenings;
   std::vector<std::uint64_t> self_searches;
+  std::vector<std::uint64_t> substeps;  // per frame, the response's (ResponseCounts::substeps)
   /// Per frame 1..N with contact response: the constraints the frame ended with (proximity and
   /// untangling pairs, World::response_counts()). Empty without.
   std::vector<std::uint64_t> constraints;

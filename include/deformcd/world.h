@@ -92,6 +92,8 @@ struct ResponseCounts {
   /// self-contact pairs are kept from one such search until its surface has deformed (or turned)
   /// by a margin, not searched again every window.
   std::uint64_t self_searches = 0;
+  /// Substeps the frame took: the scene's, or more where ResponseSettings::substep_motion asked.
+  std::uint64_t substeps = 0;
   /// Bodies asleep after the frame (ResponseSettings::sleep).
   std::uint64_t asleep = 0;
   /// m: the closest two primitives of a proximity constraint were when the frame's searches
@@ -241,6 +243,7 @@ class World {
   std::unique_ptr<ContactResponse> response_;
   StepSettings settings_;
   int check_interval_;
+  int frame_substeps_ = 1;  // the last frame's (the response's motion-bounded substeps)
   int frame_ = 0;
   std::vector<gpu::ObjectInfo> objects_;
   std::vector<std::string> names_;

@@ -129,6 +129,7 @@ ResponseSettings read_response(JsonFields f) {
   if (r.restitution > 1.0f) f.fail("restitution", "must be between 0 and 1");
   r.untangle_step = static_cast<float>(positive(f, "untangle_step", r.untangle_step));
   r.volume_floor = static_cast<float>(non_negative(f, "volume_floor", r.volume_floor));
+  r.substep_motion = static_cast<float>(non_negative(f, "substep_motion", r.substep_motion));
   if (!(r.volume_floor < 1.0f)) f.fail("volume_floor", "must be below 1");
   r.iterations = f.integer("iterations").value_or(r.iterations);
   if (r.iterations < 1 || r.iterations > kMaxResponseIterations) {

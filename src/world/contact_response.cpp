@@ -105,6 +105,7 @@ void check_response_settings(const ResponseSettings& s) {
   check_value("restitution", s.restitution, 1.0f);
   check_value("untangle_step", s.untangle_step);
   if (!(s.untangle_step > 0.0f)) throw Error("response untangle_step must be positive, not 0");
+  check_value("substep_motion", s.substep_motion);
   check_value("volume_floor", s.volume_floor);
   if (!(s.volume_floor < 1.0f)) {
     throw Error("response volume_floor must be below 1, not " + std::to_string(s.volume_floor));
@@ -193,6 +194,7 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
     self_contact_ = std::make_unique<SelfContact>(objects_, on_surface_, thickness_);
   max_untangle_step_ = settings.untangle_step * smallest_edge;
   smallest_edge_ = smallest_edge;
+  thinnest_ = *std::min_element(thickness_.begin(), thickness_.end());
   linked_.assign(bodies.size() * bodies.size(), 0u);
   fixed_body_.assign(bodies.size(), 0u);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -242,15 +244,9 @@ const std::vector<glm::vec4>& ContactResponse::positions() {
   return positions_;
 }
 
-int ContactResponse::window_substeps(const std::vector<glm::vec4>& v) const {
-  // The window is as long as the surfaces' relative motion covers at most about a mean edge:
-  // every pair that can close over the window is a candidate, and the candidates (their search
-  // and each substep's activity pass) cost more than searches do, so a fast approach is
-  // searched in short windows. On the impact scene (one thread, 80 frames) that took 12-15 %
-  // off proximity + response against windows to the frame's end, and the stack's 8 %; windows
-  // of half or twice that motion cost 5-10 % more than this one. The relative speed is bounded
-  // by the diagonal of the box of the surface nodes' velocities.
-  const int remaining = step_.substeps - substep_;
+float ContactResponse::relative_surface_speed(const std::vector<glm::vec4>& v) const {
+  // The diagonal of the box of the surface nodes' velocities: at least the speed of any surface
+  // node relative to any other.
   glm::vec3 lo(INFINITY), hi(-INFINITY);
   for (std::size_t b = 0; b < objects_.size(); ++b) {
     const gpu::ObjectInfo& o = objects_[b];
@@ -261,9 +257,35 @@ int ContactResponse::window_substeps(const std::vector<glm::vec4>& v) const {
       hi = glm::max(hi, velocity);
     }
   }
-  const float relative = glm::length(hi - lo);
+  return glm::length(hi - lo);
+}
+
+int ContactResponse::motion_bounded_substeps(const std::vector<gpu::ContactPair>& pairs) const {
+  // The fastest closing of the window's pairs along their straight paths: the relative speed
+  // of all surface nodes (the window's bound) would count the bodies' ringing, which closes
+  // nothing, and on the impact asked for 60-100 substeps instead of 16 once the bodies met.
+  float closing = 0.0f;
+  for (const gpu::ContactPair& p : pairs)
+    closing = std::max(closing, p.closing_speed);
+  if (!(closing > 0.0f) || !std::isfinite(closing)) return step_.substeps;
+  // In double: a blown-up speed must not overflow the int it becomes (it is capped).
+  const double needed = std::ceil(static_cast<double>(closing) * step_.dt /
+                                  (static_cast<double>(settings_.substep_motion) * thinnest_));
+  const double most = static_cast<double>(kMaxSubstepFactor) * step_.substeps;
+  return static_cast<int>(std::clamp(needed, static_cast<double>(step_.substeps), most));
+}
+
+int ContactResponse::window_substeps(const std::vector<glm::vec4>& v) const {
+  // The window is as long as the surfaces' relative motion covers at most about a mean edge:
+  // every pair that can close over the window is a candidate, and the candidates (their search
+  // and each substep's activity pass) cost more than searches do, so a fast approach is
+  // searched in short windows. On the impact scene (one thread, 80 frames) that took 12-15 %
+  // off proximity + response against windows to the frame's end, and the stack's 8 %; windows
+  // of half or twice that motion cost 5-10 % more than this one.
+  const int remaining = frame_substeps_ - substep_;
+  const float relative = relative_surface_speed(v);
   if (!(relative > 0.0f) || !std::isfinite(relative)) return remaining;
-  const float h = step_.dt / static_cast<float>(step_.substeps);
+  const float h = step_.dt / static_cast<float>(frame_substeps_);
   const float span = kWindowEdges * smallest_edge_ / (relative * h);
   if (!(span < static_cast<float>(remaining))) return remaining;
   return std::max(1, static_cast<int>(std::ceil(span)));
@@ -367,11 +389,12 @@ void ContactResponse::search() {
   // instead of 29,000, and the results did not change); and earlier when the surfaces move
   // fast (window_substeps).
   const std::vector<glm::vec4>& node_velocity = velocities();
+  if (substep_ == 0) frame_substeps_ = step_.substeps;  // until the pairs below ask for more
   const int substeps = window_substeps(node_velocity);
   window_end_ = substep_ + substeps;
-  const float window = window_end_ == step_.substeps ? step_.dt - frame_time_
-                                                     : static_cast<float>(substeps) * step_.dt /
-                                                           static_cast<float>(step_.substeps);
+  const float window = window_end_ == frame_substeps_ ? step_.dt - frame_time_
+                                                      : static_cast<float>(substeps) * step_.dt /
+                                                            static_cast<float>(frame_substeps_);
   c.node_motion = node_motion(node_velocity, window);
   elapsed_ = 0.0f;
   // The detector's vertices are the surface nodes, in node order, body after body; the search
@@ -390,6 +413,7 @@ void ContactResponse::search() {
   counts_.searches = searches;
   counts_.widenings = frame_so_far.widenings;
   counts_.self_searches = frame_so_far.self_searches;
+  counts_.substeps = static_cast<std::uint64_t>(frame_substeps_);
   counts_.closest_distance = frame_so_far.closest_distance;  // the frame's, not the window's
   counts_.closest_thickness = frame_so_far.closest_thickness;
   // The positions now: the window's start, kept for the side each vertex-face pair's vertex
@@ -477,6 +501,17 @@ void ContactResponse::search() {
     }
   }
   append_volume_constraints(c);
+  // The frame's first search sets its substeps from how fast its pairs can close
+  // (substep_motion); the window keeps its length in seconds.
+  if (substep_ == 0 && settings_.substep_motion > 0.0f) {
+    const int n = motion_bounded_substeps(c.pairs);
+    if (n != frame_substeps_) {
+      window_end_ = window_end_ == frame_substeps_
+                        ? n
+                        : std::min(n, (window_end_ * n + frame_substeps_ - 1) / frame_substeps_);
+      frame_substeps_ = n;
+    }
+  }
   constraints_ = std::move(c);
   backend_->begin_frame(constraints_);
 }

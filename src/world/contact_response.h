@@ -47,6 +47,9 @@ class ContactResponse {
   /// pair of `intersections` (the last exact pass) its vertices against the other face.
   /// `detector` must outlive the frame.
   void begin_frame(Detector& detector, std::vector<Contact> intersections);
+  /// The substeps of the frame begin_frame() began: the scene's, or more where
+  /// ResponseSettings::substep_motion asks (motion_bounded_substeps).
+  [[nodiscard]] int frame_substeps() const { return frame_substeps_; }
   /// One projection after a substep of length h. When `more_substeps` follow in the frame: if
   /// the window has ended, a new search begins the next one on the positions now; else, if a
   /// node has strayed beyond its reach, the window's search is widened around the strays
@@ -72,6 +75,13 @@ class ContactResponse {
   [[nodiscard]] const std::vector<glm::vec4>& velocities();
   /// The nodes' positions now (the CPU state's, or read back from GL).
   [[nodiscard]] const std::vector<glm::vec4>& positions();
+  /// The diagonal of the box of the surface nodes' velocities v (with their bodies' carry
+  /// velocities): a bound on any two surface nodes' relative speed.
+  [[nodiscard]] float relative_surface_speed(const std::vector<glm::vec4>& v) const;
+  /// The frame's substeps for the frame's first window's constraints: the scene's, or as many
+  /// as keep each pair's closing in a substep (its closing_speed x h) within substep_motion x
+  /// the smallest thickness, at most kMaxSubstepFactor x the scene's.
+  [[nodiscard]] int motion_bounded_substeps(const std::vector<gpu::ContactPair>& pairs) const;
   /// How many substeps a search window starting now lasts, the nodes at velocities v.
   [[nodiscard]] int window_substeps(const std::vector<glm::vec4>& v) const;
   /// Each node's path velocity and reach over a search window of `window` seconds, the nodes
@@ -145,10 +155,13 @@ class ContactResponse {
   float elapsed_ = 0.0f;                        // since the window began (the last search)
   float frame_time_ = 0.0f;                     // since the frame began
   int substep_ = 0;                             // substeps projected in the frame
-  int window_end_ = 0;                          // the substep the window ends after
-  float smallest_edge_ = 0.0f;                  // the smallest body's mean surface edge
-  std::unique_ptr<SelfContact> self_contact_;   // with self-contact
-  std::vector<std::uint8_t> self_kept_;         // per body: its pairs with itself are kept ones
+  int window_end_ = 0;
+  int frame_substeps_ = 1;      // of the frame begin_frame() began
+  float thinnest_ = 0.0f;       // m: the smallest body's thickness                          // the
+                                // substep the window ends after
+  float smallest_edge_ = 0.0f;  // the smallest body's mean surface edge
+  std::unique_ptr<SelfContact> self_contact_;  // with self-contact
+  std::vector<std::uint8_t> self_kept_;        // per body: its pairs with itself are kept ones
   ResponseCounts counts_;
   std::unique_ptr<BodySleep> sleep_;  // with ResponseSettings::sleep
   std::vector<std::uint8_t> linked_;  // bodies x bodies: joined by a constraint in the frame

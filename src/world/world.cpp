@@ -139,7 +139,10 @@ void World::step() {
   }
   detector_->complete();  // before the positions move (a GL pass may rerun on them)
   const auto start = Clock::now();
-  const float h = settings_.dt / static_cast<float>(settings_.substeps);
+  // The response may ask for more substeps than the scene's where its surfaces move fast.
+  const int substeps = response_ ? response_->frame_substeps() : settings_.substeps;
+  frame_substeps_ = substeps;
+  const float h = settings_.dt / static_cast<float>(substeps);
   const sim::SubstepConstants constants{h, settings_.gravity,
                                         std::exp(-settings_.velocity_damping * h)};
   // A response stage after the substeps, its time (waiting for the backend on both sides)
@@ -153,9 +156,9 @@ void World::step() {
       response_s += Seconds(Clock::now() - begin).count();
     }
   };
-  for (int s = 0; s < settings_.substeps; ++s) {
+  for (int s = 0; s < substeps; ++s) {
     backend_->substep(constants);
-    if (response_) timed_response([&] { response_->project(h, s + 1 < settings_.substeps); });
+    if (response_) timed_response([&] { response_->project(h, s + 1 < substeps); });
   }
   if (response_) timed_response([&] { response_->end_frame(); });
   ++frame_;
@@ -242,7 +245,7 @@ void World::check_stability(int frame, const char* where, const char* stage) {
   std::vector<glm::vec4> positions, velocities;
   backend_->download_positions(positions);
   backend_->download_velocities(velocities);
-  const float h = settings_.dt / static_cast<float>(settings_.substeps);
+  const float h = settings_.dt / static_cast<float>(std::max(frame_substeps_, settings_.substeps));
   for (std::size_t b = 0; b < objects_.size(); ++b) {
     const gpu::ObjectInfo& o = objects_[b];
     for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {

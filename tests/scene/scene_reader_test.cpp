@@ -233,7 +233,7 @@ TEST_F(SceneReaderTest, ResponseReadsEveryKey) {
   const Scene s = read_scene(write(with_response(
       R"({"thickness": 0.01, "relative_thickness": 0.3, "friction_static": 0.7,
           "friction_dynamic": 0.5, "restitution": 0.25, "untangle_step": 0.05,
-          "volume_floor": 0.3, "iterations": 3, "sleep": {"speed": 0.2, "time": 1.5}})")));
+          "volume_floor": 0.3, "substep_motion": 0.5, "iterations": 3, "sleep": {"speed": 0.2, "time": 1.5}})")));
   ASSERT_TRUE(s.response.has_value());
   EXPECT_FLOAT_EQ(*s.response->thickness, 0.01f);
   EXPECT_FLOAT_EQ(s.response->relative_thickness, 0.3f);
@@ -242,6 +242,7 @@ TEST_F(SceneReaderTest, ResponseReadsEveryKey) {
   EXPECT_FLOAT_EQ(s.response->restitution, 0.25f);
   EXPECT_FLOAT_EQ(s.response->untangle_step, 0.05f);
   EXPECT_FLOAT_EQ(s.response->volume_floor, 0.3f);
+  EXPECT_FLOAT_EQ(s.response->substep_motion, 0.5f);
   EXPECT_EQ(s.response->iterations, 3);
   ASSERT_TRUE(s.response->sleep.has_value());
   EXPECT_FLOAT_EQ(s.response->sleep->speed, 0.2f);
@@ -274,6 +275,7 @@ TEST_F(SceneReaderTest, BadResponseValuesNameTheirKey) {
       {R"({"untangle_step": 0})", "/response/untangle_step", "positive"},
       {R"({"volume_floor": 1})", "/response/volume_floor", "below 1"},
       {R"({"volume_floor": -0.1})", "/response/volume_floor", ""},
+      {R"({"substep_motion": -1})", "/response/substep_motion", ""},
       {R"({"iterations": 0})", "/response/iterations", "between 1 and 64"},
       {R"({"iterations": 65})", "/response/iterations", "between 1 and 64"},
       {R"({"iterations": 2.5})", "/response/iterations", ""},

@@ -236,6 +236,48 @@ TEST(ContactResponse, AVolumeFloorKeepsTheImpactFromFoldingThroughItself) {
 #endif
 }
 
+// The impact at three times its speed, with the volume floor: 16 fixed substeps let the bodies
+// pass into each other (hundreds of triangle pairs between them by frame 13); with
+// motion-bounded substeps (substep_motion 0.3) the frames in contact take more (the counts
+// say how many) and no pair between the bodies intersects, no vertex is inside the other body,
+// through frame 24 (the bodies meet at frame 6). Before they meet the frames keep the scene's 16.
+TEST(ContactResponse, MotionBoundedSubstepsKeepTheImpactAtThreeTimesItsSpeedApart) {
+#ifdef DEFORMCD_UNDER_ASAN
+  constexpr int kFrames = 10;
+#else
+  constexpr int kFrames = 24;
+#endif
+  const auto run = [&](float motion, std::vector<std::uint64_t>& substeps) {
+    SceneWorld s = open_scene("impact", kFrames, 0, 0.0f, [&](Scene& scene) {
+      for (BodySpec& b : scene.bodies)
+        b.velocity *= 3.0;
+      scene.response->volume_floor = 0.3f;
+      scene.response->substep_motion = motion;
+    });
+    WorldIntersections census(*s.world);
+    std::uint64_t between = 0, inside = 0;
+    for (int f = 0; f < kFrames; ++f) {
+      s.world->step();
+      substeps.push_back(s.world->response_counts().substeps);
+      const IntersectionCensus c = census.count();
+      between += c.between_pairs;
+      inside += c.inside_vertices;
+    }
+    return std::pair(between, inside);
+  };
+  std::vector<std::uint64_t> bounded, fixed;
+  const auto [between, inside] = run(0.3f, bounded);
+  EXPECT_EQ(between, 0u) << "pairs between the bodies over the frames";
+  EXPECT_EQ(inside, 0u) << "vertices inside the other body";
+  EXPECT_EQ(bounded.front(), 16u) << "apart, the scene's substeps";
+  EXPECT_GT(*std::max_element(bounded.begin(), bounded.end()), 40u) << "in contact, more";
+  EXPECT_LE(*std::max_element(bounded.begin(), bounded.end()), 16u * kMaxSubstepFactor);
+#ifndef DEFORMCD_UNDER_ASAN
+  EXPECT_GT(run(0.0f, fixed).first, 100u) << "16 fixed substeps should let them intersect";
+  EXPECT_TRUE(std::all_of(fixed.begin(), fixed.end(), [](auto n) { return n == 16u; }));
+#endif
+}
+
 // Four bodies dropped in two columns onto a fixed base: no face pair intersects in any of the
 // scene's 180 frames (3 s); the stack comes to rest: every body is asleep (the scene's sleep
 // settings) by frame 170, the kinetic energy at 3 s is below 1e-6 of its peak (the upper bodies
@@ -789,6 +831,9 @@ TEST(ContactResponse, BadSettingsAreErrorsNamingTheField) {
   r = {};
   r.iterations = 0;
   EXPECT_NE(error_of(r).find("iterations"), std::string::npos);
+  r = {};
+  r.substep_motion = -1.0f;
+  EXPECT_NE(error_of(r).find("substep_motion"), std::string::npos);
   r = {};
   r.volume_floor = 1.0f;
   EXPECT_NE(error_of(r).find("volume_floor must be below 1"), std::string::npos);
