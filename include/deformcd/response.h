@@ -67,13 +67,13 @@ struct ResponseSettings {
   /// tetrahedra from 3,841 to 18. Off by default: where a body rests under load its bottom
   /// tetrahedra are crushed below any floor, and the floor and the contacts then hold them with
   /// velocities that never settle, so the stack scene never falls asleep
-  /// (docs/simulation-and-response.md, "Volume floor").
+  /// (docs/simulation-and-response.md, "Volume constraints").
   float volume_floor = 0.0f;
   /// Motion-bounded substeps (0 turns them off): when > 0, a frame takes more substeps than the
-  /// scene's `substeps` where its surfaces could close on each other by more than this many
-  /// contact thicknesses (the smallest body's) in one substep, their relative speed bounded by
-  /// the box of the surface nodes' velocities at the frame's start; at most
-  /// kMaxSubstepFactor x the scene's count. A fast approach then never crosses the thickness,
+  /// scene's `substeps` where the pairs its first search finds could close on each other (each
+  /// pair's closing speed, the bound its nodes' straight paths give) by more than this many
+  /// contact thicknesses (the smallest body's) in one substep; at most kMaxSubstepFactor x the
+  /// scene's count. A fast approach then never crosses the thickness,
   /// inside which the projection holds it, in one substep. On the impact at three times its
   /// speed, 0.3 with volume_floor 0.3 keeps the bodies apart where 16 fixed substeps let 926
   /// triangle pairs intersect (docs/simulation-and-response.md, "Motion-bounded substeps").

@@ -211,9 +211,9 @@ inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 positio
 /// Why (issue 33): edge springs hold a mirrored tetrahedron at rest lengths, and the linear
 /// volume force alone, explicit, does not stop a node carried through the opposite face in one
 /// substep. Inverted tetrahedra fold the surface through itself, where no surface constraint
-/// can undo the fold: on the impact with self-contact, 3,841 of 26,152 were inverted at once
-/// and 591 surface triangle pairs intersected; with a floor of 0.3 x the rest volume, solved
-/// with the contacts, at most 5 and none (docs/notes/2026-12-05-volume-floor.md).
+/// can undo the fold: on the impact with self-contact (60 frames), up to 3,841 of 26,152 were
+/// inverted at once and 591 surface triangle pairs intersected; with a floor of 0.3 x the rest
+/// volume, at most 18 and 6 (docs/notes/2026-12-05-volume-floor.md).
 inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[4],
                          const glm::vec4 velocity[4], const std::uint32_t count[4],
                          const ContactConstants& k, glm::vec4 given[2], glm::vec4 correction[8]) {
