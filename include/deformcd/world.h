@@ -228,6 +228,9 @@ class World {
   /// not finite or would cross half its body in a substep, `frame` the frame it is found in and
   /// `where` (may be empty) where it was met, with the suggested substeps.
   void check_stability(int frame, const char* where, const char* stage);
+  // The substeps of the frame being stepped (or the last one): the scene's, or more where the
+  // response's motion-bounded substeps asked.
+  [[nodiscard]] int frame_substeps() const;
   /// Runs a step of the contact response; a blow-up it meets (a SimulationError) is reported
   /// with the world's check, which knows the frame and the suggested substeps.
   void run_response(const std::function<void()>& stage);
@@ -243,7 +246,6 @@ class World {
   std::unique_ptr<ContactResponse> response_;
   StepSettings settings_;
   int check_interval_;
-  int frame_substeps_ = 1;  // the last frame's (the response's motion-bounded substeps)
   int frame_ = 0;
   std::vector<gpu::ObjectInfo> objects_;
   std::vector<std::string> names_;

@@ -195,6 +195,7 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
   max_untangle_step_ = settings.untangle_step * smallest_edge;
   smallest_edge_ = smallest_edge;
   thinnest_ = *std::min_element(thickness_.begin(), thickness_.end());
+  frame_substeps_ = step.substeps;  // until the first frame's search sets it
   linked_.assign(bodies.size() * bodies.size(), 0u);
   fixed_body_.assign(bodies.size(), 0u);
   for (std::size_t b = 0; b < bodies.size(); ++b) {

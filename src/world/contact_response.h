@@ -156,7 +156,7 @@ class ContactResponse {
   float frame_time_ = 0.0f;                     // since the frame began
   int substep_ = 0;                             // substeps projected in the frame
   int window_end_ = 0;
-  int frame_substeps_ = 1;      // of the frame begin_frame() began
+  int frame_substeps_ = 1;      // of the frame begin_frame() began (before: the scene's)
   float thinnest_ = 0.0f;       // m: the smallest body's thickness                          // the
                                 // substep the window ends after
   float smallest_edge_ = 0.0f;  // the smallest body's mean surface edge

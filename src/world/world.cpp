@@ -140,8 +140,7 @@ void World::step() {
   detector_->complete();  // before the positions move (a GL pass may rerun on them)
   const auto start = Clock::now();
   // The response may ask for more substeps than the scene's where its surfaces move fast.
-  const int substeps = response_ ? response_->frame_substeps() : settings_.substeps;
-  frame_substeps_ = substeps;
+  const int substeps = frame_substeps();
   const float h = settings_.dt / static_cast<float>(substeps);
   const sim::SubstepConstants constants{h, settings_.gravity,
                                         std::exp(-settings_.velocity_damping * h)};
@@ -241,11 +240,15 @@ std::string World::advice() const {
   return msg.str();
 }
 
+int World::frame_substeps() const {
+  return response_ ? response_->frame_substeps() : settings_.substeps;
+}
+
 void World::check_stability(int frame, const char* where, const char* stage) {
   std::vector<glm::vec4> positions, velocities;
   backend_->download_positions(positions);
   backend_->download_velocities(velocities);
-  const float h = settings_.dt / static_cast<float>(std::max(frame_substeps_, settings_.substeps));
+  const float h = settings_.dt / static_cast<float>(frame_substeps());
   for (std::size_t b = 0; b < objects_.size(); ++b) {
     const gpu::ObjectInfo& o = objects_[b];
     for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
