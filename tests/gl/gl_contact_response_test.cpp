@@ -372,7 +372,9 @@ TEST_F(GlContactResponseTest, BuffersBeyondTheLimitAreRefusedByName) {
 // The host-side checks, without GL.
 TEST(ContactUploadChecks, AcceptFittingConstraintsAndNameWhatDoesNotFit) {
   const test::RandomContacts set = test::random_contacts(2, 30, 20);
-  EXPECT_NO_THROW(check_constraints_fit(set.constraints, 30));
+  EXPECT_EQ(check_constraints_fit(set.constraints, 30), 20u) << "no volume constraint";
+  EXPECT_EQ(check_constraints_fit(test::random_contacts(2, 30, 20, 5).constraints, 30), 20u)
+      << "the volume constraints begin after the 20 contacts";
   const auto message = [&](FrameConstraints c, std::uint32_t nodes) {
     try {
       check_constraints_fit(c, nodes);

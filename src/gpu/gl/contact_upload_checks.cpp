@@ -36,13 +36,14 @@ void check_pairs(const response::FrameConstraints& c, std::uint32_t node_count) 
 
 }  // namespace
 
-void check_constraints_fit(const response::FrameConstraints& c, std::uint32_t node_count) {
+std::size_t check_constraints_fit(const response::FrameConstraints& c, std::uint32_t node_count) {
   check_pairs(c, node_count);
-  (void)response::first_volume_constraint(c.pairs);  // throws when a contact follows one
+  const std::size_t first_volume = response::first_volume_constraint(c.pairs);
   if (c.node_motion.size() != node_count) {
     misfit("node_motion has " + std::to_string(c.node_motion.size()) + " entries for " +
            std::to_string(node_count) + " nodes");
   }
+  return first_volume;
 }
 
 std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c,

@@ -13,9 +13,11 @@
 namespace deformcd::gl {
 
 // Throws Error naming the first entry that does not fit a simulation of `node_count` nodes: a
-// constraint node out of range or an unknown kind, node_motion not one entry per node, or more
-// corners than 32 bits count.
-void check_constraints_fit(const response::FrameConstraints& constraints, std::uint32_t node_count);
+// constraint node out of range or an unknown kind, a contact after a volume constraint,
+// node_motion not one entry per node, or more corners than 32 bits count. Returns the first
+// volume constraint (response::first_volume_constraint): where the solve's second group begins.
+std::size_t check_constraints_fit(const response::FrameConstraints& constraints,
+                                  std::uint32_t node_count);
 
 // The buffers GlContactResponse needs for `constraints` over `node_count` nodes, in binding
 // order (for check_buffer_sizes).

@@ -78,7 +78,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   // Everything is checked, and every buffer that must grow allocated, before the first change:
   // a failure keeps the previous frame's constraints.
   const SimulationBuffers& sim = simulation_.state_buffers();
-  check_constraints_fit(constraints, sim.node_count);
+  const std::size_t first_volume = check_constraints_fit(constraints, sim.node_count);
   const response::NodeContactLists lists =
       response::index_constraints_by_node(sim.node_count, constraints.pairs);
   const std::vector<BufferSize> sizes = contact_buffer_sizes(constraints, sim.node_count);
@@ -123,7 +123,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   buffers_.node_motion->upload(std::span<const glm::vec4>(constraints.node_motion));
 
   pair_count_ = static_cast<std::uint32_t>(pairs);
-  first_volume_ = static_cast<std::uint32_t>(response::first_volume_constraint(constraints.pairs));
+  first_volume_ = static_cast<std::uint32_t>(first_volume);
   node_count_ = sim.node_count;
   frame_positions_ = sim.positions.name();
   activity_.set_uniform("u_pair_count", pair_count_);
