@@ -33,15 +33,14 @@ class BenchIntersections {
   void record(std::vector<IntersectionCensus>& per_frame, std::vector<std::uint64_t>& inverted);
 
  private:
-  const World& world_;
   const std::vector<BodyInit>& bodies_;
   std::unique_ptr<WorldIntersections> census_;
 };
 
-/// The tetrahedra of `world`'s bodies (made from `bodies`) turned inside out at its positions
-/// now: signed volume <= 0, where the bodies were built positively oriented (Body::tetrahedra).
-[[nodiscard]] std::uint64_t inverted_tetrahedra(const World& world,
-                                                const std::vector<BodyInit>& bodies);
+/// The tetrahedra of `bodies` turned inside out at `positions` (one array per body): signed
+/// volume <= 0, where the bodies were built positively oriented (Body::tetrahedra).
+[[nodiscard]] std::uint64_t inverted_tetrahedra(
+    const std::vector<std::vector<glm::vec3>>& positions, const std::vector<BodyInit>& bodies);
 
 /// Adds "intersecting_pairs_between", "intersecting_pairs_self", "inside_vertices" and
 /// "inverted_tetrahedra" (one per frame) to a method's per_frame JSON, when there is a census.

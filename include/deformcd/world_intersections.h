@@ -24,6 +24,9 @@ class WorldIntersections {
   explicit WorldIntersections(const World& world, int threads = 1);
   /// The census on the world's positions now (read back from the backend).
   [[nodiscard]] IntersectionCensus count();
+  /// The positions the last count() read, one array per body (empty before the first): for
+  /// more measures of the same frame without reading the positions back again.
+  [[nodiscard]] const std::vector<std::vector<glm::vec3>>& positions() const { return positions_; }
 
  private:
   const World& world_;
