@@ -21,6 +21,7 @@
 #include "common/exact_math.glsl"
 #include "common/layout.glsl"
 #include "common/primitive_distance.glsl"
+#include "sim/mass_spring.glsl"
 
 // Per-substep constants (response::ContactConstants).
 struct ContactConstants {
@@ -155,19 +156,6 @@ bool contact_clear(ContactPair pair, vec3 x[4]) {
   precise float height2 = height * height;
   precise float bound = limit * limit * exact_dot(normal, normal);
   return height > 0.0 && height2 > bound;
-}
-
-// tetrahedron_volume, line for line: the volume of tetrahedron x (positive as gpu::Tetra orders
-// its corners) and its gradient g[k] = dV/dx_k.
-float tetrahedron_volume(vec3 x[4], out vec3 g[4]) {
-  precise vec3 ab = x[1] - x[0], ac = x[2] - x[0], ad = x[3] - x[0];
-  precise vec3 g1 = exact_cross(ac, ad) / 6.0;
-  precise vec3 g2 = exact_cross(ad, ab) / 6.0;
-  precise vec3 g3 = exact_cross(ab, ac) / 6.0;
-  precise vec3 g0 = -(g1 + g2 + g3);
-  g = vec3[4](g0, g1, g2, g3);
-  precise float volume = exact_dot(ab, g1);
-  return volume;
 }
 
 // contact_active: whether the constraint acts now (its distance along n below its thickness; a

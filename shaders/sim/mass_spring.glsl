@@ -34,19 +34,30 @@ vec3 spring_term(vec4 edge_state, float signed_stiffness) {
   return term;
 }
 
+// A tetrahedron's volume (positive as gpu::Tetra orders its corners) and its gradient
+// g[k] = dV/dx_k: what the volume forces below and the response's volume constraints
+// (response/contact_constraints.glsl) act along.
+float tetrahedron_volume(vec3 x[4], out vec3 g[4]) {
+  precise vec3 ab = x[1] - x[0], ac = x[2] - x[0], ad = x[3] - x[0];
+  precise vec3 g1 = exact_cross(ac, ad) / 6.0;
+  precise vec3 g2 = exact_cross(ad, ab) / 6.0;
+  precise vec3 g3 = exact_cross(ab, ac) / 6.0;
+  precise vec3 g0 = -(g1 + g2 + g3);
+  g = vec3[4](g0, g1, g2, g3);
+  precise float volume = exact_dot(ab, g1);
+  return volume;
+}
+
 // Volume forces on the four corners of tetrahedron (a, b, c, d), from the energy
 // c (V - V0)^2 / 2: f_i = -c (V - V0) dV/dx_i, with c = Tetra.stiffness. They sum to zero.
 void tet_volume_forces(vec3 a, vec3 b, vec3 c, vec3 d, float rest_volume, float stiffness,
                        out vec3 out0, out vec3 out1, out vec3 out2, out vec3 out3) {
-  const vec3 ab = b - a, ac = c - a, ad = d - a;
-  const vec3 grad_b = exact_cross(ac, ad) / 6.0;
-  const vec3 grad_c = exact_cross(ad, ab) / 6.0;
-  const vec3 grad_d = exact_cross(ab, ac) / 6.0;
-  const float volume = exact_dot(ab, grad_b);
+  vec3 g[4];
+  const float volume = tetrahedron_volume(vec3[4](a, b, c, d), g);
   precise const float scale = -stiffness * (volume - rest_volume);
-  precise const vec3 f1 = scale * grad_b;
-  precise const vec3 f2 = scale * grad_c;
-  precise const vec3 f3 = scale * grad_d;
+  precise const vec3 f1 = scale * g[1];
+  precise const vec3 f2 = scale * g[2];
+  precise const vec3 f3 = scale * g[3];
   precise const vec3 f0 = -(f1 + f2 + f3);
   out0 = f0;
   out1 = f1;

@@ -78,7 +78,7 @@ float volume_of(const SimulationState& s, const gpu::ContactPair& p) {
   const glm::vec3 x[4] = {glm::vec3(s.positions[p.nodes[0]]), glm::vec3(s.positions[p.nodes[1]]),
                           glm::vec3(s.positions[p.nodes[2]]), glm::vec3(s.positions[p.nodes[3]])};
   glm::vec3 g[4];
-  return response::tetrahedron_volume(x, g);
+  return sim::tetrahedron_volume(x, g);
 }
 
 // One projection of the volume constraints alone on tetrahedra of a unit corner (rest volume
@@ -135,7 +135,7 @@ TEST(VolumeConstraint, ACollapsedOrInvertedTetrahedronComesBackToItsFloorWithIts
     glm::vec3 corners[4], g[4];
     for (int i = 0; i < 4; ++i)
       corners[i] = glm::vec3(state.positions[4 * t + i]);
-    response::tetrahedron_volume(corners, g);
+    sim::tetrahedron_volume(corners, g);
     float rate = 0.0f;
     for (int i = 0; i < 4; ++i)
       rate += glm::dot(g[i], glm::vec3(state.velocities[4 * t + i]));

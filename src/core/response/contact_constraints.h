@@ -26,6 +26,7 @@
 #include <glm/vec4.hpp>
 
 #include "core/collision/primitive_distance.h"
+#include "core/sim/mass_spring.h"
 #include "deformcd/gpu_layout.h"
 
 namespace deformcd::response {
@@ -171,17 +172,6 @@ inline bool contact_clear(const gpu::ContactPair& pair, const glm::vec3 x[4]) {
   return height > 0.0f && height * height > limit * limit * glm::dot(normal, normal);
 }
 
-/// A tetrahedron's volume (positive for corners ordered as gpu::Tetra orders them) and its
-/// gradient g[k] = dV/dx_k (the four sum to zero), by sim::tet_volume_forces's operations.
-inline float tetrahedron_volume(const glm::vec3 x[4], glm::vec3 g[4]) {
-  const glm::vec3 ab = x[1] - x[0], ac = x[2] - x[0], ad = x[3] - x[0];
-  g[1] = glm::cross(ac, ad) / 6.0f;
-  g[2] = glm::cross(ad, ab) / 6.0f;
-  g[3] = glm::cross(ab, ac) / 6.0f;
-  g[0] = -(g[1] + g[2] + g[3]);
-  return glm::dot(ab, g[1]);
-}
-
 /// The activity pass: whether the constraint acts now (its distance along n is below its
 /// thickness; a volume constraint's tetrahedron below its floor), from the current positions.
 inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 position[4]) {
@@ -189,7 +179,7 @@ inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 positio
                           glm::vec3(position[3])};
   if (pair.kind == gpu::kContactVolume) {
     glm::vec3 g[4];
-    return tetrahedron_volume(x, g) < pair.thickness;
+    return sim::tetrahedron_volume(x, g) < pair.thickness;
   }
   if (contact_clear(pair, x)) return false;
   glm::vec3 n(0.0f);
@@ -220,7 +210,7 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
                           glm::vec3(position[3])};
   glm::vec3 g[4];
-  const float volume = tetrahedron_volume(x, g);
+  const float volume = sim::tetrahedron_volume(x, g);
   float weight = 0.0f;
   float rate = 0.0f;
   float lever = 0.0f;  // the largest w_k |g_k|: node k moves w_k |g_k| |lambda|

@@ -56,6 +56,18 @@ inline glm::vec3 spring_term(const glm::vec4& edge_state, float signed_stiffness
   return (signed_stiffness * edge_state.w) * glm::vec3(edge_state);
 }
 
+/// A tetrahedron's volume (positive for corners ordered as gpu::Tetra orders them) and its
+/// gradient g[k] = dV/dx_k (the four sum to zero): what the volume forces below and the
+/// response's volume constraints (src/core/response/contact_constraints.h) act along.
+inline float tetrahedron_volume(const glm::vec3 x[4], glm::vec3 g[4]) {
+  const glm::vec3 ab = x[1] - x[0], ac = x[2] - x[0], ad = x[3] - x[0];
+  g[1] = glm::cross(ac, ad) / 6.0f;
+  g[2] = glm::cross(ad, ab) / 6.0f;
+  g[3] = glm::cross(ab, ac) / 6.0f;
+  g[0] = -(g[1] + g[2] + g[3]);
+  return glm::dot(ab, g[1]);
+}
+
 /// Volume forces on the four corners of tetrahedron (a, b, c, d), from the energy
 /// c (V - V0)^2 / 2: f_i = -c (V - V0) dV/dx_i, with c = gpu::Tetra::stiffness. They sum to
 /// zero (no net force) and push an inverted tetrahedron back through its base, which edge
@@ -63,15 +75,13 @@ inline glm::vec3 spring_term(const glm::vec4& edge_state, float signed_stiffness
 inline void tet_volume_forces(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
                               const glm::vec3& d, float rest_volume, float stiffness,
                               glm::vec3 out[4]) {
-  const glm::vec3 ab = b - a, ac = c - a, ad = d - a;
-  const glm::vec3 grad_b = glm::cross(ac, ad) / 6.0f;
-  const glm::vec3 grad_c = glm::cross(ad, ab) / 6.0f;
-  const glm::vec3 grad_d = glm::cross(ab, ac) / 6.0f;
-  const float volume = glm::dot(ab, grad_b);
+  const glm::vec3 x[4] = {a, b, c, d};
+  glm::vec3 g[4];
+  const float volume = tetrahedron_volume(x, g);
   const float scale = -stiffness * (volume - rest_volume);
-  out[1] = scale * grad_b;
-  out[2] = scale * grad_c;
-  out[3] = scale * grad_d;
+  out[1] = scale * g[1];
+  out[2] = scale * g[2];
+  out[3] = scale * g[3];
   out[0] = -(out[1] + out[2] + out[3]);
 }
 
