@@ -194,6 +194,23 @@ TEST(ContactResponse, FoldingPlateNeverIntersectsItself) {
   RecordProperty("self_contact_constraints", std::to_string(constraints));
 }
 
+// Steps `frames` frames, calling each_frame() after each, and returns the intersection census
+// summed over them (each field the frames' total).
+template <class EachFrame>
+IntersectionCensus census_over(World& world, int frames, const EachFrame& each_frame) {
+  WorldIntersections census(world);
+  IntersectionCensus sum;
+  for (int f = 0; f < frames; ++f) {
+    world.step();
+    each_frame();
+    const IntersectionCensus c = census.count();
+    sum.between_pairs += c.between_pairs;
+    sum.self_pairs += c.self_pairs;
+    sum.inside_vertices += c.inside_vertices;
+  }
+  return sum;
+}
+
 // The impact with self-contact folds the armadillo through itself where the lion presses it:
 // its tetrahedra turn inside out, and no contact between surfaces can undo that. With the
 // volume floor (0.3) no two faces intersect in any frame, a body with itself included, and no
@@ -211,26 +228,18 @@ TEST(ContactResponse, AVolumeFloorKeepsTheImpactFromFoldingThroughItself) {
       scene.collision.self = true;
       scene.response->volume_floor = floor;
     });
-    WorldIntersections census(*s.world);
-    std::uint64_t self_pairs = 0, between = 0, inside = 0;
-    for (int f = 0; f < kFrames; ++f) {
-      s.world->step();
-      const IntersectionCensus c = census.count();
-      self_pairs += c.self_pairs;
-      between += c.between_pairs;
-      inside += c.inside_vertices;
-    }
+    const IntersectionCensus sum = census_over(*s.world, kFrames, [] {});
     if (last != nullptr) *last = s.world->positions(0);
-    return std::array<std::uint64_t, 3>{self_pairs, between, inside};
+    return sum;
   };
   std::vector<glm::vec3> one, two;
-  const std::array<std::uint64_t, 3> floored = run(0.3f, 1, &one);
-  EXPECT_EQ(floored[0], 0u) << "self-intersecting pairs over the frames";
-  EXPECT_EQ(floored[1], 0u) << "pairs between the bodies";
-  EXPECT_EQ(floored[2], 0u) << "vertices inside the other body";
+  const IntersectionCensus floored = run(0.3f, 1, &one);
+  EXPECT_EQ(floored.self_pairs, 0u) << "self-intersecting pairs over the frames";
+  EXPECT_EQ(floored.between_pairs, 0u) << "pairs between the bodies";
+  EXPECT_EQ(floored.inside_vertices, 0u) << "vertices inside the other body";
 #ifndef DEFORMCD_UNDER_ASAN
-  const std::array<std::uint64_t, 3> bare = run(0.0f, 1, nullptr);
-  EXPECT_GT(bare[0], 20u) << "without the floor the armadillo should fold through itself";
+  const IntersectionCensus bare = run(0.0f, 1, nullptr);
+  EXPECT_GT(bare.self_pairs, 20u) << "without the floor the armadillo should fold through itself";
   (void)run(0.3f, 2, &two);
   EXPECT_TRUE(one == two) << "two threads against one";
 #endif
@@ -254,26 +263,19 @@ TEST(ContactResponse, MotionBoundedSubstepsKeepTheImpactAtThreeTimesItsSpeedApar
       scene.response->volume_floor = 0.3f;
       scene.response->substep_motion = motion;
     });
-    WorldIntersections census(*s.world);
-    std::uint64_t between = 0, inside = 0;
-    for (int f = 0; f < kFrames; ++f) {
-      s.world->step();
-      substeps.push_back(s.world->response_counts().substeps);
-      const IntersectionCensus c = census.count();
-      between += c.between_pairs;
-      inside += c.inside_vertices;
-    }
-    return std::pair(between, inside);
+    World& world = *s.world;
+    return census_over(world, kFrames,
+                       [&] { substeps.push_back(world.response_counts().substeps); });
   };
   std::vector<std::uint64_t> bounded, fixed;
-  const auto [between, inside] = run(0.3f, bounded);
-  EXPECT_EQ(between, 0u) << "pairs between the bodies over the frames";
-  EXPECT_EQ(inside, 0u) << "vertices inside the other body";
+  const IntersectionCensus sum = run(0.3f, bounded);
+  EXPECT_EQ(sum.between_pairs, 0u) << "pairs between the bodies over the frames";
+  EXPECT_EQ(sum.inside_vertices, 0u) << "vertices inside the other body";
   EXPECT_EQ(bounded.front(), 16u) << "apart, the scene's substeps";
   EXPECT_GT(*std::max_element(bounded.begin(), bounded.end()), 40u) << "in contact, more";
   EXPECT_LE(*std::max_element(bounded.begin(), bounded.end()), 16u * kMaxSubstepFactor);
 #ifndef DEFORMCD_UNDER_ASAN
-  EXPECT_GT(run(0.0f, fixed).first, 100u) << "16 fixed substeps should let them intersect";
+  EXPECT_GT(run(0.0f, fixed).between_pairs, 100u) << "16 fixed substeps should let them intersect";
   EXPECT_TRUE(std::all_of(fixed.begin(), fixed.end(), [](auto n) { return n == 16u; }));
 #endif
 }
