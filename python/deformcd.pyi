@@ -46,6 +46,7 @@ class _ResponseCounts(TypedDict):
     vertex_face: int
     edge_edge: int
     untangle: int
+    penetrating: int
     searches: int
     widenings: int
     self_searches: int

@@ -112,6 +112,7 @@ class PyWorld {
     d["vertex_face"] = c.vertex_face;
     d["edge_edge"] = c.edge_edge;
     d["untangle"] = c.untangle;
+    d["penetrating"] = c.penetrating;
     d["searches"] = c.searches;
     d["widenings"] = c.widenings;
     d["self_searches"] = c.self_searches;
@@ -254,9 +255,9 @@ void bind_world(py::module_& m) {
       .def("response_counts", &PyWorld::response_counts,
            "The contact response's constraints at the end of the last step, a dict: vertex_face\n"
            "and edge_edge (proximity pairs), untangle (vertices of intersecting faces pushed\n"
-           "out), searches, widenings, self_searches (bodies searched against themselves), "
-           "substeps\n"
-           "(the frame's), asleep (bodies). All 0 without the scene's response.")
+           "out), penetrating (vertices inside another body pushed out), searches, widenings,\n"
+           "self_searches (bodies searched against themselves), substeps (the frame's), asleep\n"
+           "(bodies). All 0 without the scene's response.")
       .def("face_flags", &PyWorld::face_flags, py::arg("body") = py::none(),
            "A bool array, True for each surface triangle in a contact of the last pass: body\n"
            "`body`'s triangles, or with body=None every body's, one body after the other.")

@@ -59,7 +59,7 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
       run.widenings.push_back(counts.widenings);
       run.self_searches.push_back(counts.self_searches);
       run.substeps.push_back(counts.substeps);
-      run.constraints.push_back(counts.vertex_face + counts.edge_edge + counts.untangle);
+      run.constraints.push_back(counts.contact_constraints());
     }
 
     world.set_broadphase(method);

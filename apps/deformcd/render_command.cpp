@@ -178,8 +178,7 @@ int render(const RenderOptions& o) {
                   << ", ";
       }
       const ResponseCounts c = world.response_counts();
-      std::cout << count_of(c.vertex_face + c.edge_edge + c.untangle, "contact constraint",
-                            "contact constraints");
+      std::cout << count_of(c.contact_constraints(), "contact constraint", "contact constraints");
     }
     std::cout << std::endl;
   }

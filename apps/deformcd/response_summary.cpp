@@ -10,7 +10,7 @@ namespace deformcd::app {
 void ResponseTally::add(int frame, const ResponseCounts& counts) {
   ++frames;
   asleep = counts.asleep;
-  const std::uint64_t constraints = counts.vertex_face + counts.edge_edge + counts.untangle;
+  const std::uint64_t constraints = counts.contact_constraints();
   if (constraints > 0) {
     ++frames_with_constraints;
     if (first_active < 0) first_active = frame;

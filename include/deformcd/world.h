@@ -82,6 +82,10 @@ struct ResponseCounts {
   std::uint64_t vertex_face = 0;  ///< vertex-triangle proximity pairs
   std::uint64_t edge_edge = 0;    ///< edge-edge proximity pairs
   std::uint64_t untangle = 0;     ///< vertices of intersecting faces pushed out
+  /// Surface vertices of one body inside another (found when the frame began with the two
+  /// intersecting), each pushed out through the face it leaves by along the pair's separating
+  /// direction (deformcd/overlap.h).
+  std::uint64_t penetrating = 0;
   /// Proximity searches in the frame: one, plus one each time a node strayed beyond the reach
   /// the last one assumed.
   std::uint64_t searches = 0;
@@ -103,6 +107,12 @@ struct ResponseCounts {
   float closest_distance = std::numeric_limits<float>::infinity();
   /// m: the thickness of the pair that gave closest_distance (0 when the frame had none).
   float closest_thickness = 0.0f;
+
+  /// The contact constraints (not the volume constraints): proximity pairs, untangling and
+  /// penetrating vertices.
+  [[nodiscard]] std::uint64_t contact_constraints() const {
+    return vertex_face + edge_edge + untangle + penetrating;
+  }
 };
 
 /// Where a simulation blew up, as SimulationError::site() gives it (the message says the same

@@ -21,6 +21,7 @@
 namespace deformcd {
 
 class BodySleep;
+class OverlapFinder;
 class SelfContact;
 class TangledPrimitives;
 
@@ -111,6 +112,15 @@ class ContactResponse {
   void append_volume_constraints(response::FrameConstraints& c) const;
   /// Appends proximity pair p as a constraint of c (unless its primitives are tangled).
   void add_proximity_pair(const ProximityPair& p, response::FrameConstraints& c);
+  /// The frame's penetration constraints: for each two bodies the intersections join, every
+  /// surface vertex of one inside the other against the face it leaves through along the
+  /// pair's separating direction (OverlapFinder), on the positions now.
+  void find_penetrations();
+  /// Whether untangling constraint `pair` (a vertex of body `mine`, a face of body `other`)
+  /// pushes the vertex along the way the two bodies come apart (their face's normal, at the
+  /// window's start, within 90 degrees of it); true when the two do not overlap.
+  [[nodiscard]] bool along_the_way_apart(std::uint32_t mine, std::uint32_t other,
+                                         const gpu::ContactPair& pair) const;
   /// Notes that a constraint of the frame joins bodies a and b (for the sleeping islands).
   void link(std::uint32_t a, std::uint32_t b);
   /// A self-contact pair's thickness: the body's, or half the pair's distance in the pose the
@@ -150,15 +160,22 @@ class ContactResponse {
   Detector* detector_ = nullptr;                // of the frame
   std::vector<Contact> intersections_;          // of the frame
   std::unique_ptr<TangledPrimitives> tangled_;  // of the frame's intersections
-  response::FrameConstraints constraints_;      // of the window; the backend reads them
-  std::vector<glm::vec3> window_start_;         // per node: where the window began
-  float elapsed_ = 0.0f;                        // since the window began (the last search)
-  float frame_time_ = 0.0f;                     // since the frame began
-  int substep_ = 0;                             // substeps projected in the frame
-  int window_end_ = 0;
+  std::unique_ptr<OverlapFinder> overlap_;      // made from the detector's meshes when needed
+  std::vector<gpu::ContactPair> penetrations_;  // of the frame (find_penetrations)
+  /// Two bodies that overlap in the frame and the way a moves out of b (Overlap::direction).
+  struct WayApart {
+    std::uint32_t a = 0, b = 0;
+    glm::vec3 direction{0.0f};
+  };
+  std::vector<WayApart> ways_apart_;        // of the frame (find_penetrations)
+  response::FrameConstraints constraints_;  // of the window; the backend reads them
+  std::vector<glm::vec3> window_start_;     // per node: where the window began
+  float elapsed_ = 0.0f;                    // since the window began (the last search)
+  float frame_time_ = 0.0f;                 // since the frame began
+  int substep_ = 0;                         // substeps projected in the frame
+  int window_end_ = 0;                      // the substep the window ends after
   int frame_substeps_ = 1;      // of the frame begin_frame() began (before: the scene's)
-  float thinnest_ = 0.0f;       // m: the smallest body's thickness                          // the
-                                // substep the window ends after
+  float thinnest_ = 0.0f;       // m: the smallest body's thickness
   float smallest_edge_ = 0.0f;  // the smallest body's mean surface edge
   std::unique_ptr<SelfContact> self_contact_;  // with self-contact
   std::vector<std::uint8_t> self_kept_;        // per body: its pairs with itself are kept ones

@@ -173,6 +173,7 @@ def test_stage_times_and_response_counts(tmp_path):
         c = w.response_counts()
         pairs.append(c["vertex_face"] + c["edge_edge"])
         assert c["self_searches"] == 0  # no self-collision in this scene
+        assert c["penetrating"] == 0  # the cubes never start inside each other
         assert c["substeps"] == scene["settings"]["substeps"]  # no substep_motion
     times = w.last_frame_times()
     assert times["simulation_s"] > 0 and times["collision_s"] > 0 and times["response_s"] > 0
