@@ -194,7 +194,8 @@ TEST_F(SceneReaderTest, JsonSyntaxErrorGivesTheLine) {
 }
 
 TEST(ShippedScenes, AllReadAndTheirModelsExist) {
-  for (const char* name : {"hanging", "phase1", "phase2"}) {
+  for (const char* name : {"hanging", "phase1", "phase2", "crossing16", "fold", "impact", "overlap",
+                           "half_overlap", "fold_response", "stack", "slab_drop", "pile"}) {
     const fs::path file = fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (std::string(name) + ".json");
     const Scene s = read_scene(file);
     EXPECT_FALSE(s.bodies.empty()) << name;
