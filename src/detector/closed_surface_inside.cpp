@@ -78,6 +78,16 @@ double point_triangle_distance2(const glm::dvec3& p, const glm::dvec3& a, const 
 
 }  // namespace
 
+std::vector<std::uint32_t> surface_vertices(std::span<const Triangle> triangles) {
+  std::vector<std::uint32_t> corners;
+  corners.reserve(3 * triangles.size());
+  for (const Triangle& t : triangles)
+    corners.insert(corners.end(), t.begin(), t.end());
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  return corners;
+}
+
 bool surface_closed(std::span<const Triangle> triangles) {
   // Each directed edge once, and its reverse once: every edge in exactly two triangles.
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;

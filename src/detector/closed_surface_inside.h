@@ -24,6 +24,9 @@ namespace deformcd::collision {
 /// is not closed has no inside).
 [[nodiscard]] bool surface_closed(std::span<const Triangle> triangles);
 
+/// The surface's vertices (the corners of its triangles), ascending, each once.
+[[nodiscard]] std::vector<std::uint32_t> surface_vertices(std::span<const Triangle> triangles);
+
 /// One closed surface at one set of positions, with a grid over its triangles' boxes seen
 /// along x (the first ray direction), built once per positions.
 class ClosedSurfaceInside {

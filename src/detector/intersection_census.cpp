@@ -23,12 +23,7 @@ struct IntersectionCounter::Impl {
             {.backend = BackendKind::kCpu, .broadphase = BroadPhase::kBvh, .threads = threads}) {
     for (const CollisionMesh& mesh : meshes) {
       closed.push_back(collision::surface_closed(mesh.triangles));
-      std::vector<std::uint32_t> corners;
-      for (const Triangle& t : mesh.triangles)
-        corners.insert(corners.end(), t.begin(), t.end());
-      std::sort(corners.begin(), corners.end());
-      corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-      surface_vertices.push_back(std::move(corners));
+      surface_vertices.push_back(collision::surface_vertices(mesh.triangles));
     }
   }
 };

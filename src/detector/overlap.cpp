@@ -199,20 +199,16 @@ std::vector<PenetratingVertex> leaving(const std::vector<std::uint32_t>& surface
 OverlapFinder::OverlapFinder(std::vector<CollisionMesh> meshes) : impl_(std::make_unique<Impl>()) {
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     const CollisionMesh& mesh = meshes[m];
-    std::vector<std::uint32_t> corners;
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       for (const std::uint32_t v : mesh.triangles[t]) {
         if (v >= mesh.vertex_count)
           throw InputError(mesh_label(mesh, m),
                            "triangle " + std::to_string(t) + " names vertex " + std::to_string(v) +
                                ", beyond its " + std::to_string(mesh.vertex_count) + " vertices");
-        corners.push_back(v);
       }
     }
-    std::sort(corners.begin(), corners.end());
-    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
     impl_->closed.push_back(!mesh.triangles.empty() && collision::surface_closed(mesh.triangles));
-    impl_->surface_vertices.push_back(std::move(corners));
+    impl_->surface_vertices.push_back(collision::surface_vertices(mesh.triangles));
   }
   impl_->meshes = std::move(meshes);
 }

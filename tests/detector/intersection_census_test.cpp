@@ -10,31 +10,17 @@
 #include <span>
 #include <vector>
 
-#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "deformcd/error.h"
 #include "detector/closed_surface_inside.h"
+#include "support/mesh_fixtures.h"
 
 namespace deformcd {
 namespace {
 
-// A closed, outward-oriented cube of 8 vertices and 12 triangles.
-const std::vector<Triangle> kCubeTriangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
-                                              {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
-                                              {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
-
-std::vector<glm::vec3> cube(const glm::vec3& lo, float size) {
-  std::vector<glm::vec3> v;
-  for (int z = 0; z < 2; ++z)
-    for (const glm::vec2 corner :
-         {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
-      v.push_back(lo + size * glm::vec3(corner.x, corner.y, static_cast<float>(z)));
-  return v;
-}
-
 CollisionMesh cube_mesh() {
-  return {.vertex_count = 8, .triangles = kCubeTriangles};
+  return {.vertex_count = 8, .triangles = test::cube_triangles()};
 }
 
 IntersectionCensus census_of(const std::vector<CollisionMesh>& meshes,
@@ -45,14 +31,15 @@ IntersectionCensus census_of(const std::vector<CollisionMesh>& meshes,
 }
 
 TEST(IntersectionCensus, CubeIsClosedAndAnOpenSheetIsNot) {
-  EXPECT_TRUE(collision::surface_closed(kCubeTriangles));
-  std::vector<Triangle> open(kCubeTriangles.begin(), kCubeTriangles.end() - 1);
+  EXPECT_TRUE(collision::surface_closed(test::cube_triangles()));
+  std::vector<Triangle> open(test::cube_triangles().begin(), test::cube_triangles().end() - 1);
   EXPECT_FALSE(collision::surface_closed(open));
 }
 
 TEST(IntersectionCensus, ApartCubesCountNothing) {
   const IntersectionCensus c = census_of(
-      {cube_mesh(), cube_mesh()}, {cube(glm::vec3(0.0f), 1.0f), cube(glm::vec3(1.5f), 1.0f)});
+      {cube_mesh(), cube_mesh()},
+      {test::cube_corners(glm::vec3(0.0f), 1.0f), test::cube_corners(glm::vec3(1.5f), 1.0f)});
   EXPECT_EQ(c.between_pairs, 0u);
   EXPECT_EQ(c.self_pairs, 0u);
   EXPECT_EQ(c.inside_vertices, 0u);
@@ -63,7 +50,8 @@ TEST(IntersectionCensus, OverlappingCubesCountPairsAndTheOneCornerInside) {
   // The second cube's corner (0.5, 0.5, 0.5) is inside the first and the first's corner
   // (1, 1, 1) inside the second; their faces cross.
   const IntersectionCensus c = census_of(
-      {cube_mesh(), cube_mesh()}, {cube(glm::vec3(0.0f), 1.0f), cube(glm::vec3(0.5f), 1.0f)});
+      {cube_mesh(), cube_mesh()},
+      {test::cube_corners(glm::vec3(0.0f), 1.0f), test::cube_corners(glm::vec3(0.5f), 1.0f)});
   EXPECT_GT(c.between_pairs, 0u);
   EXPECT_EQ(c.self_pairs, 0u);
   EXPECT_EQ(c.inside_vertices, 2u);
@@ -72,7 +60,8 @@ TEST(IntersectionCensus, OverlappingCubesCountPairsAndTheOneCornerInside) {
 TEST(IntersectionCensus, NestedCubeHasNoPairButEveryVertexInside) {
   // What a count of intersecting pairs alone cannot see: a body wholly through another.
   const IntersectionCensus c = census_of(
-      {cube_mesh(), cube_mesh()}, {cube(glm::vec3(0.0f), 1.0f), cube(glm::vec3(0.25f), 0.5f)});
+      {cube_mesh(), cube_mesh()},
+      {test::cube_corners(glm::vec3(0.0f), 1.0f), test::cube_corners(glm::vec3(0.25f), 0.5f)});
   EXPECT_EQ(c.between_pairs, 0u);
   EXPECT_EQ(c.self_pairs, 0u);
   EXPECT_EQ(c.inside_vertices, 8u);
@@ -81,11 +70,11 @@ TEST(IntersectionCensus, NestedCubeHasNoPairButEveryVertexInside) {
 TEST(IntersectionCensus, SurfaceFoldedThroughItselfCountsSelfPairs) {
   // One mesh made of two overlapping cubes: its surface crosses itself, and no other mesh is
   // there to count a pair with.
-  std::vector<Triangle> triangles = kCubeTriangles;
-  for (const Triangle& t : kCubeTriangles)
+  std::vector<Triangle> triangles = test::cube_triangles();
+  for (const Triangle& t : test::cube_triangles())
     triangles.push_back({t[0] + 8u, t[1] + 8u, t[2] + 8u});
-  std::vector<glm::vec3> positions = cube(glm::vec3(0.0f), 1.0f);
-  const std::vector<glm::vec3> second = cube(glm::vec3(0.5f), 1.0f);
+  std::vector<glm::vec3> positions = test::cube_corners(glm::vec3(0.0f), 1.0f);
+  const std::vector<glm::vec3> second = test::cube_corners(glm::vec3(0.5f), 1.0f);
   positions.insert(positions.end(), second.begin(), second.end());
   const IntersectionCensus c =
       census_of({{.vertex_count = 16, .triangles = triangles}}, {positions});
@@ -95,7 +84,8 @@ TEST(IntersectionCensus, SurfaceFoldedThroughItselfCountsSelfPairs) {
 }
 
 TEST(IntersectionCensus, NeighbouringTrianglesOfOneSurfaceAreNotPairs) {
-  const IntersectionCensus c = census_of({cube_mesh()}, {cube(glm::vec3(0.0f), 1.0f)});
+  const IntersectionCensus c =
+      census_of({cube_mesh()}, {test::cube_corners(glm::vec3(0.0f), 1.0f)});
   EXPECT_EQ(c.self_pairs, 0u);
 }
 
@@ -103,9 +93,9 @@ TEST(IntersectionCensus, VertexOnTheOtherSurfaceIsNotInsideAndJustBelowItIs) {
   // A small cube whose corner (0.5, 0.5, 1) lies on the big cube's top face, where the ray
   // along x passes through the face's diagonal edge: the rays are uncertain there, which the
   // parity must not get wrong.
-  std::vector<glm::vec3> small = cube(glm::vec3(0.5f, 0.5f, 1.0f), 0.25f);
+  std::vector<glm::vec3> small = test::cube_corners(glm::vec3(0.5f, 0.5f, 1.0f), 0.25f);
   IntersectionCounter counter({cube_mesh(), cube_mesh()});
-  const std::vector<glm::vec3> big = cube(glm::vec3(0.0f), 1.0f);
+  const std::vector<glm::vec3> big = test::cube_corners(glm::vec3(0.0f), 1.0f);
   std::vector<std::span<const glm::vec3>> views = {big, small};
   EXPECT_EQ(counter.count(views).inside_vertices, 0u);
   for (glm::vec3& p : small)
@@ -114,12 +104,13 @@ TEST(IntersectionCensus, VertexOnTheOtherSurfaceIsNotInsideAndJustBelowItIs) {
 }
 
 TEST(IntersectionCensus, OpenMeshHasNoInside) {
-  std::vector<Triangle> open(kCubeTriangles.begin() + 2, kCubeTriangles.end());  // no bottom
+  std::vector<Triangle> open(test::cube_triangles().begin() + 2,
+                             test::cube_triangles().end());  // no bottom
   IntersectionCounter counter({{.vertex_count = 8, .triangles = open}, cube_mesh()});
   EXPECT_FALSE(counter.closed(0));
   EXPECT_TRUE(counter.closed(1));
-  const std::vector<glm::vec3> big = cube(glm::vec3(0.0f), 1.0f);
-  const std::vector<glm::vec3> small = cube(glm::vec3(0.25f), 0.5f);
+  const std::vector<glm::vec3> big = test::cube_corners(glm::vec3(0.0f), 1.0f);
+  const std::vector<glm::vec3> small = test::cube_corners(glm::vec3(0.25f), 0.5f);
   std::vector<std::span<const glm::vec3>> views = {big, small};
   EXPECT_EQ(counter.count(views).inside_vertices, 0u);
 }
@@ -129,7 +120,7 @@ TEST(IntersectionCensus, WrongPositionCountsAndNonFinitePositionsAreErrors) {
   std::vector<glm::vec3> short_list(7, glm::vec3(0.0f));
   std::vector<std::span<const glm::vec3>> views = {short_list};
   EXPECT_THROW((void)counter.count(views), InputError);
-  std::vector<glm::vec3> bad = cube(glm::vec3(0.0f), 1.0f);
+  std::vector<glm::vec3> bad = test::cube_corners(glm::vec3(0.0f), 1.0f);
   bad[3].x = std::numeric_limits<float>::quiet_NaN();
   views = {bad};
   EXPECT_THROW((void)counter.count(views), InputError);

@@ -11,31 +11,16 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
-#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "deformcd/error.h"
+#include "support/mesh_fixtures.h"
 
 namespace deformcd {
 namespace {
 
-// A closed, outward-oriented cube of 8 vertices (0-3 at z = 0, 4-7 at z = 1; 0, 3, 4, 7 at
-// x = 0) and 12 triangles (6 and 7 on its x = 1 side).
-const std::vector<Triangle> kCubeTriangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
-                                              {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
-                                              {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
-
-std::vector<glm::vec3> cube(const glm::vec3& lo, float size) {
-  std::vector<glm::vec3> v;
-  for (int z = 0; z < 2; ++z)
-    for (const glm::vec2 corner :
-         {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
-      v.push_back(lo + size * glm::vec3(corner.x, corner.y, static_cast<float>(z)));
-  return v;
-}
-
 CollisionMesh cube_mesh(bool inward = false) {
-  CollisionMesh m{.vertex_count = 8, .triangles = kCubeTriangles};
+  CollisionMesh m{.vertex_count = 8, .triangles = test::cube_triangles()};
   if (inward)
     for (Triangle& t : m.triangles)
       std::swap(t[1], t[2]);
@@ -53,7 +38,8 @@ std::vector<std::uint32_t> vertices_of(const std::vector<PenetratingVertex>& lis
 TEST(OverlapFinder, ApartCubesDoNotOverlap) {
   const OverlapFinder finder({cube_mesh(), cube_mesh()});
   EXPECT_TRUE(finder.closed(0));
-  const Overlap o = finder.find(0, 1, cube(glm::vec3(0.0f), 1.0f), cube(glm::vec3(1.5f), 1.0f));
+  const Overlap o = finder.find(0, 1, test::cube_corners(glm::vec3(0.0f), 1.0f),
+                                test::cube_corners(glm::vec3(1.5f), 1.0f));
   EXPECT_FALSE(o.any());
   EXPECT_EQ(o.direction, glm::vec3(0.0f));
 }
@@ -65,8 +51,8 @@ TEST(OverlapFinder, ACubeEnteringAnotherLeavesTheWayItCameThroughTheFaceItEntere
   for (const bool inward : {false, true}) {
     SCOPED_TRACE(inward ? "inward winding" : "outward winding");
     const OverlapFinder finder({cube_mesh(inward), cube_mesh(!inward)});
-    const Overlap o =
-        finder.find(0, 1, cube(glm::vec3(0.7f, 0.2f, 0.2f), 0.6f), cube(glm::vec3(0.0f), 1.0f));
+    const Overlap o = finder.find(0, 1, test::cube_corners(glm::vec3(0.7f, 0.2f, 0.2f), 0.6f),
+                                  test::cube_corners(glm::vec3(0.0f), 1.0f));
     EXPECT_NEAR(o.direction.x, 1.0f, 1e-6f);
     EXPECT_NEAR(o.direction.y, 0.0f, 1e-6f);
     EXPECT_NEAR(o.direction.z, 0.0f, 1e-6f);
@@ -77,8 +63,8 @@ TEST(OverlapFinder, ACubeEnteringAnotherLeavesTheWayItCameThroughTheFaceItEntere
     }
     EXPECT_TRUE(o.b_in_a.empty());
     // The same pair the other way round: the direction reversed, the lists swapped.
-    const Overlap swapped =
-        finder.find(1, 0, cube(glm::vec3(0.0f), 1.0f), cube(glm::vec3(0.7f, 0.2f, 0.2f), 0.6f));
+    const Overlap swapped = finder.find(1, 0, test::cube_corners(glm::vec3(0.0f), 1.0f),
+                                        test::cube_corners(glm::vec3(0.7f, 0.2f, 0.2f), 0.6f));
     EXPECT_NEAR(swapped.direction.x, -1.0f, 1e-6f);
     EXPECT_TRUE(swapped.a_in_b.empty());
     EXPECT_EQ(vertices_of(swapped.b_in_a), vertices_of(o.a_in_b));
@@ -91,8 +77,8 @@ TEST(OverlapFinder, ACubeEnteringAnotherLeavesTheWayItCameThroughTheFaceItEntere
 // Each corner leaves along the direction (or against it) through the other's far side.
 TEST(OverlapFinder, CrossedCubesLeaveEachOtherOppositeWays) {
   const OverlapFinder finder({cube_mesh(), cube_mesh()});
-  const Overlap o =
-      finder.find(0, 1, cube(glm::vec3(0.5f, 0.1f, 0.1f), 1.0f), cube(glm::vec3(0.0f), 1.0f));
+  const Overlap o = finder.find(0, 1, test::cube_corners(glm::vec3(0.5f, 0.1f, 0.1f), 1.0f),
+                                test::cube_corners(glm::vec3(0.0f), 1.0f));
   EXPECT_GT(o.direction.x, 0.5f);
   EXPECT_GT(o.direction.y, 0.1f);
   EXPECT_GT(o.direction.z, 0.1f);
@@ -111,8 +97,8 @@ TEST(OverlapFinder, CrossedCubesLeaveEachOtherOppositeWays) {
 // big one's centre to the small one's; every corner of the small one leaves along it.
 TEST(OverlapFinder, ACubeWhollyInsideLeavesFromTheCentreOutward) {
   const OverlapFinder finder({cube_mesh(), cube_mesh()});
-  const Overlap o =
-      finder.find(0, 1, cube(glm::vec3(0.5f, 0.3f, 0.3f), 0.4f), cube(glm::vec3(0.0f), 1.0f));
+  const Overlap o = finder.find(0, 1, test::cube_corners(glm::vec3(0.5f, 0.3f, 0.3f), 0.4f),
+                                test::cube_corners(glm::vec3(0.0f), 1.0f));
   EXPECT_NEAR(o.direction.x, 1.0f, 1e-6f);
   EXPECT_EQ(o.a_in_b.size(), 8u);
   for (const PenetratingVertex& p : o.a_in_b) {
@@ -128,16 +114,17 @@ TEST(OverlapFinder, AnOpenMeshHasNoInside) {
   open.triangles.pop_back();
   const OverlapFinder finder({cube_mesh(), open});
   EXPECT_FALSE(finder.closed(1));
-  EXPECT_FALSE(
-      finder.find(0, 1, cube(glm::vec3(0.7f, 0.2f, 0.2f), 0.6f), cube(glm::vec3(0.0f), 1.0f))
-          .any());
+  EXPECT_FALSE(finder
+                   .find(0, 1, test::cube_corners(glm::vec3(0.7f, 0.2f, 0.2f), 0.6f),
+                         test::cube_corners(glm::vec3(0.0f), 1.0f))
+                   .any());
 }
 
 TEST(OverlapFinder, BadInputIsAnErrorNamingWhatIsWrong) {
   CollisionMesh named = cube_mesh();
   named.name = "lid";
   const OverlapFinder finder({cube_mesh(), named});
-  const std::vector<glm::vec3> unit = cube(glm::vec3(0.0f), 1.0f);
+  const std::vector<glm::vec3> unit = test::cube_corners(glm::vec3(0.0f), 1.0f);
   EXPECT_THROW((void)finder.find(0, 0, unit, unit), InputError);
   EXPECT_THROW((void)finder.find(0, 2, unit, unit), InputError);
   std::vector<glm::vec3> nan = unit;

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "deformcd/mesh.h"
 
@@ -29,6 +31,26 @@ inline TetMesh unit_cube() {
   // Corner tetrahedra at nodes 0, 2, 5, 7 and the central one (1, 3, 4, 6).
   m.tetrahedra = {{0, 1, 3, 4}, {2, 3, 1, 6}, {5, 4, 6, 1}, {7, 6, 4, 3}, {1, 3, 4, 6}};
   return m;
+}
+
+/// A closed, outward-oriented cube surface: 8 vertices (cube_corners: 0-3 at z = 0, 4-7 at
+/// z = 1; 0, 3, 4, 7 at x = 0) and 12 triangles (6 and 7 on its x = 1 side, 10 and 11 on its
+/// x = 0 side).
+inline const std::vector<Triangle>& cube_triangles() {
+  static const std::vector<Triangle> triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
+                                                  {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
+                                                  {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  return triangles;
+}
+
+/// The corners of the cube [lo, lo + size]^3, numbered as cube_triangles() expects.
+inline std::vector<glm::vec3> cube_corners(const glm::vec3& lo, float size) {
+  std::vector<glm::vec3> v;
+  for (int z = 0; z < 2; ++z)
+    for (const glm::vec2 corner :
+         {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
+      v.push_back(lo + size * glm::vec3(corner.x, corner.y, static_cast<float>(z)));
+  return v;
 }
 
 /// A closed, outward-oriented octahedron surface (6 vertices, 8 triangles).
