@@ -9,6 +9,8 @@
 
 #include "core/collision/primitive_distance.h"
 #include "core/response/contact_constraints.h"
+#include "cpu/executor.h"
+#include "cpu/parallel_for.h"
 #include "deformcd/error.h"
 #include "deformcd/overlap.h"
 #include "world/body_sleep.h"
@@ -140,11 +142,12 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
                                  const std::vector<BodyInit>& bodies, const SimulationState& state,
                                  const StepSettings& step, sim::SimulationBackend& simulation,
                                  std::unique_ptr<response::ResponseBackend> backend,
-                                 bool self_contact)
+                                 std::shared_ptr<cpu::Executor> executor, bool self_contact)
     : settings_(settings),
       step_(step),
       simulation_(simulation),
       backend_(std::move(backend)),
+      executor_(std::move(executor)),
       objects_(state.objects),
       node_body_(state.node_body) {
   check_response_settings(settings);
@@ -521,25 +524,10 @@ void ContactResponse::search() {
     for (std::uint32_t b = 0; b < objects_.size(); ++b)
       search_self[b] = 1u - self_kept_[b];
   }
-  for (const ProximityPair& p :
-       detector.find_proximity(reach, motion, still, {.within = search_self}))
-    add_proximity_pair(p, c);
-  for (std::uint32_t b = 0; b < self_kept_.size(); ++b) {
-    if (self_kept_[b] == 0u) continue;
-    const std::uint32_t first = objects_[b].node_offset;
-    for (ProximityPair p : self_contact_->pairs(b)) {
-      // Its distance where this window starts (the constraint's gap is measured from there),
-      // not on the positions of the search that found it.
-      const glm::vec3 corners[4] = {
-          window_start_[first + p.vertices[0]], window_start_[first + p.vertices[1]],
-          window_start_[first + p.vertices[2]], window_start_[first + p.vertices[3]]};
-      p.distance = collision::primitive_distance(p.kind == ProximityPair::Kind::kEdgeEdge
-                                                     ? gpu::kContactEdgeEdge
-                                                     : gpu::kContactVertexFace,
-                                                 corners);
-      add_proximity_pair(p, c);
-    }
-  }
+  add_proximity_pairs(detector.find_proximity(reach, motion, still, {.within = search_self}), false,
+                      c);
+  for (std::uint32_t b = 0; b < self_kept_.size(); ++b)
+    if (self_kept_[b] != 0u) add_proximity_pairs(self_contact_->pairs(b), true, c);
   // Untangling: each vertex of an intersecting face against the other face, unless it is one
   // of that face's own corners (self-intersections of faces sharing a node).
   for (const Contact& contact : intersections) {
@@ -627,8 +615,10 @@ bool ContactResponse::self_pairs_hold(float h) {
 
 ContactResponse::~ContactResponse() = default;
 
-void ContactResponse::add_proximity_pair(const ProximityPair& p, response::FrameConstraints& c) {
-  gpu::ContactPair pair{};
+ContactResponse::ProximityConstraint ContactResponse::proximity_constraint(
+    ProximityPair p, bool remeasure, const std::vector<glm::vec4>& node_motion) const {
+  ProximityConstraint out;
+  gpu::ContactPair& pair = out.pair;
   const std::uint32_t first_a = objects_[p.mesh_a].node_offset;
   const std::uint32_t first_b = objects_[p.mesh_b].node_offset;
   const bool edges = p.kind == ProximityPair::Kind::kEdgeEdge;
@@ -637,39 +627,61 @@ void ContactResponse::add_proximity_pair(const ProximityPair& p, response::Frame
   pair.nodes[2] = first_b + p.vertices[2];
   pair.nodes[3] = first_b + p.vertices[3];
   pair.kind = edges ? gpu::kContactEdgeEdge : gpu::kContactVertexFace;
+  const glm::vec3 corners[4] = {window_start_[pair.nodes[0]], window_start_[pair.nodes[1]],
+                                window_start_[pair.nodes[2]], window_start_[pair.nodes[3]]};
+  // A kept self pair's distance where this window starts (the constraint's gap is measured
+  // from there), not on the positions of the search that found it.
+  if (remeasure) p.distance = collision::primitive_distance(pair.kind, corners);
   // An edge pair whose closest point is an edge's end is that vertex against the other edge.
   // Where the vertex is over a face beside that edge, the vertex-face pair with that face holds
   // it along the face's normal, and this one would push along the slanted line from the edge:
   // a step where the surfaces slide over each other (a block creeping on a slab held with
   // friction 0.5 on 28 degrees, where Coulomb says it slides; docs/notes/2026-12-04-friction.md).
   // A vertex against a convex edge (over neither face beside it) keeps its pair.
-  if (edges && !edge_contact_of_its_own(pair, p.mesh_a, p.mesh_b)) return;
+  if (edges && !edge_contact_of_its_own(pair, p.mesh_a, p.mesh_b)) return out;
   // (Pairs of two bodies that cannot move are not searched for: search() flags them still.)
-  link(p.mesh_a, p.mesh_b);
-  if (tangled_->holds(pair)) return;
+  out.links = true;
+  if (tangled_->holds(pair)) return out;
   pair.thickness = 0.5f * (thickness_[p.mesh_a] + thickness_[p.mesh_b]);
   if (p.mesh_a == p.mesh_b) pair.thickness = self_thickness(pair);
   pair.gap = p.distance - pair.thickness;
   const glm::vec3 velocity[4] = {
-      glm::vec3(c.node_motion[pair.nodes[0]]), glm::vec3(c.node_motion[pair.nodes[1]]),
-      glm::vec3(c.node_motion[pair.nodes[2]]), glm::vec3(c.node_motion[pair.nodes[3]])};
+      glm::vec3(node_motion[pair.nodes[0]]), glm::vec3(node_motion[pair.nodes[1]]),
+      glm::vec3(node_motion[pair.nodes[2]]), glm::vec3(node_motion[pair.nodes[3]])};
   pair.closing_speed = collision::closing_speed(pair.kind, velocity);
   if (!edges) {
-    const glm::vec3 corners[4] = {window_start_[pair.nodes[0]], window_start_[pair.nodes[1]],
-                                  window_start_[pair.nodes[2]], window_start_[pair.nodes[3]]};
     pair.side = response::vertex_face_side(corners);
     // A vertex that starts the window behind the face never acts on it (contact_geometry): the
     // constraint would only cost its activity pass every substep (about a tenth of the impact
     // scene's vertex-face candidates).
-    if (!(pair.side > 0.0f)) return;
+    if (!(pair.side > 0.0f)) return out;
   }
-  c.pairs.push_back(pair);
-  ++(edges ? counts_.edge_edge : counts_.vertex_face);
-  // The closest relative to its thickness (a cross-multiplied comparison: thickness > 0).
-  if (p.distance * counts_.closest_thickness < counts_.closest_distance * pair.thickness ||
-      counts_.closest_thickness == 0.0f) {
-    counts_.closest_distance = p.distance;
-    counts_.closest_thickness = pair.thickness;
+  out.distance = p.distance;
+  out.acts = true;
+  return out;
+}
+
+void ContactResponse::add_proximity_pairs(std::span<const ProximityPair> pairs, bool remeasure,
+                                          response::FrameConstraints& c) {
+  std::vector<ProximityConstraint> made(pairs.size());
+  executor_->run([&] {
+    cpu::parallel_for(
+        pairs.size(),
+        [&](std::size_t i) { made[i] = proximity_constraint(pairs[i], remeasure, c.node_motion); },
+        256);
+  });
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const ProximityConstraint& m = made[i];
+    if (m.links) link(pairs[i].mesh_a, pairs[i].mesh_b);
+    if (!m.acts) continue;
+    c.pairs.push_back(m.pair);
+    ++(m.pair.kind == gpu::kContactEdgeEdge ? counts_.edge_edge : counts_.vertex_face);
+    // The closest relative to its thickness (a cross-multiplied comparison: thickness > 0).
+    if (m.distance * counts_.closest_thickness < counts_.closest_distance * m.pair.thickness ||
+        counts_.closest_thickness == 0.0f) {
+      counts_.closest_distance = m.distance;
+      counts_.closest_thickness = m.pair.thickness;
+    }
   }
 }
 
@@ -757,8 +769,7 @@ void ContactResponse::widen() {
     if (gone) --(p.kind == gpu::kContactEdgeEdge ? counts_.edge_edge : counts_.vertex_face);
     return gone;
   });
-  for (const ProximityPair& p : detector_->widen_proximity(strays, reach))
-    add_proximity_pair(p, constraints_);
+  add_proximity_pairs(detector_->widen_proximity(strays, reach), false, constraints_);
   append_volume_constraints(constraints_);
   ++counts_.widenings;
   backend_->update_frame(constraints_);

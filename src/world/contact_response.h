@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@
 
 namespace deformcd {
 
+namespace cpu {
+class Executor;
+}  // namespace cpu
+
 class BodySleep;
 class OverlapFinder;
 class SelfContact;
@@ -32,13 +37,15 @@ class ContactResponse {
   static constexpr float kWindowEdges = 1.0f;
 
   /// `bodies` as the world got them, `state` as assembled from them (node offsets, node
-  /// bodies); `simulation` is read for velocities; `backend` corrects its state. With
+  /// bodies); `simulation` is read for velocities; `backend` corrects its state; `executor`
+  /// runs the host's per-pair work (the world's CPU threads, on either backend). With
   /// `self_contact` each body's surface is kept apart from itself too (the detector must search
   /// each body against itself; SelfContact keeps the pairs of bodies moving as a whole).
   ContactResponse(const ResponseSettings& settings, const std::vector<BodyInit>& bodies,
                   const SimulationState& state, const StepSettings& step,
                   sim::SimulationBackend& simulation,
-                  std::unique_ptr<response::ResponseBackend> backend, bool self_contact);
+                  std::unique_ptr<response::ResponseBackend> backend,
+                  std::shared_ptr<cpu::Executor> executor, bool self_contact);
   ~ContactResponse();
   ContactResponse(const ContactResponse&) = delete;
   ContactResponse& operator=(const ContactResponse&) = delete;
@@ -110,8 +117,24 @@ class ContactResponse {
   void add_volume_constraints(const Body& body, std::uint32_t index, std::uint32_t node_offset);
   /// Appends the volume constraints of the bodies that can move to c (after every other).
   void append_volume_constraints(response::FrameConstraints& c) const;
-  /// Appends proximity pair p as a constraint of c (unless its primitives are tangled).
-  void add_proximity_pair(const ProximityPair& p, response::FrameConstraints& c);
+  /// What a proximity pair becomes (proximity_constraint).
+  struct ProximityConstraint {
+    gpu::ContactPair pair{};
+    float distance = 0.0f;  // the pair's, where the window starts
+    bool links = false;     // it joins its bodies (for the sleeping islands)
+    bool acts = false;      // `pair` is a constraint of the window
+  };
+  /// Proximity pair p as a constraint (unless its primitives are tangled, it is an edge pair
+  /// whose end a vertex-face pair holds, or its vertex starts behind its face), its distance
+  /// measured where the window starts when `remeasure`; `node_motion` is the window's. Reads
+  /// only what the window's start set: pairs can be made in parallel.
+  [[nodiscard]] ProximityConstraint proximity_constraint(
+      ProximityPair p, bool remeasure, const std::vector<glm::vec4>& node_motion) const;
+  /// Appends proximity pairs `pairs` as constraints of c, in their order: made in parallel
+  /// (proximity_constraint), then appended, linked and counted in order, so the list is the
+  /// same on every thread count.
+  void add_proximity_pairs(std::span<const ProximityPair> pairs, bool remeasure,
+                           response::FrameConstraints& c);
   /// The frame's penetration constraints: for each two bodies the intersections join, every
   /// surface vertex of one inside the other against the face it leaves through along the
   /// pair's separating direction (OverlapFinder), on the positions now.
@@ -131,6 +154,7 @@ class ContactResponse {
   StepSettings step_;
   sim::SimulationBackend& simulation_;
   std::unique_ptr<response::ResponseBackend> backend_;
+  std::shared_ptr<cpu::Executor> executor_;
   std::vector<gpu::ObjectInfo> objects_;
   std::vector<std::uint32_t> node_body_;
   std::vector<std::string> names_;  // per body

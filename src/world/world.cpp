@@ -97,7 +97,8 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   if (options.response.has_value()) {
     response_ = std::make_unique<ContactResponse>(
         *options.response, bodies, state, settings, *backend_,
-        create_response(choice.kind, choice.context, *backend_, executor_), options.self_collision);
+        create_response(choice.kind, choice.context, *backend_, executor_), executor_,
+        options.self_collision);
   }
 }
 

@@ -755,7 +755,7 @@ std::uint64_t impact_searches(int every, int first, int frames) {
       create_response(BackendKind::kCpu, nullptr, *simulation, executor);
   if (every > 0) backend = std::make_unique<StrayClaimingBackend>(std::move(backend), every);
   ContactResponse response(*scene.response, bodies, state, step, *simulation, std::move(backend),
-                           false);
+                           executor, false);
   Detector detector(test::surface_meshes(bodies), {.backend = BackendKind::kCpu, .threads = 2});
   const std::vector<glm::vec4>& x = simulation->host_state()->positions;
   for (std::size_t b = 0; b < bodies.size(); ++b)
