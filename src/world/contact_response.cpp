@@ -547,7 +547,7 @@ void ContactResponse::search() {
         // Two bodies that overlap come apart one way (their penetration constraints'): a face
         // pushes a vertex only along it. Pushed through the planes of every face they cross,
         // the contour's vertices held the bodies tangled (half_overlap.json: 175 vertices still
-        // inside after 1 s; with this rule none from frame 15 on).
+        // inside after 1 s; with this rule none from frame 12 on).
         if (!along_the_way_apart(mine.body, other.body, pair)) continue;
         pair.kind = gpu::kContactUntangle;
         link(mine.body, other.body);
