@@ -53,6 +53,11 @@ class _ResponseCounts(TypedDict):
     substeps: int
     asleep: int
 
+class _Census(TypedDict):
+    between_pairs: int
+    self_pairs: int
+    inside_vertices: int
+
 class _Counts(TypedDict):
     contacts: int
     box_pairs: int
@@ -111,6 +116,7 @@ class World:
     def counts(self) -> _Counts: ...
     def last_frame_times(self) -> _FrameTimes: ...
     def response_counts(self) -> _ResponseCounts: ...
+    def intersection_census(self) -> _Census: ...
     def face_flags(self, body: Optional[int] = None) -> npt.NDArray[np.bool_]: ...
     @property
     def frame(self) -> int: ...

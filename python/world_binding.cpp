@@ -21,6 +21,7 @@
 #include "deformcd/io.h"
 #include "deformcd/scene.h"
 #include "deformcd/world.h"
+#include "deformcd/world_intersections.h"
 #include "object_lock.h"
 
 namespace deformcd::python {
@@ -120,6 +121,18 @@ class PyWorld {
     d["asleep"] = c.asleep;
     return d;
   }
+  py::dict intersection_census() {
+    const IntersectionCensus c = without_gil(mutex_, [&] {
+      // The counter holds the bodies' surfaces (topology only): made once, on first use.
+      if (!census_) census_ = std::make_unique<WorldIntersections>(*world_);
+      return census_->count();
+    });
+    py::dict d;
+    d["between_pairs"] = c.between_pairs;
+    d["self_pairs"] = c.self_pairs;
+    d["inside_vertices"] = c.inside_vertices;
+    return d;
+  }
   py::array_t<bool> face_flags(const std::optional<std::int64_t>& body) {
     const std::optional<std::size_t> b =
         body ? std::optional<std::size_t>(existing_body(*body, "face_flags")) : std::nullopt;
@@ -174,6 +187,7 @@ class PyWorld {
   }
 
   std::unique_ptr<World> world_;
+  std::unique_ptr<WorldIntersections> census_;  // intersection_census()'s, once asked for
   int frames_;
   mutable std::mutex mutex_;
 };
@@ -258,6 +272,13 @@ void bind_world(py::module_& m) {
            "out), penetrating (vertices inside another body pushed out), searches, widenings,\n"
            "self_searches (bodies searched against themselves), substeps (the frame's), asleep\n"
            "(bodies). All 0 without the scene's response.")
+      .def("intersection_census", &PyWorld::intersection_census,
+           "The intersection census of the bodies now, a dict that folding cannot hide\n"
+           "(deformcd/intersection_census.h): between_pairs (intersecting triangle pairs of two\n"
+           "bodies), self_pairs (of a body with itself, whatever collision.self says) and\n"
+           "inside_vertices (surface vertices inside another closed body). An exact CPU pass of\n"
+           "its own on the positions now, one thread: about the cost of a detect() with\n"
+           "self-collision.")
       .def("face_flags", &PyWorld::face_flags, py::arg("body") = py::none(),
            "A bool array, True for each surface triangle in a contact of the last pass: body\n"
            "`body`'s triangles, or with body=None every body's, one body after the other.")

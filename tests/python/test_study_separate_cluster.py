@@ -46,7 +46,8 @@ def test_command_line_through_dask_scheduler_address(separate_cluster, tmp_path)
     done = subprocess.run(
         [sys.executable, "-m", "deformcd.study", str(scene_file), "--vary",
          "bodies.0.velocity=[1,0,0],[2,0,0]", "--vary", "broadphase=bvh,brute", "--frames",
-         str(FRAMES), "--out", str(out)], env=env, capture_output=True, text=True, timeout=120)
+         str(FRAMES), "--out", str(out), "--no-census"], env=env, capture_output=True, text=True,
+        timeout=120)
     assert done.returncode == 0, done.stderr
     assert f"on the cluster at {separate_cluster.address}" in done.stderr
     rows = pd.read_csv(out)
@@ -57,6 +58,7 @@ def test_command_line_through_dask_scheduler_address(separate_cluster, tmp_path)
     assert rows["state_hash"][0] == rows["state_hash"][1] != rows["state_hash"][2]
     per_frame = [json.loads(c) for c in rows["contacts_per_frame"]]
     assert per_frame[0] == per_frame[1] and len(per_frame[0]) == FRAMES
+    assert rows["census_frames"].isna().all() and rows["max_self_pairs"].isna().all()
 
 
 def test_parquet_is_refused_before_any_run_without_an_engine(tmp_path):

@@ -181,3 +181,18 @@ def test_stage_times_and_response_counts(tmp_path):
     untimed = deformcd.World.from_scene(tmp_path / "timed.json", backend="cpu")
     untimed.step()
     assert untimed.last_frame_times()["simulation_s"] == 0.0
+
+
+def test_intersection_census_counts_the_pairs_between_bodies_as_the_collision_pass_does():
+    """phase2's bodies pass through each other (no response, no self-collision): on every frame
+    the census's pairs between the bodies are the world's contacts, and once the bodies are
+    inside each other some surface vertices are inside the other."""
+    w = deformcd.World.from_scene(PHASE2, frames=60, backend="cpu", broadphase="bvh")
+    most_inside = 0
+    for _ in range(60):
+        w.step()
+        census = w.intersection_census()
+        assert set(census) == {"between_pairs", "self_pairs", "inside_vertices"}
+        assert census["between_pairs"] == w.counts()["contacts"]
+        most_inside = max(most_inside, census["inside_vertices"])
+    assert most_inside > 0

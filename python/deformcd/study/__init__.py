@@ -11,7 +11,9 @@ Each row: run (its index), the parameters, status ("ok", "blew up", "error"), er
 error_stage ("setup", "step", or a blow-up's "simulation"/"response"), error_frame, error_body,
 error_body_name, frames (stepped), intersecting_frames, first_intersecting_frame,
 max_contacts, contacts_per_frame (a list, frame 1 first), constraint_frames, max_constraints,
-constraints_per_frame (the contact response's proximity pairs), ms_per_frame_<stage>
+constraints_per_frame (the contact response's proximity pairs), census_frames, max_between_pairs,
+max_self_pairs, max_inside_vertices (the intersection census, bodies with themselves included,
+each frame; census=False leaves them None and saves its cost), ms_per_frame_<stage>
 (simulation, collision, proximity, response; means) and ms_per_frame (their sum), wall_s,
 state_hash (SHA-256 of the final positions and velocities: equal for equal runs, bit for bit),
 output (the run's .npz with outputs=), worker_pid.
@@ -37,7 +39,7 @@ __all__ = ["run", "parse_vary"]
 
 def run(scene, vary=None, variations=None, *, frames=None, broadphase="bvh",
         backend="cpu", threads=1, workers=None, scheduler=None, client=None, out=None,
-        outputs=None, models="ship", cli=None, cache_dir=None, log=print):
+        outputs=None, models="ship", cli=None, cache_dir=None, census=True, log=print):
     """Runs every variation of `scene` and returns one row per run (a pandas DataFrame).
 
     scene: the base scene file (JSON). vary: {key: [values]}, the grid over them (the last key
@@ -50,7 +52,9 @@ def run(scene, vary=None, variations=None, *, frames=None, broadphase="bvh",
     folder (shared by the workers) for each run's final state (run_NNNN.npz) and scene.
     models: "ship" (send the models' files with the tasks) or "shared" (the workers read
     them at their absolute paths). cli, cache_dir: the `deformcd` tool meshing surface models,
-    and where their meshes are kept (models.py). log: progress messages (None for silence).
+    and where their meshes are kept (models.py). census: the intersection census every frame
+    (World.intersection_census; an exact pass of its own). log: progress messages (None for
+    silence).
     """
     import distributed
 
@@ -69,6 +73,7 @@ def run(scene, vary=None, variations=None, *, frames=None, broadphase="bvh",
             "frames": run_keys.get("frames", frames), "broadphase":
             run_keys.get("broadphase", broadphase), "backend": backend, "threads": threads,
             "outputs": str(pathlib.Path(outputs).resolve()) if outputs else None,
+            "census": census,
         })
     keys = list(dict.fromkeys(k for p in params_list for k in p))
     start = time.perf_counter()

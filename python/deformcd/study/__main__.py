@@ -52,6 +52,8 @@ def parser():
                                  "$DEFORMCD_CLI, else deformcd on PATH)")
     p.add_argument("--cache", metavar="DIR", help="meshed surface models (default "
                                                   "~/.cache/deformcd/tetra)")
+    p.add_argument("--no-census", dest="census", action="store_false",
+                   help="skip the intersection census each frame (its columns stay empty)")
     p.add_argument("--quiet", action="store_true", help="no progress messages")
     return p
 
@@ -69,7 +71,7 @@ def main(argv=None):
                    broadphase=args.broadphase, backend=args.backend, threads=args.threads,
                    workers=args.workers, scheduler=args.scheduler, out=args.out,
                    outputs=args.outputs, models=args.models, cli=args.cli,
-                   cache_dir=args.cache, log=log)
+                   cache_dir=args.cache, census=args.census, log=log)
     except (ValueError, OSError, RuntimeError) as e:
         print(f"deformcd.study: {e}", file=sys.stderr)
         return 2
