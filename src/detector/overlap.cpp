@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/collision/bvh.h"
+#include "core/collision/collision_data.h"
 #include "core/collision/vertex_positions.h"
 #include "deformcd/error.h"
 #include "deformcd/gpu_layout.h"
@@ -26,22 +27,17 @@ struct OverlapFinder::Impl {
 
 namespace {
 
-std::string mesh_label(const CollisionMesh& mesh, std::size_t index) {
-  std::string s = "mesh " + std::to_string(index);
-  if (!mesh.name.empty()) s += " ('" + mesh.name + "')";
-  return s;
-}
-
 void check_positions(const CollisionMesh& mesh, std::size_t index,
                      std::span<const glm::vec3> positions) {
   if (positions.size() != mesh.vertex_count)
-    throw InputError("OverlapFinder::find",
-                     mesh_label(mesh, index) + " has " + std::to_string(positions.size()) +
-                         " positions, expected " + std::to_string(mesh.vertex_count));
+    throw InputError("OverlapFinder::find", collision::mesh_label(index, mesh.name) + " has " +
+                                                std::to_string(positions.size()) +
+                                                " positions, expected " +
+                                                std::to_string(mesh.vertex_count));
   for (std::size_t v = 0; v < positions.size(); ++v) {
     const glm::vec3& p = positions[v];
     if (!std::isfinite(p.x + p.y + p.z))
-      throw InputError("OverlapFinder::find", mesh_label(mesh, index) + " vertex " +
+      throw InputError("OverlapFinder::find", collision::mesh_label(index, mesh.name) + " vertex " +
                                                   std::to_string(v) + " has a non-finite position");
   }
 }
@@ -202,7 +198,7 @@ OverlapFinder::OverlapFinder(std::vector<CollisionMesh> meshes) : impl_(std::mak
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       for (const std::uint32_t v : mesh.triangles[t]) {
         if (v >= mesh.vertex_count)
-          throw InputError(mesh_label(mesh, m),
+          throw InputError(collision::mesh_label(m, mesh.name),
                            "triangle " + std::to_string(t) + " names vertex " + std::to_string(v) +
                                ", beyond its " + std::to_string(mesh.vertex_count) + " vertices");
       }

@@ -383,19 +383,10 @@ void ContactResponse::find_penetrations() {
       p[i] = glm::vec3(x[o.node_offset + i]);
     return p;
   };
-  // A vertex of `inner` against the triangle of `outer` it leaves through: an untangling
-  // constraint (pushed out through the triangle's plane, its weights clamped into it).
+  // A vertex of `inner` against the triangle of `outer` it leaves through.
   const auto add = [&](std::uint32_t inner, std::uint32_t outer, const PenetratingVertex& v) {
-    const Triangle& t = detector.mesh(outer).triangles[v.triangle];
-    gpu::ContactPair pair{};
-    pair.nodes[0] = objects_[inner].node_offset + v.vertex;
-    for (std::uint32_t k = 0; k < 3u; ++k)
-      pair.nodes[k + 1u] = objects_[outer].node_offset + t[k];
-    pair.kind = gpu::kContactUntangle;
-    pair.thickness = 0.5f * (thickness_[inner] + thickness_[outer]);
-    pair.gap = -INFINITY;  // always awake
-    pair.closing_speed = 0.0f;
-    penetrations_.push_back(pair);
+    penetrations_.push_back(
+        untangling_constraint(inner, v.vertex, outer, detector.mesh(outer).triangles[v.triangle]));
   };
   for (const auto& [a, b] : joined) {
     link(a, b);
@@ -407,6 +398,20 @@ void ContactResponse::find_penetrations() {
     for (const PenetratingVertex& v : o.b_in_a)
       add(b, a, v);
   }
+}
+
+gpu::ContactPair ContactResponse::untangling_constraint(
+    std::uint32_t body, std::uint32_t vertex, std::uint32_t other,
+    const std::array<std::uint32_t, 3>& face) const {
+  gpu::ContactPair pair{};
+  pair.nodes[0] = objects_[body].node_offset + vertex;
+  for (std::uint32_t k = 0; k < 3u; ++k)
+    pair.nodes[k + 1u] = objects_[other].node_offset + face[k];
+  pair.kind = gpu::kContactUntangle;
+  pair.thickness = 0.5f * (thickness_[body] + thickness_[other]);
+  pair.gap = -INFINITY;  // always awake
+  pair.closing_speed = 0.0f;
+  return pair;
 }
 
 bool ContactResponse::along_the_way_apart(std::uint32_t mine, std::uint32_t other,
@@ -535,26 +540,18 @@ void ContactResponse::search() {
     for (int s = 0; s < 2; ++s) {
       const ContactFace& mine = *sides[s];
       const ContactFace& other = *sides[1 - s];
-      const std::uint32_t first_mine = objects_[mine.body].node_offset;
-      const std::uint32_t first_other = objects_[other.body].node_offset;
       for (std::uint32_t k = 0; k < 3u; ++k) {
-        const std::uint32_t v = first_mine + mine.nodes[k];
-        gpu::ContactPair pair{};
-        pair.nodes[0] = v;
-        for (std::uint32_t j = 0; j < 3u; ++j)
-          pair.nodes[j + 1u] = first_other + other.nodes[j];
+        const gpu::ContactPair pair =
+            untangling_constraint(mine.body, mine.nodes[k], other.body, other.nodes);
+        const std::uint32_t v = pair.nodes[0];
         if (v == pair.nodes[1] || v == pair.nodes[2] || v == pair.nodes[3]) continue;
         // Two bodies that overlap come apart one way (their penetration constraints'): a face
         // pushes a vertex only along it. Pushed through the planes of every face they cross,
         // the contour's vertices held the bodies tangled (half_overlap.json: 175 vertices still
         // inside after 1 s; with this rule none from frame 12 on).
         if (!along_the_way_apart(mine.body, other.body, pair)) continue;
-        pair.kind = gpu::kContactUntangle;
         link(mine.body, other.body);
         if (immovable(mine.body) && immovable(other.body)) continue;
-        pair.thickness = 0.5f * (thickness_[mine.body] + thickness_[other.body]);
-        pair.gap = -INFINITY;  // always awake
-        pair.closing_speed = 0.0f;
         c.pairs.push_back(pair);
         ++counts_.untangle;
       }

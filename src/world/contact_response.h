@@ -5,6 +5,7 @@
 // hands them to a response backend; after every substep it has the backend project them, and
 // widens the window's search around the nodes that strayed beyond their reach.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -135,6 +136,12 @@ class ContactResponse {
   /// same on every thread count.
   void add_proximity_pairs(std::span<const ProximityPair> pairs, bool remeasure,
                            response::FrameConstraints& c);
+  /// An untangling constraint (kContactUntangle: pushed out through the face's plane, its
+  /// weights clamped into the face): vertex `vertex` of `body` against `face` (local nodes) of
+  /// `other`.
+  [[nodiscard]] gpu::ContactPair untangling_constraint(
+      std::uint32_t body, std::uint32_t vertex, std::uint32_t other,
+      const std::array<std::uint32_t, 3>& face) const;
   /// The frame's penetration constraints: for each two bodies the intersections join, every
   /// surface vertex of one inside the other against the face it leaves through along the
   /// pair's separating direction (OverlapFinder), on the positions now.
