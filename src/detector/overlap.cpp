@@ -77,6 +77,23 @@ glm::dvec3 inside_flux(std::span<const glm::vec3> positions, const std::vector<T
   return flux;
 }
 
+/// Per vertex of `mesh`, 1 for each of its surface vertices inside `container` (at their
+/// positions); adds their number to `count`.
+std::vector<std::uint8_t> inside_flags(const CollisionMesh& mesh,
+                                       const std::vector<std::uint32_t>& surface_vertices,
+                                       std::span<const glm::vec3> positions,
+                                       const CollisionMesh& container,
+                                       std::span<const glm::vec3> container_positions,
+                                       std::size_t& count) {
+  const collision::ClosedSurfaceInside surface(container_positions, container.triangles);
+  std::vector<std::uint8_t> inside(mesh.vertex_count, 0u);
+  for (const std::uint32_t v : surface_vertices) {
+    inside[v] = surface.inside(positions[v]) ? 1u : 0u;
+    count += inside[v];
+  }
+  return inside;
+}
+
 /// The container's triangles in a BVH at the given positions, for rays from inside it.
 class RayTree {
  public:
@@ -236,21 +253,11 @@ Overlap OverlapFinder::find(std::size_t a, std::size_t b, std::span<const glm::v
   if (!impl_->closed[a] || !impl_->closed[b]) return overlap;
   const std::vector<std::uint32_t>& surface_a = impl_->surface_vertices[a];
   const std::vector<std::uint32_t>& surface_b = impl_->surface_vertices[b];
-  // Which surface vertices are inside the other mesh.
-  std::vector<std::uint8_t> a_inside(mesh_a.vertex_count, 0u), b_inside(mesh_b.vertex_count, 0u);
   std::size_t inside = 0;
-  {
-    const collision::ClosedSurfaceInside surface_of_b(b_positions, mesh_b.triangles);
-    for (const std::uint32_t v : surface_a) {
-      a_inside[v] = surface_of_b.inside(a_positions[v]) ? 1u : 0u;
-      inside += a_inside[v];
-    }
-    const collision::ClosedSurfaceInside surface_of_a(a_positions, mesh_a.triangles);
-    for (const std::uint32_t v : surface_b) {
-      b_inside[v] = surface_of_a.inside(b_positions[v]) ? 1u : 0u;
-      inside += b_inside[v];
-    }
-  }
+  const std::vector<std::uint8_t> a_inside =
+      inside_flags(mesh_a, surface_a, a_positions, mesh_b, b_positions, inside);
+  const std::vector<std::uint8_t> b_inside =
+      inside_flags(mesh_b, surface_b, b_positions, mesh_a, a_positions, inside);
   if (inside == 0) return overlap;
   // The gradient of the shared volume V with a's translation t is dV/dt = the flux of a's
   // outward normals over a's surface inside b, = minus that of b's over b's surface inside a
