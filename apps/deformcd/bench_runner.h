@@ -44,8 +44,9 @@ struct MethodRun {
   std::vector<std::uint64_t> widenings;
   std::vector<std::uint64_t> self_searches;
   std::vector<std::uint64_t> substeps;  // per frame, the response's (ResponseCounts::substeps)
-  /// Per frame 1..N with contact response: the constraints the frame ended with (proximity and
-  /// untangling pairs, World::response_counts()). Empty without.
+  /// Per frame 1..N with contact response: the contact constraints the frame ended with
+  /// (ResponseCounts::contact_constraints(): proximity pairs, untangling, penetrating
+  /// vertices). Empty without.
   std::vector<std::uint64_t> constraints;
   /// Per frame 1..N with contact response: the intersection census and the tetrahedra turned
   /// inside out (bench_intersections.h).
