@@ -32,7 +32,7 @@ BELOW = {
     "core": {"core"},
     "io": {"core", "io"},
     "cpu": {"core", "cpu"},
-    "gpu": {"core", "gpu"},
+    "gpu": {"core", "cpu", "gpu"},  # a widened proximity search runs on the host, on src/cpu's
     "scene": {"core", "io", "scene"},
     "tetgen": {"core", "io", "tetgen"},
     "detector": {"core", "cpu", "gpu", "detector"},

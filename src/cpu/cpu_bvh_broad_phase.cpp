@@ -72,6 +72,12 @@ void BvhBroadPhase::run(collision::VertexPositions positions, const NarrowPhase&
     traverse(pair, narrow, out);
 }
 
+void BvhBroadPhase::fit_trees(collision::VertexPositions positions,
+                              const std::vector<std::uint8_t>& queried) {
+  trees_.refit(positions);
+  trees_.rebuild_degraded(queried, positions);
+}
+
 void BvhBroadPhase::traverse(const gpu::BodyPair& pair, const NarrowPhase& narrow,
                              PairCollector& out) {
   const gpu::BvhNode* nodes = trees_.nodes().data();

@@ -27,6 +27,10 @@ class BvhBroadPhase {
   void run(collision::VertexPositions positions, const NarrowPhase& narrow, PairCollector& out);
 
   [[nodiscard]] const BvhTrees& trees() const { return trees_; }
+  // Fits the trees to `positions` as a pass does before a query of the trees of the meshes
+  // m with queried[m] != 0 (a proximity search's): refits them all, rebuilds the degraded
+  // ones among those.
+  void fit_trees(collision::VertexPositions positions, const std::vector<std::uint8_t>& queried);
 
  private:
   // The tree of pair.a against the tree of pair.b, in parallel over pieces of the traversal.

@@ -72,6 +72,8 @@ class BvhTrees {
   }
   // Trees rebuilt since upload.
   [[nodiscard]] std::uint64_t rebuild_count() const { return upkeep_.rebuilds(); }
+  // The trees' topology, faces and meshes (what a proximity search queries).
+  [[nodiscard]] const collision::BvhUpkeep& upkeep() const { return upkeep_; }
 
  private:
   // One node as the refit reads it, in the nodes' order: a leaf's face corners (vertex indices

@@ -76,6 +76,7 @@ void CpuCollision::upload(const collision::CollisionData& data) {
   geometry_.reset(faces_.size());
   pairs_.clear();
   counters_ = {};
+  proximity_.reset();  // its per-face tables are the old faces'
   executor_->run([&] { bvh_.upload(data, vertices_.data()); });
 }
 
@@ -116,6 +117,29 @@ void CpuCollision::detect(BroadPhase method) {
     throw Error("CPU collision: upload the data and set the positions before detecting");
   }
   executor_->run([&] { run(method); });
+}
+
+std::vector<collision::ProximityCandidate> CpuCollision::find_proximity(
+    const collision::ProximityQuery& query, std::vector<float>& distances) {
+  if (vertices_.size() != meshes_.size()) {
+    throw Error("CPU collision: upload the data and set the positions before a proximity search");
+  }
+  // The trees each searched pair's faces query: its second mesh's.
+  std::vector<std::uint8_t> queried(meshes_.size(), 0u);
+  for (const std::uint32_t p : query.mesh_pairs)
+    queried[mesh_pairs_[p].b] = 1u;
+  executor_->run([&] { bvh_.fit_trees(query.positions, queried); });
+  if (!proximity_)
+    proximity_ = std::make_unique<CpuProximity>(bvh_.trees().upkeep(), mesh_pairs_, executor_);
+  return proximity_->find(query.positions, query.motion, query.reach, query.mesh_pairs, &distances);
+}
+
+std::vector<collision::ProximityCandidate> CpuCollision::widen_proximity(
+    const collision::ProximityQuery& query, std::span<const std::array<std::uint32_t, 2>> widened,
+    std::vector<float>& distances) {
+  if (!proximity_) throw Error("CPU collision: widen_proximity before a proximity search");
+  return proximity_->widen(query.positions, query.motion, query.reach, query.mesh_pairs, widened,
+                           distances);
 }
 
 void CpuCollision::run(BroadPhase method) {

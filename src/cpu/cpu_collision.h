@@ -13,6 +13,7 @@
 #include "cpu/cpu_bvh_broad_phase.h"
 #include "cpu/cpu_narrow_phase.h"
 #include "cpu/cpu_octree_compact.h"
+#include "cpu/cpu_proximity.h"
 #include "cpu/executor.h"
 
 namespace deformcd::cpu {
@@ -39,7 +40,16 @@ class CpuCollision final : public collision::CollisionBackend {
   /// were: its boxes are the BVH's, see bvh_trees()).
   void download_boxes(std::vector<gpu::Box>& out) override { out = boxes_; }
 
-  /// The BVHs as the last bvh pass refitted (and perhaps rebuilt) them.
+  /// Over the bvh broad phase's trees (whatever the passes' method), fitted to the query's
+  /// positions first as a pass fits them (the queried trees rebuilt when degraded); the
+  /// distances are always measured.
+  [[nodiscard]] std::vector<collision::ProximityCandidate> find_proximity(
+      const collision::ProximityQuery& query, std::vector<float>& distances) override;
+  [[nodiscard]] std::vector<collision::ProximityCandidate> widen_proximity(
+      const collision::ProximityQuery& query, std::span<const std::array<std::uint32_t, 2>> widened,
+      std::vector<float>& distances) override;
+
+  /// The BVHs as the last bvh pass or proximity search fitted (and perhaps rebuilt) them.
   [[nodiscard]] const BvhTrees& bvh_trees() const { return bvh_.trees(); }
 
  private:
@@ -70,6 +80,7 @@ class CpuCollision final : public collision::CollisionBackend {
   PairCollector collector_;
   OctreeCompactPass octree_compact_;
   BvhBroadPhase bvh_;
+  std::unique_ptr<CpuProximity> proximity_;  // over bvh_'s trees; made by the first search
 };
 
 }  // namespace deformcd::cpu

@@ -10,8 +10,9 @@
 
 namespace deformcd::cpu {
 
-CpuContactResponse::CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor)
-    : state_(state), executor_(std::move(executor)) {}
+CpuContactResponse::CpuContactResponse(sim::SimulationBackend& simulation,
+                                       std::shared_ptr<Executor> executor)
+    : simulation_(simulation), executor_(std::move(executor)) {}
 
 void CpuContactResponse::take(const response::FrameConstraints& constraints) {
   first_volume_ = response::first_volume_constraint(constraints.pairs);
@@ -24,8 +25,12 @@ void CpuContactResponse::take(const response::FrameConstraints& constraints) {
 }
 
 void CpuContactResponse::begin_frame(const response::FrameConstraints& constraints) {
+  nodes_ = simulation_.node_buffers();
+  if (nodes_.host_positions == nullptr || nodes_.host_velocities == nullptr) {
+    throw Error("CpuContactResponse: the simulation keeps no nodes in host memory");
+  }
   take(constraints);
-  const std::size_t nodes = state_.positions.size();
+  const std::size_t nodes = nodes_.node_count;
   frame_start_.resize(nodes);
   deviation_.assign(nodes, 0.0f);
   counts_.assign(2u * nodes, 0u);
@@ -34,7 +39,8 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   touched_.clear();
   executor_->run([&] {
     parallel_for(nodes, [&](std::size_t i) {
-      frame_start_[i] = glm::vec4(glm::vec3(state_.positions[i]), constraints_->node_motion[i].w);
+      frame_start_[i] =
+          glm::vec4(glm::vec3(nodes_.host_positions[i]), constraints_->node_motion[i].w);
     });
   });
   watch_reachable_nodes();
@@ -66,7 +72,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
     // (those a constraint can name) or the touched ones (those an active constraint names).
     parallel_for(watched_.size(), [&](std::size_t w) {
       const std::uint32_t i = watched_[w];
-      deviation_[i] = response::path_deviation(glm::vec3(state_.positions[i]), frame_start_[i],
+      deviation_[i] = response::path_deviation(glm::vec3(nodes_.host_positions[i]), frame_start_[i],
                                                constraints_->node_motion[i], k.elapsed);
     });
     parallel_for(
@@ -78,8 +84,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
           bool active = response::contact_awake(pair, deviation, k.elapsed);
           if (active) {
             const glm::vec4 x[4] = {
-                state_.positions[pair.nodes[0]], state_.positions[pair.nodes[1]],
-                state_.positions[pair.nodes[2]], state_.positions[pair.nodes[3]]};
+                nodes_.host_positions[pair.nodes[0]], nodes_.host_positions[pair.nodes[1]],
+                nodes_.host_positions[pair.nodes[2]], nodes_.host_positions[pair.nodes[3]]};
             active = response::contact_active(pair, x);
           }
           active_[p] = active ? 1u : 0u;
@@ -131,8 +137,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
               glm::vec4 x[4], v[4];
               std::uint32_t count[4];
               for (std::uint32_t i = 0; i < 4u; ++i) {
-                x[i] = state_.positions[pair.nodes[i]];
-                v[i] = state_.velocities[pair.nodes[i]];
+                x[i] = nodes_.host_positions[pair.nodes[i]];
+                v[i] = nodes_.host_velocities[pair.nodes[i]];
                 count[i] = counts_[2u * pair.nodes[i] + group];
               }
               response::solve_contact(pair, x, v, count, k, iteration == 0,
@@ -150,7 +156,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
           glm::vec3 dx(0.0f), dv(0.0f);
           response::gather_correction(active_slots_.data(), begin, end, active_.data(),
                                       corrections_.data(), dx, dv);
-          response::apply_correction(state_.positions[i], state_.velocities[i], dx, dv);
+          response::apply_correction(nodes_.host_positions[i], nodes_.host_velocities[i], dx, dv);
         });
       }
     }
@@ -158,7 +164,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
     // pass measured it. An unwatched node never strays (its reach is infinite).
     parallel_for(watched_.size(), [&](std::size_t w) {
       const std::uint32_t i = watched_[w];
-      const glm::vec4& x = state_.positions[i];
+      const glm::vec4& x = nodes_.host_positions[i];
       const bool beyond =
           counts_[2u * i] + counts_[2u * i + 1u] != 0u
               ? response::strayed(x, frame_start_[i], constraints_->node_motion[i], k.elapsed)

@@ -1,29 +1,30 @@
 #pragma once
 // The contact response on the CPU, in parallel with oneTBB: the same passes as the GL backend's
-// shaders (deviation, activity, count, solve, node) over the simulation state's positions and
-// velocities in place, with the same results. Only the active constraints (a few percent of the
-// window's candidates) are counted and solved: their list is compacted after the activity pass
-// in constraint order, the counts summed from it, and each node's active slots listed in its
-// list's order, so the node pass adds the GL pass's terms in its order without walking the
-// inactive slots (on the impact scene that pass took a third of the projections' time). The
-// projections before the last visit only the nodes the active constraints touch: every other
-// node's corrections are zero, and only the last projection watches the reaches. Each
-// projection solves the contacts, then the volume constraints (response::first_volume_constraint),
-// each group with its own counts and node pass.
+// shaders (deviation, activity, count, solve, node) over a simulation's positions and
+// velocities in place (in host memory: sim::NodeBuffers), with the same results. Only the active
+// constraints (a few percent of the window's candidates) are counted and solved: their list is
+// compacted after the activity pass in constraint order, the counts summed from it, and each node's
+// active slots listed in its list's order, so the node pass adds the GL pass's terms in its order
+// without walking the inactive slots (on the impact scene that pass took a third of the
+// projections' time). The projections before the last visit only the nodes the active constraints
+// touch: every other node's corrections are zero, and only the last projection watches the reaches.
+// Each projection solves the contacts, then the volume constraints
+// (response::first_volume_constraint), each group with its own counts and node pass.
 
 #include <memory>
 #include <vector>
 
 #include "core/response/response_backend.h"
+#include "core/sim/simulation_backend.h"
 #include "cpu/executor.h"
-#include "deformcd/simulation_state.h"
 
 namespace deformcd::cpu {
 
 class CpuContactResponse final : public response::ResponseBackend {
  public:
-  /// Corrects `state` (a CPU simulation's, which must outlive this) on `executor`'s threads.
-  CpuContactResponse(SimulationState& state, std::shared_ptr<Executor> executor);
+  /// Corrects the nodes of `simulation` (which must outlive this and keep them in host memory:
+  /// its node_buffers(), looked up at each begin_frame()) on `executor`'s threads.
+  CpuContactResponse(sim::SimulationBackend& simulation, std::shared_ptr<Executor> executor);
 
   void begin_frame(const response::FrameConstraints& constraints) override;
   void update_frame(const response::FrameConstraints& constraints) override;
@@ -35,7 +36,8 @@ class CpuContactResponse final : public response::ResponseBackend {
   // Lists the nodes with a finite reach (watched_) from frame_start_.
   void watch_reachable_nodes();
 
-  SimulationState& state_;
+  sim::SimulationBackend& simulation_;
+  sim::NodeBuffers nodes_;  // the simulation's, as begin_frame() found them
   std::shared_ptr<Executor> executor_;
   const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
   std::vector<glm::vec4> frame_start_;  // per node: position at the frame's start, w = reach

@@ -7,22 +7,25 @@
 
 namespace deformcd::cpu {
 
-CpuProximity::CpuProximity(const collision::CollisionData& data, std::shared_ptr<Executor> executor)
-    : data_(data),
-      owners_(collision::primitive_owners(data.faces)),
+CpuProximity::CpuProximity(const collision::BvhUpkeep& trees, std::vector<gpu::BodyPair> mesh_pairs,
+                           std::shared_ptr<Executor> executor)
+    : trees_(trees),
+      mesh_pairs_(std::move(mesh_pairs)),
+      owners_(collision::primitive_owners(trees.faces())),
       executor_(std::move(executor)) {
   // Each vertex's faces (layout indices, ascending), for widen().
-  vertex_first_ = collision::vertex_firsts(data_);
+  const std::vector<gpu::Face>& faces = trees_.faces();
+  vertex_first_ = collision::vertex_firsts(trees_.meshes());
   vertex_face_offset_.assign(vertex_first_.back() + 1u, 0u);
-  for (const gpu::Face& f : data_.faces)
+  for (const gpu::Face& f : faces)
     for (std::uint32_t k = 0; k < 3u; ++k)
       ++vertex_face_offset_[vertex_first_[f.body] + collision::face_corner(f, k) + 1u];
   for (std::size_t v = 1; v < vertex_face_offset_.size(); ++v)
     vertex_face_offset_[v] += vertex_face_offset_[v - 1u];
   vertex_faces_.resize(vertex_face_offset_.back());
   std::vector<std::uint32_t> cursor(vertex_face_offset_.begin(), vertex_face_offset_.end() - 1);
-  for (std::uint32_t i = 0; i < data_.faces.size(); ++i) {
-    const gpu::Face& f = data_.faces[i];
+  for (std::uint32_t i = 0; i < faces.size(); ++i) {
+    const gpu::Face& f = faces[i];
     for (std::uint32_t k = 0; k < 3u; ++k)
       vertex_faces_[cursor[vertex_first_[f.body] + collision::face_corner(f, k)]++] = i;
   }
@@ -30,28 +33,20 @@ CpuProximity::CpuProximity(const collision::CollisionData& data, std::shared_ptr
 
 void CpuProximity::refit(collision::VertexPositions positions, collision::VertexPositions motion,
                          collision::VertexReach reach) {
-  if (!built_) {
-    collision::build_hierarchies(data_, positions);
-    upkeep_.reset(data_, positions);
-    boxes_.assign(upkeep_.nodes().size(), gpu::Box{});
-    leaf_of_.assign(data_.faces.size(), 0u);
-    built_ = true;
-  }
   // Every face swept once (each face pair it meets reads it), in parallel: pure per face.
-  swept_.resize(data_.faces.size());
-  primitives_.resize(data_.faces.size());
-  primitives_state_.assign(data_.faces.size(), kPrimitivesStale);
-  parallel_for(data_.faces.size(), [&](std::size_t i) {
-    swept_[i] = collision::sweep_face(positions, motion, reach, data_.faces[i]);
+  const std::vector<gpu::Face>& faces = trees_.faces();
+  swept_.resize(faces.size());
+  primitives_.resize(faces.size());
+  primitives_state_.assign(faces.size(), kPrimitivesStale);
+  parallel_for(faces.size(), [&](std::size_t i) {
+    swept_[i] = collision::sweep_face(positions, motion, reach, faces[i]);
   });
-  // The upkeep rule judges each tree on the period's start, as the detector's trees are judged;
-  // the search then refits the boxes it queries: each leaf its face's swept box grown by the
-  // face's reach, each parent the union of its children, in reverse preorder.
-  const std::vector<gpu::BvhNode>& nodes = upkeep_.nodes();
-  for (std::uint32_t m = 0; m < data_.mesh_count(); ++m) {
-    const gpu::BodyBvh& tree = upkeep_.tree(m);
-    collision::refit_bvh(nodes, tree.root, tree.node_count, positions, data_.faces, boxes_);
-    if (upkeep_.degraded(m, upkeep_.area_ratio(m, boxes_))) upkeep_.rebuild(m, positions, boxes_);
+  // Each leaf its face's swept box grown by the face's reach, each parent the union of its
+  // children, in reverse preorder.
+  const std::vector<gpu::BvhNode>& nodes = trees_.nodes();
+  boxes_.resize(nodes.size());
+  leaf_of_.resize(faces.size());
+  for (const gpu::BodyBvh& tree : trees_.trees()) {
     for (std::uint32_t i = tree.root + tree.node_count; i-- > tree.root;) {
       const gpu::BvhNode& n = nodes[i];
       if (n.face != gpu::kBvhInternal) {
@@ -64,10 +59,11 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
       }
     }
   }
+  boxes_generation_ = trees_.generation();
 }
 
 void CpuProximity::sweep_primitives_of_met_faces() {
-  parallel_for(data_.faces.size(), [&](std::size_t i) {
+  parallel_for(trees_.faces().size(), [&](std::size_t i) {
     if (primitives_state_[i] != kPrimitivesWanted) return;
     primitives_[i] = collision::sweep_primitives(swept_[i]);
     primitives_state_[i] = kPrimitivesSwept;
@@ -80,6 +76,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(
     std::vector<float>* distances) {
   std::vector<collision::ProximityCandidate> all;
   if (distances != nullptr) distances->clear();
+  const std::vector<gpu::Face>& faces = trees_.faces();
   executor_->run([&] {
     refit(positions, motion, reach);
     // Fixed chunks of each mesh pair's first mesh's faces, each with its own lists, joined in
@@ -93,7 +90,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(
     };
     std::vector<Chunk> chunks;
     for (const std::uint32_t p : mesh_pairs) {
-      const gpu::MeshInfo& mesh_a = data_.meshes[data_.mesh_pairs[p].a];
+      const gpu::MeshInfo& mesh_a = trees_.meshes()[mesh_pairs_[p].a];
       for (std::uint32_t first = 0; first < mesh_a.face_count; first += kChunk) {
         chunks.push_back(
             {p, mesh_a.face_offset + first,
@@ -105,13 +102,13 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(
         chunks.size(),
         [&](std::size_t c) {
           const Chunk& chunk = chunks[c];
-          const gpu::BodyPair& pair = data_.mesh_pairs[chunk.mesh_pair];
-          const gpu::BodyBvh& tree_b = upkeep_.tree(pair.b);
+          const gpu::BodyPair& pair = mesh_pairs_[chunk.mesh_pair];
+          const gpu::BodyBvh& tree_b = trees_.tree(pair.b);
           const bool self = pair.a == pair.b;
           for (std::uint32_t index_a = chunk.first; index_a < chunk.end; ++index_a) {
             // Within one mesh each face pair once (a face with itself pairs only surface
             // neighbours, which the emit leaves out).
-            collision::query_bvh(upkeep_.nodes().data(), boxes_.data(), tree_b.root,
+            collision::query_bvh(trees_.nodes().data(), boxes_.data(), tree_b.root,
                                  swept_[index_a].box, [&](std::uint32_t index_b) {
                                    if (self && index_b <= index_a) return;
                                    met[c].push_back({index_a, index_b});
@@ -131,7 +128,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(
           auto& out_distance = per_chunk_distance[c];
           for (const auto& [a, b] : met[c]) {
             collision::emit_face_pair_candidates(
-                data_.faces[a], swept_[a], primitives_[a], a, owners_[a], data_.faces[b], swept_[b],
+                faces[a], swept_[a], primitives_[a], a, owners_[a], faces[b], swept_[b],
                 primitives_[b], b, owners_[b],
                 [&](const collision::ProximityCandidate& candidate, float distance) {
                   out.push_back(candidate);
@@ -158,12 +155,12 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(
 std::vector<collision::ProximityCandidate> CpuProximity::widen(
     collision::VertexPositions positions, collision::VertexPositions motion,
     collision::VertexReach reach, std::span<const std::uint32_t> mesh_pairs,
-    std::span<const std::array<std::uint32_t, 2>> widened, bool boxes_current,
-    std::vector<float>& distances) {
+    std::span<const std::array<std::uint32_t, 2>> widened, std::vector<float>& distances) {
   std::vector<collision::ProximityCandidate> out;
   distances.clear();
+  const std::vector<gpu::Face>& faces_of = trees_.faces();
   executor_->run([&] {
-    if (!boxes_current || !built_) refit(positions, motion, reach);
+    if (boxes_generation_ != trees_.generation()) refit(positions, motion, reach);
     // The faces with a widened corner: their leaves swept again with the raised reaches, then
     // every tree's parents in reverse preorder (unions only).
     std::vector<std::uint8_t> is_widened(vertex_first_.back(), 0u);
@@ -176,14 +173,13 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
     }
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-    const std::vector<gpu::BvhNode>& nodes = upkeep_.nodes();
+    const std::vector<gpu::BvhNode>& nodes = trees_.nodes();
     for (const std::uint32_t face : faces) {
-      swept_[face] = collision::sweep_face(positions, motion, reach, data_.faces[face]);
+      swept_[face] = collision::sweep_face(positions, motion, reach, faces_of[face]);
       primitives_state_[face] = kPrimitivesStale;
       boxes_[leaf_of_[face]] = swept_[face].box;
     }
-    for (std::uint32_t m = 0; m < data_.mesh_count(); ++m) {
-      const gpu::BodyBvh& tree = upkeep_.tree(m);
+    for (const gpu::BodyBvh& tree : trees_.trees()) {
       for (std::uint32_t i = tree.root + tree.node_count; i-- > tree.root;) {
         const gpu::BvhNode& n = nodes[i];
         if (n.face != gpu::kBvhInternal) continue;
@@ -197,7 +193,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
     // depend on the trees (which the GL and CPU backends rebuild on schedules of their own). A
     // pair of two widened faces is met from both: each keeps the candidates it is responsible
     // for (below), so that every candidate comes once.
-    std::vector<std::uint8_t> face_widened(data_.faces.size(), 0u);
+    std::vector<std::uint8_t> face_widened(faces_of.size(), 0u);
     for (const std::uint32_t face : faces)
       face_widened[face] = 1u;
     struct FacePair {
@@ -210,13 +206,13 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
     };
     std::vector<FacePair> pairs;
     for (const std::uint32_t p : mesh_pairs) {
-      const gpu::BodyPair& mp = data_.mesh_pairs[p];
+      const gpu::BodyPair& mp = mesh_pairs_[p];
       for (const std::uint32_t face : faces) {
-        const std::uint32_t mesh = data_.faces[face].body;
+        const std::uint32_t mesh = faces_of[face].body;
         if (mesh != mp.a && mesh != mp.b) continue;
         const bool first = mesh == mp.a;
         collision::query_bvh(
-            nodes.data(), boxes_.data(), upkeep_.tree(first ? mp.b : mp.a).root,
+            nodes.data(), boxes_.data(), trees_.tree(first ? mp.b : mp.a).root,
             boxes_[leaf_of_[face]], [&](std::uint32_t other) {
               if (mp.a == mp.b) {
                 if (other != face)
@@ -252,8 +248,8 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
                fp.from == fp.b;
       };
       collision::emit_face_pair_candidates(
-          data_.faces[fp.a], swept_[fp.a], primitives_[fp.a], fp.a, owners_[fp.a],
-          data_.faces[fp.b], swept_[fp.b], primitives_[fp.b], fp.b, owners_[fp.b],
+          faces_of[fp.a], swept_[fp.a], primitives_[fp.a], fp.a, owners_[fp.a], faces_of[fp.b],
+          swept_[fp.b], primitives_[fp.b], fp.b, owners_[fp.b],
           [&](const collision::ProximityCandidate& c, float distance) {
             out.push_back(c);
             distances.push_back(distance);

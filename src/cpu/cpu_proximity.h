@@ -1,12 +1,17 @@
 #pragma once
-// Proximity candidates on the CPU (issue 12): for each mesh pair a detector tests, the
-// vertex-face and edge-edge pairs whose swept boxes come within the two meshes' reaches, found
-// through a BVH per mesh of its own (built on the first search, refitted on every one to the
-// faces' swept boxes, rebuilt by the shared upkeep rule when deformation has loosened it). Faces
-// run in parallel in fixed chunks, each face's candidates in its traversal order; the chunks'
-// lists are joined in face order, so the result does not depend on the thread count (and is
-// the GL search's order). A search can then be widened (widen()): some vertices' reaches
-// raised, only the faces at them swept again and queried.
+// Proximity candidates on the host (issue 12): for each mesh pair searched, the vertex-face and
+// edge-edge pairs whose swept boxes come within the two meshes' reaches, found over the trees a
+// collision backend already holds (collision::BvhUpkeep: one tree per mesh for the intersection
+// passes and this search), with boxes of its own: each leaf its face swept along its vertices'
+// motion and grown by its reach, each parent the union of its children. The owner keeps the
+// trees fitted (rebuilds them by the shared upkeep rule); the search only reads their topology.
+// Faces run in parallel in fixed chunks, each face's candidates in its traversal order; the
+// chunks' lists are joined in face order, so the result does not depend on the thread count
+// (and is the GL search's order over the same trees). A search can then be widened (widen()):
+// some vertices' reaches raised, only the faces at them swept again and queried.
+//
+// The CPU backend runs every search here (CpuCollision::find_proximity); the GL backend runs
+// the search on the GPU (gl_proximity.h) and widens here, over its trees' host copy.
 
 #include <array>
 #include <atomic>
@@ -24,8 +29,11 @@ namespace deformcd::cpu {
 
 class CpuProximity {
  public:
-  /// Over the meshes and mesh pairs of `data` (its hierarchies are not needed).
-  CpuProximity(const collision::CollisionData& data, std::shared_ptr<Executor> executor);
+  /// Over the trees of `trees` (and their faces and meshes), which must outlive this object and
+  /// hold trees now; their topology may change between searches (a rebuild). `mesh_pairs`: the
+  /// collision data's mesh pairs, which searches name by index.
+  CpuProximity(const collision::BvhUpkeep& trees, std::vector<gpu::BodyPair> mesh_pairs,
+               std::shared_ptr<Executor> executor);
 
   /// The candidates whose boxes, swept from `positions` along each vertex's `motion` (null: no
   /// motion) and grown by each vertex's reach (>= 0), overlap and whose primitives' distance is
@@ -43,15 +51,17 @@ class CpuProximity {
   /// have one of them as a corner are swept again and query the trees, and of their face pairs
   /// only the candidates involving a widened vertex are tested. Ordered by face pair (mesh pair
   /// by mesh pair, then by the pair's two faces), whatever the thread count and the trees.
-  /// `boxes_current`: the trees' boxes are from that search (a find() on the CPU); else (the
-  /// search ran on GL) they are refitted first.
+  /// The boxes are the last find()'s or widen()'s, unless the trees' topology has changed
+  /// since or forget_boxes() was called: then they are refitted first.
   [[nodiscard]] std::vector<collision::ProximityCandidate> widen(
       collision::VertexPositions positions, collision::VertexPositions motion,
       collision::VertexReach reach, std::span<const std::uint32_t> mesh_pairs,
-      std::span<const std::array<std::uint32_t, 2>> widened, bool boxes_current,
-      std::vector<float>& distances);
+      std::span<const std::array<std::uint32_t, 2>> widened, std::vector<float>& distances);
+  /// The search widen() follows ran elsewhere (on the GPU): this object's boxes are not its.
+  void forget_boxes() { boxes_generation_ = 0; }
 
  private:
+  /// Sweeps every face and fits the boxes over the trees as they are now.
   void refit(collision::VertexPositions positions, collision::VertexPositions motion,
              collision::VertexReach reach);
   /// Face `face` meets another face's box: its primitive boxes are needed. Any thread may call
@@ -68,10 +78,11 @@ class CpuProximity {
   // a face pair of the search, or is swept from its swept_ entry.
   static constexpr std::uint8_t kPrimitivesStale = 0, kPrimitivesWanted = 1, kPrimitivesSwept = 2;
 
-  collision::CollisionData data_;
+  const collision::BvhUpkeep& trees_;
+  std::vector<gpu::BodyPair> mesh_pairs_;
   std::vector<std::uint32_t> owners_;
-  collision::BvhUpkeep upkeep_;
   std::vector<gpu::Box> boxes_;         // per node: swept over the period, grown by the reaches
+  std::uint64_t boxes_generation_ = 0;  // the trees' generation boxes_ fit (0: none)
   std::vector<std::uint32_t> leaf_of_;  // per face (layout order): its tree's leaf node
   std::vector<collision::SweptFace> swept_;  // per face (layout order): of the last search
   std::vector<collision::SweptPrimitives> primitives_;  // per face: of the faces met (state)
@@ -79,7 +90,6 @@ class CpuProximity {
   std::vector<std::uint32_t> vertex_faces_;  // per mesh vertex (vertex_first_ order): CSR faces
   std::vector<std::uint32_t> vertex_face_offset_;
   std::vector<std::uint32_t> vertex_first_;  // per mesh: its first vertex in that order
-  bool built_ = false;
   std::shared_ptr<Executor> executor_;
 };
 

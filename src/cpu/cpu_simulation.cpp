@@ -52,6 +52,12 @@ void CpuSimulation::find_frozen_batches() {
                                           });
 }
 
+sim::NodeBuffers CpuSimulation::node_buffers() {
+  return {.node_count = static_cast<std::uint32_t>(state_.positions.size()),
+          .host_positions = state_.positions.data(),
+          .host_velocities = state_.velocities.data()};
+}
+
 void CpuSimulation::set_inverse_masses(std::uint32_t first, std::span<const float> inverse_mass) {
   sim::check_node_range(first, inverse_mass.size(), state_.positions.size());
   for (std::size_t k = 0; k < inverse_mass.size(); ++k) {

@@ -30,14 +30,13 @@ class CpuSimulation final : public sim::SimulationBackend {
   void download_positions(std::vector<glm::vec4>& out) override { out = state_.positions; }
   void download_velocities(std::vector<glm::vec4>& out) override { out = state_.velocities; }
   void set_inverse_masses(std::uint32_t first, std::span<const float> inverse_mass) override;
-  [[nodiscard]] const glm::vec4* host_positions() const override { return state_.positions.data(); }
-  [[nodiscard]] SimulationState* host_state() override { return &state_; }
+  /// The state's positions and velocities, stepped in place.
+  [[nodiscard]] sim::NodeBuffers node_buffers() override;
 
   /// The state being stepped (for tests; a World's detector reads its positions in place). Its
   /// spring_forces and tet_forces are not written (the step does not go through them).
   [[nodiscard]] const SimulationState& state() const { return state_; }
-  /// The bodies the step skips now (for tests).
-  [[nodiscard]] const sim::FrozenBodies& frozen_bodies() const { return frozen_; }
+  [[nodiscard]] const sim::FrozenBodies& frozen_bodies() const override { return frozen_; }
 
  private:
   void step(const sim::SubstepConstants& constants);

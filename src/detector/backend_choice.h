@@ -5,13 +5,8 @@
 // backend_choice_none.cpp, whose functions throw GlError. The Detector, the World's simulation
 // factory and the GL probe make every GL object through the functions below, with no #ifdef.
 
-#include <cstdint>
 #include <memory>
-#include <span>
 #include <string>
-#include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "deformcd/backend.h"
 
@@ -19,13 +14,13 @@ namespace deformcd {
 
 namespace gl {
 class Context;
-class GlProximity;
 }  // namespace gl
 namespace collision {
 class CollisionBackend;
-struct CollisionData;
-struct ProximityCandidate;
 }  // namespace collision
+namespace cpu {
+class Executor;
+}  // namespace cpu
 namespace sim {
 class SimulationBackend;
 }
@@ -65,28 +60,10 @@ struct BackendChoice {
 /// child process asks.
 [[nodiscard]] std::string headless_gl_renderer();
 
-/// The GL collision backend, in `context`.
-[[nodiscard]] std::unique_ptr<collision::CollisionBackend> make_gl_collision(gl::Context& context);
-
-/// Deletes a GL proximity search (its type is complete where the GL backend is built).
-struct GlProximityDeleter {
-  void operator()(gl::GlProximity* search) const;
-};
-using GlProximityPtr = std::unique_ptr<gl::GlProximity, GlProximityDeleter>;
-
-/// The GL proximity search over `data`'s meshes, in `context`.
-[[nodiscard]] GlProximityPtr make_gl_proximity(gl::Context& context,
-                                               const collision::CollisionData& data);
-
-/// Whether `backend` is the GL collision backend (make_gl_collision), whose trees and positions
-/// a GL proximity search reads. False in a build without the GL backend.
-[[nodiscard]] bool is_gl_collision(const collision::CollisionBackend& backend) noexcept;
-
-/// `search`'s candidates over the trees and positions of `backend` (a GL collision backend,
-/// its context current), staged as a collision pass stages them.
-[[nodiscard]] std::vector<collision::ProximityCandidate> find_gl_proximity(
-    collision::CollisionBackend& backend, gl::GlProximity& search, std::span<const float> reach,
-    std::span<const glm::vec3> motion, std::span<const std::uint32_t> mesh_pairs);
+/// The GL collision backend, in `context`; a widened proximity search runs on `executor`'s
+/// threads.
+[[nodiscard]] std::unique_ptr<collision::CollisionBackend> make_gl_collision(
+    gl::Context& context, const std::shared_ptr<cpu::Executor>& executor);
 
 /// The GL mass-spring simulation, in `context`.
 [[nodiscard]] std::unique_ptr<sim::SimulationBackend> make_gl_simulation(gl::Context& context);

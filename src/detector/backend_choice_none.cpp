@@ -4,7 +4,6 @@
 #include <memory>
 
 #include "core/collision/collision_backend.h"
-#include "core/collision/proximity.h"
 #include "core/response/response_backend.h"
 #include "core/sim/simulation_backend.h"
 #include "deformcd/error.h"
@@ -33,27 +32,8 @@ std::string gl_renderer(gl::Context& /*context*/) {
   throw_built_without_gl();
 }
 
-std::unique_ptr<collision::CollisionBackend> make_gl_collision(gl::Context& /*context*/) {
-  throw_built_without_gl();
-}
-
-void GlProximityDeleter::operator()(gl::GlProximity* /*search*/) const {
-  // never made without the GL backend
-}
-
-GlProximityPtr make_gl_proximity(gl::Context& /*context*/,
-                                 const collision::CollisionData& /*data*/) {
-  throw_built_without_gl();
-}
-
-bool is_gl_collision(const collision::CollisionBackend& /*backend*/) noexcept {
-  return false;
-}
-
-std::vector<collision::ProximityCandidate> find_gl_proximity(
-    collision::CollisionBackend& /*backend*/, gl::GlProximity& /*search*/,
-    std::span<const float> /*reach*/, std::span<const glm::vec3> /*motion*/,
-    std::span<const std::uint32_t> /*mesh_pairs*/) {
+std::unique_ptr<collision::CollisionBackend> make_gl_collision(
+    gl::Context& /*context*/, const std::shared_ptr<cpu::Executor>& /*executor*/) {
   throw_built_without_gl();
 }
 

@@ -53,7 +53,7 @@ std::unique_ptr<Detector::Impl> Detector::Impl::create(std::vector<CollisionMesh
     impl->sources[m].vertex_count = impl->meshes[m].vertex_count;
   if (kind == BackendKind::kGl) {
     impl->context = context;
-    impl->backend = make_gl_collision(*context);
+    impl->backend = make_gl_collision(*context, executor);
   } else {
     impl->backend = std::make_unique<cpu::CpuCollision>(executor);
   }
@@ -189,7 +189,6 @@ Detector::~Detector() {
     // A destructor must not throw. Deleting the GL objects in whatever context is current
     // could delete another context's objects of the same names: leave them to their context
     // (they go with it when the detector owns it), at the cost of the backend's host memory.
-    (void)impl_->gl_proximity.release();
     (void)impl_->backend.release();
   }
 }
@@ -405,17 +404,8 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
   d.require_positions();
   d.complete();  // a GL pass may still read the buffers the search and the read-back read
   if (d.check_positions) d.check_finite();
-  std::vector<collision::ProximityCandidate> found;
-  bool searched = false;
-  if (is_gl_collision(*d.backend)) {
-    // On the GPU over the backend's trees and positions (staged as a pass stages them).
-    if (!d.prepared) d.prepare();
-    d.make_current();
-    if (!d.gl_proximity) d.gl_proximity = make_gl_proximity(*d.context, d.data);
-    found = find_gl_proximity(*d.backend, *d.gl_proximity, reach, motion, mesh_pairs);
-    searched = true;
-  }
-  // The distances: the CPU search returns those its filter computed; after a GL search, on the
+  if (!d.prepared) d.prepare();  // the backend's trees, built on the positions now
+  // The candidates' distances, when the backend leaves them to us (GL), are measured on the
   // host from the positions, a GL buffer's read back whole (one copy of vertex_count vertices
   // per mesh) rather than the candidates' own vertices (4 per candidate), since the candidates
   // outnumber the vertices: on the impact scene at contact 100k-160k candidates over 6.4k
@@ -423,11 +413,15 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
   std::vector<std::vector<glm::vec3>> read_back;
   const std::vector<collision::MeshVertices> pose = d.host_vertices(read_back);
   std::vector<float> distances;
-  if (!searched) {
-    if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
-    found = d.proximity->find(pose.data(), motion_of.empty() ? nullptr : motion_of.data(),
-                              reach_of.data(), mesh_pairs, &distances);
-  }
+  d.make_current();
+  const std::vector<collision::ProximityCandidate> found =
+      d.backend->find_proximity({.positions = pose.data(),
+                                 .motion = motion_of.empty() ? nullptr : motion_of.data(),
+                                 .reach = reach_of.data(),
+                                 .flat_motion = motion,
+                                 .flat_reach = reach,
+                                 .mesh_pairs = mesh_pairs},
+                                distances);
   // The search's inputs, for widen_proximity(): the pose copied (a host array is read in
   // place and will have moved on).
   Impl::ProximitySearch& last = d.last_proximity;
@@ -440,7 +434,6 @@ std::vector<ProximityPair> Detector::find_proximity(std::span<const float> reach
   last.motion.assign(motion.begin(), motion.end());
   last.reach.assign(reach.begin(), reach.end());
   last.mesh_pairs = std::move(mesh_pairs);
-  last.cpu_boxes = !searched;
   last.valid = true;
   return to_proximity_pairs(d, found, distances, pose);
 }
@@ -483,12 +476,16 @@ std::vector<ProximityPair> Detector::widen_proximity(std::span<const std::uint32
     if (!motion_of.empty()) motion_of[m] = {&last.motion[first[m]].x, 3u};
     reach_of[m] = last.reach.data() + first[m];
   }
-  if (!d.proximity) d.proximity = std::make_unique<cpu::CpuProximity>(d.data, d.executor);
   std::vector<float> distances;
+  d.make_current();
   const std::vector<collision::ProximityCandidate> found =
-      d.proximity->widen(pose.data(), motion_of.empty() ? nullptr : motion_of.data(),
-                         reach_of.data(), last.mesh_pairs, widened, last.cpu_boxes, distances);
-  last.cpu_boxes = true;
+      d.backend->widen_proximity({.positions = pose.data(),
+                                  .motion = motion_of.empty() ? nullptr : motion_of.data(),
+                                  .reach = reach_of.data(),
+                                  .flat_motion = last.motion,
+                                  .flat_reach = last.reach,
+                                  .mesh_pairs = last.mesh_pairs},
+                                 widened, distances);
   return to_proximity_pairs(d, found, distances, pose);
 }
 

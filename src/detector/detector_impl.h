@@ -8,7 +8,6 @@
 
 #include "core/collision/collision_backend.h"
 #include "core/collision/collision_data.h"
-#include "cpu/cpu_proximity.h"
 #include "cpu/executor.h"
 #include "deformcd/detector.h"
 #include "detector/backend_choice.h"
@@ -32,21 +31,15 @@ struct Detector::Impl {
   std::unique_ptr<gl::Context> owned_context;  // before the backend: destroyed after it
   gl::Context* context = nullptr;
   std::unique_ptr<collision::CollisionBackend> backend;
-  std::shared_ptr<cpu::Executor> executor;       // the CPU threads
-  std::unique_ptr<cpu::CpuProximity> proximity;  // CPU: made by the first find_proximity()
-  // GL: made by the first find_proximity(), over the GL backend's trees and positions; after
-  // the backend (destroyed before it, while the context lives).
-  GlProximityPtr gl_proximity;
+  std::shared_ptr<cpu::Executor> executor;  // the CPU threads
   /// The last find_proximity()'s inputs, for widen_proximity(): the positions it searched (per
-  /// mesh, copied), each vertex's motion and reach (the motion's order), the mesh pairs it
-  /// searched (indices into data.mesh_pairs), and whether the CPU search's boxes are from it
-  /// (false after a GL search).
+  /// mesh, copied), each vertex's motion and reach (the motion's order), and the mesh pairs it
+  /// searched (indices into data.mesh_pairs).
   struct ProximitySearch {
     std::vector<std::vector<glm::vec3>> pose;
     std::vector<glm::vec3> motion;
     std::vector<float> reach;
     std::vector<std::uint32_t> mesh_pairs;
-    bool cpu_boxes = false;
     bool valid = false;
   } last_proximity;
   std::vector<collision::PositionSource> sources;

@@ -28,7 +28,7 @@ BodySleep::BodySleep(const SleepSettings& settings, const std::vector<gpu::Objec
   }
 }
 
-double BodySleep::rms_speed(std::size_t body, const std::vector<glm::vec4>& velocity) const {
+double BodySleep::rms_speed(std::size_t body, std::span<const glm::vec4> velocity) const {
   // In node order, in double: the same sum on every backend and thread count.
   const gpu::ObjectInfo& o = objects_[body];
   double mass = 0.0, twice_energy = 0.0;
@@ -43,7 +43,7 @@ double BodySleep::rms_speed(std::size_t body, const std::vector<glm::vec4>& velo
 }
 
 std::vector<std::uint32_t> BodySleep::end_frame(
-    const std::vector<glm::vec4>& velocity,
+    std::span<const glm::vec4> velocity,
     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links) {
   const std::size_t n = objects_.size();
   for (std::size_t b = 0; b < n; ++b) {

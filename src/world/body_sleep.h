@@ -41,7 +41,7 @@ class BodySleep {
   /// by the island they fell asleep in). Returns the bodies that fell asleep or woke,
   /// ascending.
   std::vector<std::uint32_t> end_frame(
-      const std::vector<glm::vec4>& velocity,
+      std::span<const glm::vec4> velocity,
       const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links);
 
   [[nodiscard]] bool asleep(std::size_t body) const { return asleep_[body] != 0u; }
@@ -51,7 +51,7 @@ class BodySleep {
 
  private:
   /// The mass-weighted root mean square of body b's free nodes' speeds (m/s).
-  [[nodiscard]] double rms_speed(std::size_t body, const std::vector<glm::vec4>& velocity) const;
+  [[nodiscard]] double rms_speed(std::size_t body, std::span<const glm::vec4> velocity) const;
 
   SleepSettings settings_;
   std::vector<gpu::ObjectInfo> objects_;

@@ -201,14 +201,6 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
   thinnest_ = *std::min_element(thickness_.begin(), thickness_.end());
   frame_substeps_ = step.substeps;  // until the first frame's search sets it
   linked_.assign(bodies.size() * bodies.size(), 0u);
-  fixed_body_.assign(bodies.size(), 0u);
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const gpu::ObjectInfo& o = objects_[b];
-    bool fixed = bodies[b].carry_velocity == glm::vec3(0.0f);
-    for (std::uint32_t i = o.node_offset; fixed && i < o.node_offset + o.node_count; ++i)
-      fixed = !(state.positions[i].w > 0.0f);
-    fixed_body_[b] = fixed ? 1u : 0u;
-  }
   if (settings.sleep.has_value()) {
     std::vector<float> inverse_mass(state.positions.size());
     for (std::size_t i = 0; i < inverse_mass.size(); ++i)
@@ -235,21 +227,21 @@ void ContactResponse::unstable(std::uint32_t node, const char* what) const {
                          .node = static_cast<std::int64_t>(node - objects_[b].node_offset)});
 }
 
-const std::vector<glm::vec4>& ContactResponse::velocities() {
-  const SimulationState* state = simulation_.host_state();
-  if (state != nullptr) return state->velocities;
+std::span<const glm::vec4> ContactResponse::velocities() {
+  const sim::NodeBuffers nodes = simulation_.node_buffers();
+  if (nodes.host_velocities != nullptr) return {nodes.host_velocities, nodes.node_count};
   simulation_.download_velocities(velocities_);
   return velocities_;
 }
 
-const std::vector<glm::vec4>& ContactResponse::positions() {
-  const SimulationState* state = simulation_.host_state();
-  if (state != nullptr) return state->positions;
+std::span<const glm::vec4> ContactResponse::positions() {
+  const sim::NodeBuffers nodes = simulation_.node_buffers();
+  if (nodes.host_positions != nullptr) return {nodes.host_positions, nodes.node_count};
   simulation_.download_positions(positions_);
   return positions_;
 }
 
-float ContactResponse::relative_surface_speed(const std::vector<glm::vec4>& v) const {
+float ContactResponse::relative_surface_speed(std::span<const glm::vec4> v) const {
   // The diagonal of the box of the surface nodes' velocities: at least the speed of any surface
   // node relative to any other.
   glm::vec3 lo(INFINITY), hi(-INFINITY);
@@ -280,7 +272,7 @@ int ContactResponse::motion_bounded_substeps(const std::vector<gpu::ContactPair>
   return static_cast<int>(std::clamp(needed, static_cast<double>(step_.substeps), most));
 }
 
-int ContactResponse::window_substeps(const std::vector<glm::vec4>& v) const {
+int ContactResponse::window_substeps(std::span<const glm::vec4> v) const {
   // The window is as long as the surfaces' relative motion covers at most about a mean edge:
   // every pair that can close over the window is a candidate, and the candidates (their search
   // and each substep's activity pass) cost more than searches do, so a fast approach is
@@ -296,7 +288,7 @@ int ContactResponse::window_substeps(const std::vector<glm::vec4>& v) const {
   return std::max(1, static_cast<int>(std::ceil(span)));
 }
 
-std::vector<glm::vec4> ContactResponse::node_motion(const std::vector<glm::vec4>& v, float window) {
+std::vector<glm::vec4> ContactResponse::node_motion(std::span<const glm::vec4> v, float window) {
   // Each node is predicted to go on at its velocity over the window (plus its body's carry
   // velocity) and may stray from that straight path by its reach: a quarter of the thickness
   // of play (the search adds the constraint's half of the thickness to it), what gravity adds
@@ -312,7 +304,7 @@ std::vector<glm::vec4> ContactResponse::node_motion(const std::vector<glm::vec4>
   // ringing or braking nodes from starting a search every few substeps without growing every
   // node's. Nodes on no collision surface never enter a pair: their reach is infinite, so they
   // never start a search.
-  if (last_velocities_.size() != v.size()) last_velocities_ = v;
+  if (last_velocities_.size() != v.size()) last_velocities_.assign(v.begin(), v.end());
   // A node's velocity changed by |dv| since the last search, elapsed_ ago (the last window's
   // time, not yet reset): at that rate (|dv| x change_rate), over the window its deviation from
   // the straight path grows to 1/2 rate window^2.
@@ -332,7 +324,7 @@ std::vector<glm::vec4> ContactResponse::node_motion(const std::vector<glm::vec4>
       motion[i] = glm::vec4(velocity, on_surface_[i] != 0u ? reach : INFINITY);
     }
   }
-  last_velocities_ = v;
+  last_velocities_.assign(v.begin(), v.end());
   return motion;
 }
 
@@ -375,7 +367,7 @@ void ContactResponse::find_penetrations() {
       meshes.push_back(detector.mesh(m));
     overlap_ = std::make_unique<OverlapFinder>(std::move(meshes));
   }
-  const std::vector<glm::vec4>& x = positions();
+  const std::span<const glm::vec4> x = positions();
   const auto body_positions = [&](std::uint32_t b) {
     const gpu::ObjectInfo& o = objects_[b];
     std::vector<glm::vec3> p(o.node_count);
@@ -450,7 +442,7 @@ bool ContactResponse::asleep(std::size_t body) const {
 }
 
 bool ContactResponse::immovable(std::uint32_t body) const {
-  return fixed_body_[body] != 0u || asleep(body);
+  return !simulation_.frozen_bodies().can_move(body);
 }
 
 void ContactResponse::search() {
@@ -463,7 +455,7 @@ void ContactResponse::search() {
   // whole frame (on the impact scene the frame's last search kept about 6,500 candidates
   // instead of 29,000, and the results did not change); and earlier when the surfaces move
   // fast (window_substeps).
-  const std::vector<glm::vec4>& node_velocity = velocities();
+  const std::span<const glm::vec4> node_velocity = velocities();
   if (substep_ == 0) frame_substeps_ = step_.substeps;  // until the pairs below ask for more
   const int substeps = window_substeps(node_velocity);
   window_end_ = substep_ + substeps;
@@ -493,7 +485,7 @@ void ContactResponse::search() {
   counts_.closest_thickness = frame_so_far.closest_thickness;
   // The positions now: the window's start, kept for the side each vertex-face pair's vertex
   // starts on (also for pairs a widening finds later in the window).
-  const std::vector<glm::vec4>& x = positions();
+  const std::span<const glm::vec4> x = positions();
   window_start_.resize(x.size());
   for (std::uint32_t i = 0; i < x.size(); ++i) {
     window_start_[i] = glm::vec3(x[i]);
@@ -603,8 +595,8 @@ void ContactResponse::add_volume_constraints(const Body& body, std::uint32_t ind
 
 bool ContactResponse::self_pairs_hold(float h) {
   if (std::find(self_kept_.begin(), self_kept_.end(), 1u) == self_kept_.end()) return true;
-  const std::vector<glm::vec4>& x = positions();
-  const std::vector<glm::vec4>& v = velocities();
+  const std::span<const glm::vec4> x = positions();
+  const std::span<const glm::vec4> v = velocities();
   for (std::uint32_t b = 0; b < self_kept_.size(); ++b)
     if (self_kept_[b] != 0u && !self_contact_->holds(b, x, v, h)) return false;
   return true;
@@ -728,7 +720,7 @@ bool ContactResponse::over_a_face_beside(std::uint32_t body, std::uint32_t e0, s
 void ContactResponse::widen() {
   // The nodes beyond their reach, as the backend judged them (apply_correction, on the same
   // floats): the positions now against the window's start carried along each node's path.
-  const std::vector<glm::vec4>& x = positions();
+  const std::span<const glm::vec4> x = positions();
   std::vector<glm::vec4>& node_motion = constraints_.node_motion;
   std::vector<std::uint32_t> strays;
   std::vector<float> reach;

@@ -81,21 +81,21 @@ class ContactResponse {
   /// reports it with its own check (World::run_response).
   [[noreturn]] void unstable(std::uint32_t node, const char* what) const;
   /// The nodes' velocities now (the CPU state's, or read back from GL).
-  [[nodiscard]] const std::vector<glm::vec4>& velocities();
+  [[nodiscard]] std::span<const glm::vec4> velocities();
   /// The nodes' positions now (the CPU state's, or read back from GL).
-  [[nodiscard]] const std::vector<glm::vec4>& positions();
+  [[nodiscard]] std::span<const glm::vec4> positions();
   /// The diagonal of the box of the surface nodes' velocities v (with their bodies' carry
   /// velocities): a bound on any two surface nodes' relative speed.
-  [[nodiscard]] float relative_surface_speed(const std::vector<glm::vec4>& v) const;
+  [[nodiscard]] float relative_surface_speed(std::span<const glm::vec4> v) const;
   /// The frame's substeps for the frame's first window's constraints: the scene's, or as many
   /// as keep each pair's closing in a substep (its closing_speed x h) within substep_motion x
   /// the smallest thickness, at most kMaxSubstepFactor x the scene's.
   [[nodiscard]] int motion_bounded_substeps(const std::vector<gpu::ContactPair>& pairs) const;
   /// How many substeps a search window starting now lasts, the nodes at velocities v.
-  [[nodiscard]] int window_substeps(const std::vector<glm::vec4>& v) const;
+  [[nodiscard]] int window_substeps(std::span<const glm::vec4> v) const;
   /// Each node's path velocity and reach over a search window of `window` seconds, the nodes
   /// at velocities v.
-  [[nodiscard]] std::vector<glm::vec4> node_motion(const std::vector<glm::vec4>& v, float window);
+  [[nodiscard]] std::vector<glm::vec4> node_motion(std::span<const glm::vec4> v, float window);
   /// A new search window from the positions now.
   void search();
   /// Within the window: the nodes that strayed get twice their deviation as reach, and their
@@ -213,10 +213,9 @@ class ContactResponse {
   ResponseCounts counts_;
   std::unique_ptr<BodySleep> sleep_;  // with ResponseSettings::sleep
   std::vector<std::uint8_t> linked_;  // bodies x bodies: joined by a constraint in the frame
-  // Per body: every node fixed and no path (a fixed base): it never moves.
-  std::vector<std::uint8_t> fixed_body_;
-  /// Whether body b cannot move now (fixed_body_, or asleep): a constraint between two such
-  /// bodies has only nodes of inverse mass 0, so it never corrects anything.
+  /// Whether body b cannot move now (a fixed base, a sleeping body: the simulation's
+  /// FrozenBodies::can_move): a constraint between two such bodies has only nodes of inverse
+  /// mass 0, so it never corrects anything.
   [[nodiscard]] bool immovable(std::uint32_t body) const;
 };
 

@@ -54,7 +54,7 @@ SelfContact::SelfContact(const std::vector<gpu::ObjectInfo>& objects,
 }
 
 template <class X>
-double SelfContact::drift(std::uint32_t body, const std::vector<X>& x) {
+double SelfContact::drift(std::uint32_t body, const X& x) {
   // In double, summed in surface order: the centroids, then the rotation of the covariance's
   // polar decomposition, which takes the reference offsets to the positions' (warm-started).
   const std::vector<std::uint32_t>& surface = surface_[body];
@@ -81,8 +81,8 @@ double SelfContact::drift(std::uint32_t body, const std::vector<X>& x) {
 }
 
 template <class X>
-double SelfContact::deformation(std::uint32_t body, const std::vector<X>& x,
-                                const std::vector<glm::vec4>& node_motion, float window) const {
+double SelfContact::deformation(std::uint32_t body, const X& x,
+                                std::span<const glm::vec4> node_motion, float window) const {
   // The best rigid fit to the surface's velocities: the mean velocity, and the angular velocity
   // for which inertia x omega = angular momentum (unit masses). A turn by `turn` radians leaves
   // the straight path by at most turn^2 of the radius (for turn <= 1/2).
@@ -163,8 +163,8 @@ void SelfContact::take(const std::vector<ProximityPair>& found, const std::vecto
     if (p.mesh_a == p.mesh_b && searched[p.mesh_a] != 0u) pairs_[p.mesh_a].push_back(p);
 }
 
-bool SelfContact::holds(std::uint32_t body, const std::vector<glm::vec4>& x,
-                        const std::vector<glm::vec4>& v, float h) {
+bool SelfContact::holds(std::uint32_t body, std::span<const glm::vec4> x,
+                        std::span<const glm::vec4> v, float h) {
   return has_references(body) &&
          drift(body, x) + deformation(body, x, v, h) <= kMargin * thickness_[body];
 }

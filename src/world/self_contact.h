@@ -21,6 +21,7 @@
 // falling, thrown, spinning or at rest is searched against itself once, not once a window.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -65,8 +66,8 @@ class SelfContact {
   /// Whether body b's pairs hold from positions `x` through the next `h` seconds at velocities
   /// `v` (xyz read): the best rigid fit takes every surface vertex to within d of its
   /// reference, less what it deforms over h.
-  [[nodiscard]] bool holds(std::uint32_t body, const std::vector<glm::vec4>& x,
-                           const std::vector<glm::vec4>& v, float h);
+  [[nodiscard]] bool holds(std::uint32_t body, std::span<const glm::vec4> x,
+                           std::span<const glm::vec4> v, float h);
 
   /// Body b's pairs (indices local to the body), their distance on the references.
   [[nodiscard]] const std::vector<ProximityPair>& pairs(std::uint32_t body) const {
@@ -75,15 +76,15 @@ class SelfContact {
 
  private:
   /// The most any surface vertex of body b at positions x is from its reference under the best
-  /// rigid fit (X is glm::vec3 or glm::vec4: xyz read).
+  /// rigid fit (X indexes glm::vec3 or glm::vec4 per node: xyz read).
   template <class X>
-  [[nodiscard]] double drift(std::uint32_t body, const std::vector<X>& x);
+  [[nodiscard]] double drift(std::uint32_t body, const X& x);
   /// The most any surface vertex of body b at positions x, velocities node_motion.xyz, moves
   /// apart from the body's rigid motion over `window` seconds (infinity when the body turns by
   /// more than half a radian).
   template <class X>
-  [[nodiscard]] double deformation(std::uint32_t body, const std::vector<X>& x,
-                                   const std::vector<glm::vec4>& node_motion, float window) const;
+  [[nodiscard]] double deformation(std::uint32_t body, const X& x,
+                                   std::span<const glm::vec4> node_motion, float window) const;
 
   /// Whether body b has been searched against itself (a body without surface needs no search).
   [[nodiscard]] bool has_references(std::uint32_t body) const {

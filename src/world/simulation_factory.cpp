@@ -15,9 +15,8 @@ std::unique_ptr<sim::SimulationBackend> create_simulation(BackendKind kind, gl::
 std::unique_ptr<response::ResponseBackend> create_response(
     BackendKind kind, gl::Context* context, sim::SimulationBackend& simulation,
     std::shared_ptr<cpu::Executor> executor) {
-  // create_simulation made the GL simulation for kGl.
   if (kind == BackendKind::kGl) return make_gl_response(*context, simulation);
-  return std::make_unique<cpu::CpuContactResponse>(*simulation.host_state(), std::move(executor));
+  return std::make_unique<cpu::CpuContactResponse>(simulation, std::move(executor));
 }
 
 }  // namespace deformcd

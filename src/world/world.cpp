@@ -82,14 +82,15 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   detector_ = std::unique_ptr<Detector>(new Detector(
       Detector::Impl::create(surface_meshes(bodies, options.self_collision), detector_options,
                              choice.kind, choice.context, executor_, false)));
+  // The detector reads the nodes where the simulation keeps them, in place.
+  const sim::NodeBuffers nodes = backend_->node_buffers();
   for (std::size_t b = 0; b < objects_.size(); ++b) {
     const std::uint32_t first = objects_[b].node_offset;
-    if (choice.kind == BackendKind::kGl) {
-      detector_->set_positions(b, GlPositions{backend_->gl_position_buffer(),
-                                              first * sizeof(glm::vec4), sizeof(glm::vec4)});
-    } else {
+    if (nodes.host_positions == nullptr) {
       detector_->set_positions(
-          b, HostPositions{&backend_->host_positions()[first].x, sizeof(glm::vec4)});
+          b, GlPositions{nodes.gl_positions, first * sizeof(glm::vec4), sizeof(glm::vec4)});
+    } else {
+      detector_->set_positions(b, HostPositions{&nodes.host_positions[first].x, sizeof(glm::vec4)});
     }
   }
   // The paper's octree cuts the start pose: build the hierarchies on it.
@@ -298,7 +299,7 @@ std::string World::device() const {
   return backend_->device();
 }
 std::uint32_t World::gl_position_buffer() const {
-  return backend_->gl_position_buffer();
+  return backend_->node_buffers().gl_positions;
 }
 
 }  // namespace deformcd

@@ -13,6 +13,7 @@
 #include "core/response/contact_constraints.h"
 #include "core/response/frame_constraints.h"
 #include "cpu/cpu_contact_response.h"
+#include "cpu/cpu_simulation.h"
 #include "deformcd/error.h"
 #include "gl/contact_test_worlds.h"
 
@@ -51,7 +52,9 @@ TEST(CpuContactResponse, ALightNodeIsNotThrownOffWhereItsEdgesHeavyEndIsStopped)
   };
   std::vector<glm::vec4> v(x.size(), glm::vec4(0.0f));
   v[0].z = v[1].z = -1.0f;
-  SimulationState state = test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1);
+  cpu::CpuSimulation simulation(1);
+  simulation.upload(test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1));
+  const SimulationState& state = simulation.state();  // the response corrects it in place
   response::FrameConstraints c;
   c.pairs = {constraint(gpu::kContactEdgeEdge, {0, 1, 2, 3}),
              constraint(gpu::kContactVertexFace, {1, 4, 5, 6})};
@@ -60,7 +63,7 @@ TEST(CpuContactResponse, ALightNodeIsNotThrownOffWhereItsEdgesHeavyEndIsStopped)
   }
   c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // no stray
 
-  cpu::CpuContactResponse response(state, std::make_shared<cpu::Executor>(1));
+  cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
   response.begin_frame(c);
   response::ContactConstants k{};
   k.h = 1.0f / 960.0f;
@@ -112,7 +115,9 @@ TEST(VolumeConstraint, ACollapsedOrInvertedTetrahedronComesBackToItsFloorWithIts
     p.step_limit = kEdge;
     c.pairs.push_back(p);
   }
-  SimulationState state = test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1);
+  cpu::CpuSimulation simulation(1);
+  simulation.upload(test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1));
+  const SimulationState& state = simulation.state();  // the response corrects it in place
   c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   ASSERT_LT(volume_of(state, c.pairs[0]), 0.0f) << "the first starts inverted";
   const auto momentum = [&](const std::vector<glm::vec4>& values, int t) {
@@ -121,7 +126,7 @@ TEST(VolumeConstraint, ACollapsedOrInvertedTetrahedronComesBackToItsFloorWithIts
       sum += glm::dvec3(glm::vec3(values[4 * t + k])) / static_cast<double>(x[4 * t + k].w);
     return sum;
   };
-  cpu::CpuContactResponse response(state, std::make_shared<cpu::Executor>(1));
+  cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
   response.begin_frame(c);
   response::ContactConstants k{};
   k.h = 1e-3f;
@@ -158,7 +163,9 @@ TEST(VolumeConstraint, ATetrahedronFlattenedToALineMovesNoCornerMoreThanItsStepL
                                     {0.02f, 0.0f, 1e-6f, 1.0f},
                                     {0.03f, -1e-6f, -1e-6f, 1.0f}};
   const std::vector<glm::vec4> v(4, glm::vec4(0.0f));
-  SimulationState state = test::free_nodes(x, v, {0, 0, 0, 0}, 1);
+  cpu::CpuSimulation simulation(1);
+  simulation.upload(test::free_nodes(x, v, {0, 0, 0, 0}, 1));
+  const SimulationState& state = simulation.state();  // the response corrects it in place
   response::FrameConstraints c;
   gpu::ContactPair p{};
   for (std::uint32_t k = 0; k < 4u; ++k)
@@ -169,7 +176,7 @@ TEST(VolumeConstraint, ATetrahedronFlattenedToALineMovesNoCornerMoreThanItsStepL
   p.step_limit = 0.002f;
   c.pairs = {p};
   c.node_motion.assign(4, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-  cpu::CpuContactResponse response(state, std::make_shared<cpu::Executor>(1));
+  cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
   response.begin_frame(c);
   response::ContactConstants k{};
   k.h = 1e-3f;
@@ -187,10 +194,12 @@ TEST(VolumeConstraint, ATetrahedronFlattenedToALineMovesNoCornerMoreThanItsStepL
 TEST(VolumeConstraint, OneAndEightThreadsGiveTheSameBits) {
   const tbb::global_control allow_eight(tbb::global_control::max_allowed_parallelism, 8);
   const test::RandomContacts set = test::random_contacts(21, 2000, 8000, 4000);
-  std::vector<SimulationState> states(2, set.world);
+  std::vector<std::unique_ptr<cpu::CpuSimulation>> simulations;
   const int threads[2] = {1, 8};
   for (int r = 0; r < 2; ++r) {
-    cpu::CpuContactResponse response(states[r], std::make_shared<cpu::Executor>(threads[r]));
+    simulations.push_back(std::make_unique<cpu::CpuSimulation>(threads[r]));
+    simulations[r]->upload(set.world);
+    cpu::CpuContactResponse response(*simulations[r], std::make_shared<cpu::Executor>(threads[r]));
     response.begin_frame(set.constraints);
     response::ContactConstants k{};
     k.h = 1e-3f;
@@ -202,9 +211,11 @@ TEST(VolumeConstraint, OneAndEightThreadsGiveTheSameBits) {
       (void)response.project(k, 8);
     }
   }
-  EXPECT_EQ(test::bitwise_differences(states[0].positions, states[1].positions), 0u);
-  EXPECT_EQ(test::bitwise_differences(states[0].velocities, states[1].velocities), 0u);
-  EXPECT_GT(test::bitwise_differences(states[0].positions, set.world.positions), 1000u)
+  const SimulationState& one = simulations[0]->state();
+  const SimulationState& eight = simulations[1]->state();
+  EXPECT_EQ(test::bitwise_differences(one.positions, eight.positions), 0u);
+  EXPECT_EQ(test::bitwise_differences(one.velocities, eight.velocities), 0u);
+  EXPECT_GT(test::bitwise_differences(one.positions, set.world.positions), 1000u)
       << "the projections should move the nodes";
 }
 

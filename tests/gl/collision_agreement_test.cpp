@@ -216,23 +216,21 @@ TEST_F(CollisionBackendSelf, GlEqualsCpuOnTheFoldingPlate) {
 
 class ProximityAgreement : public test_support::GlTest {};
 
-// The GL proximity search (gpu/gl/gl_proximity.h) over the GL collision's trees, on the
-// simulation's positions read in place (prepare_proximity), gives CpuProximity::find's list
+// The GL backend's proximity phase (GlCollision::find_proximity) over its trees, on the
+// simulation's positions read in place, gives the host search's list over the same trees
 // exactly on phase 1's models (thousands of faces) before, in and after contact, each vertex
 // moving along its velocity over a frame, with a contact response's reaches (a few mm) and
 // longer ones, varying from vertex to vertex.
 TEST_F(ProximityAgreement, GlEqualsCpuThroughPhase1) {
   constexpr int kFrames = 12;
   SceneReplay replay(context(), "phase1", kFrames);
-  GlProximity gl(context(), replay.fixture.data);
-  cpu::CpuProximity cpu(replay.fixture.data, std::make_shared<cpu::Executor>(2));
+  test::HostProximity cpu(replay.fixture.data, replay.fixture.vertices());
   const std::vector<std::uint32_t> pairs = collision::searched_mesh_pairs(replay.fixture.data, {});
   std::size_t longest = 0;
   std::size_t compared = 0;
   for (int f = 0; f <= kFrames; ++f) {
     if (f > 0) replay.step();
     if (f % 3 != 0) continue;
-    const ProximityRefitOrder order = replay.gl_collision.prepare_proximity();
     // Each node's motion over the next frame: its velocity x dt.
     std::vector<glm::vec3> motion;
     for (const glm::vec4& v : replay.cpu_sim.state().velocities)
@@ -246,10 +244,11 @@ TEST_F(ProximityAgreement, GlEqualsCpuThroughPhase1) {
           lists.motion = motion;
           lists.repoint();
         }
-        const std::vector<collision::ProximityCandidate> expected =
-            cpu.find(replay.fixture.vertices(), lists.cpu_motion(), lists.cpu_reach(), pairs);
-        const std::vector<collision::ProximityCandidate> found =
-            gl.find_bound(order, lists.reach, lists.motion, pairs);
+        const std::vector<collision::ProximityCandidate> expected = cpu.search.find(
+            replay.fixture.vertices(), lists.cpu_motion(), lists.cpu_reach(), pairs);
+        std::vector<float> distances;
+        const std::vector<collision::ProximityCandidate> found = replay.gl_collision.find_proximity(
+            lists.query(replay.fixture.vertices(), pairs), distances);
         const std::string where = "frame " + std::to_string(f) + ", reach " +
                                   std::to_string(reach[0]) + (moving ? ", moving" : "");
         EXPECT_EQ(found.size(), expected.size()) << where;

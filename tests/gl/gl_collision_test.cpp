@@ -96,7 +96,7 @@ TEST_F(GlCollisionTest, LeafBoxesFollowASimulationsBufferReadInPlace) {
   simulation.upload(world);
   test::GlBackend gl(context(), bodies);
   const std::vector<collision::PositionSource> sources =
-      test::simulation_sources(simulation.gl_position_buffer(), world.objects);
+      test::simulation_sources(simulation.node_buffers().gl_positions, world.objects);
   gl.collision.set_positions(sources);
   test::run_substeps(simulation, test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}), 5);
   std::vector<glm::vec4> positions;

@@ -17,6 +17,7 @@
 
 #include "core/response/contact_constraints.h"
 #include "cpu/cpu_contact_response.h"
+#include "cpu/cpu_simulation.h"
 #include "cpu/executor.h"
 #include "deformcd/body.h"
 #include "deformcd/error.h"
@@ -44,15 +45,18 @@ constexpr int kScheduleIterations[3] = {1, 3, 8};
 constexpr int kIterations = 4;
 
 // GL and CPU side by side on one world: the GL response corrects a GlSimulation's buffers, the
-// CPU one a copy of the state.
+// CPU one a CpuSimulation's state.
 struct SideBySide {
   SideBySide(Context& context, const SimulationState& world)
       : simulation(context),
         gl(context, simulation),
-        cpu_state(world),
-        cpu(cpu_state, std::make_shared<cpu::Executor>(2)) {
+        cpu_simulation(2),
+        cpu(cpu_simulation, std::make_shared<cpu::Executor>(2)) {
     simulation.upload(world);
+    cpu_simulation.upload(world);
   }
+  // What the CPU response corrects in place.
+  [[nodiscard]] const SimulationState& cpu_state() const { return cpu_simulation.state(); }
 
   void begin_frame(const FrameConstraints& c) {
     gl.begin_frame(c);
@@ -69,17 +73,17 @@ struct SideBySide {
     std::vector<glm::vec4> x, v;
     simulation.download_positions(x);
     simulation.download_velocities(v);
-    EXPECT_EQ(test::bitwise_differences(x, cpu_state.positions), 0u)
-        << where << ": positions differ by up to " << test::max_distance(x, cpu_state.positions)
-        << " m";
-    EXPECT_EQ(test::bitwise_differences(v, cpu_state.velocities), 0u)
-        << where << ": velocities differ by up to " << test::max_distance(v, cpu_state.velocities)
+    const SimulationState& c = cpu_state();
+    EXPECT_EQ(test::bitwise_differences(x, c.positions), 0u)
+        << where << ": positions differ by up to " << test::max_distance(x, c.positions) << " m";
+    EXPECT_EQ(test::bitwise_differences(v, c.velocities), 0u)
+        << where << ": velocities differ by up to " << test::max_distance(v, c.velocities)
         << " m/s";
   }
 
   GlSimulation simulation;
   GlContactResponse gl;
-  SimulationState cpu_state;
+  cpu::CpuSimulation cpu_simulation;
   cpu::CpuContactResponse cpu;
 };
 
@@ -95,7 +99,7 @@ void expect_agreement(Context& context, const SimulationState& world, const Fram
   // Not a comparison of two untouched copies: a good share of the nodes were moved.
   std::size_t moved = 0;
   for (std::size_t i = 0; i < world.node_count(); ++i)
-    moved += both.cpu_state.positions[i] != world.positions[i] ? 1 : 0;
+    moved += both.cpu_state().positions[i] != world.positions[i] ? 1 : 0;
   EXPECT_GT(moved, world.node_count() / 4) << where << ": nodes moved by the response";
 }
 
@@ -107,8 +111,10 @@ TEST_F(GlContactResponseTest, HandMadeCasesEqualTheCpuBitForBit) {
 
   // The set reaches what each scenario names: on the CPU reference after one projection, the
   // nodes of a scenario moved exactly when they should.
-  SimulationState state = set.world;
-  cpu::CpuContactResponse cpu(state, std::make_shared<cpu::Executor>(1));
+  cpu::CpuSimulation simulation(1);
+  simulation.upload(set.world);
+  const SimulationState& state = simulation.state();  // the response corrects it in place
+  cpu::CpuContactResponse cpu(simulation, std::make_shared<cpu::Executor>(1));
   cpu.begin_frame(set.constraints);
   EXPECT_TRUE(cpu.project(kPlain, kIterations))
       << "the push beyond body 1's reach should need a new search";
@@ -198,9 +204,9 @@ TEST_F(GlContactResponseTest, InsideASimulationLoopEqualsTheCpuEverySubstep) {
   const sim::SubstepConstants substep = test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f});
   both.begin_frame(c);
   for (int s = 0; s < 12; ++s) {
+    // The backends' substeps agree bit for bit (gl_simulation_test.cpp).
     both.simulation.substep(substep);
-    both.simulation.download_positions(both.cpu_state.positions);
-    both.simulation.download_velocities(both.cpu_state.velocities);
+    both.cpu_simulation.substep(substep);
     both.project(s < 6 ? kPlain : kBouncy, kIterations);
     both.expect_equal("substep " + std::to_string(s + 1));
   }

@@ -1,4 +1,5 @@
-// The GL proximity search (src/gpu/gl/gl_proximity.h) against CpuProximity::find: the same
+// The GL proximity search (src/gpu/gl/gl_proximity.h) against CpuProximity::find over the same
+// trees: the same
 // candidates, in the same order, on crossing, separate and self-colliding grids, for reaches
 // that vary from vertex to vertex, with and without motion (a drift per mesh plus a different
 // jitter per vertex), so that the swept boxes, the grown boxes and the distance filter
@@ -87,13 +88,13 @@ class GlProximityTest : public test_support::GlTest {
                                                  const std::string& where) {
     const GpuFixture gpu(f);
     GlProximity gl(context(), f.data);
-    cpu::CpuProximity cpu(f.data, std::make_shared<cpu::Executor>(2));
+    test::HostProximity cpu(f.data, f.vertices());
     const std::vector<std::uint32_t> pairs = collision::searched_mesh_pairs(f.data, {});
     std::vector<std::size_t> sizes;
     for (std::size_t i = 0; i < cases.size(); ++i) {
       const VertexLists& lists = cases[i];
       const std::vector<collision::ProximityCandidate> expected =
-          cpu.find(f.vertices(), lists.cpu_motion(), lists.cpu_reach(), pairs);
+          cpu.search.find(f.vertices(), lists.cpu_motion(), lists.cpu_reach(), pairs);
       const std::vector<collision::ProximityCandidate> found =
           gl.find(gpu.sources(), lists.reach, lists.motion, pairs);
       EXPECT_EQ(found.size(), expected.size()) << where << ", case " << i;
@@ -172,9 +173,9 @@ TEST_F(GlProximityTest, SelfProximityGivesTheCpuCandidates) {
 // of so many borders; with motion, the closing speeds move the borders by float sums.
 TEST_F(GlProximityTest, ReachesOnTheCandidatesOwnDistancesGiveTheCpuCandidates) {
   const test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids(), true);
-  cpu::CpuProximity probe(f.data, std::make_shared<cpu::Executor>(2));
+  test::HostProximity probe(f.data, f.vertices());
   const VertexLists wide = vertex_lists(f.data, std::vector<float>{0.03f, 0.03f});
-  const std::vector<collision::ProximityCandidate> all = probe.find(
+  const std::vector<collision::ProximityCandidate> all = probe.search.find(
       f.vertices(), nullptr, wide.cpu_reach(), collision::searched_mesh_pairs(f.data, {}));
   ASSERT_GT(all.size(), 1000u);
   const std::vector<glm::vec3> drift = {{0.002f, 0.0f, 0.0f}, {0.0f, -0.002f, 0.0f}};
@@ -198,10 +199,12 @@ TEST_F(GlProximityTest, ReachesOnTheCandidatesOwnDistancesGiveTheCpuCandidates) 
   EXPECT_GT(*std::max_element(sizes.begin(), sizes.end()), 0u);
 }
 
-// Plugged into a GlCollision: prepare_proximity stages its positions and binds its trees,
-// find_bound refits its own boxes over them and searches. After the grids have moved (no
-// detect() since), the list is the CPU's on the new positions, with the vertices' motions and
-// reaches changing too, and the last pass's results and boxes are left as they were.
+// The GL backend's proximity phase (GlCollision::find_proximity): it stages its positions and
+// searches over its own trees with boxes of its own. After the grids have moved (no detect()
+// since), the list is the host search's over the same trees on the new positions, with the
+// vertices' motions and reaches changing too, and the last pass's results and boxes are left
+// as they were. Widened on the host over the same trees (widen_proximity), the GL backend gives
+// the host search's widening.
 TEST_F(GlProximityTest, OverAGlCollisionsTreesGivesTheCpuCandidates) {
   test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids(), true);
   GlCollision collision(context());
@@ -212,8 +215,8 @@ TEST_F(GlProximityTest, OverAGlCollisionsTreesGivesTheCpuCandidates) {
   ASSERT_GT(before.face_pairs, 0u);
   std::vector<gpu::Box> boxes_before;
   collision.download_bvh_boxes(boxes_before);
-  GlProximity gl(context(), f.data);
-  cpu::CpuProximity cpu(f.data, std::make_shared<cpu::Executor>(2));
+  test::HostProximity cpu(f.data, f.vertices());
+  const std::vector<std::uint32_t> pairs = collision::searched_mesh_pairs(f.data, {});
   for (std::uint32_t step = 0; step < 3; ++step) {
     if (step > 0) {
       // Mesh 1 slides and every vertex jitters: the boxes must be refitted to find the pairs.
@@ -228,17 +231,32 @@ TEST_F(GlProximityTest, OverAGlCollisionsTreesGivesTheCpuCandidates) {
     }
     const std::vector<glm::vec3> drift = {{0.0f, 0.0f, 0.0f},
                                           {-0.01f * static_cast<float>(step), 0.0f, 0.0f}};
-    const VertexLists lists =
+    VertexLists lists =
         vertex_lists(f.data, std::vector<float>{0.01f, 0.02f}, drift, 0.005f, 20u + step);
-    const ProximityRefitOrder order = collision.prepare_proximity();
-    const std::vector<std::uint32_t> pairs = collision::searched_mesh_pairs(f.data, {});
+    std::vector<float> distances = {1.0f};
     const std::vector<collision::ProximityCandidate> found =
-        gl.find_bound(order, lists.reach, lists.motion, pairs);
+        collision.find_proximity(lists.query(f.vertices(), pairs), distances);
+    EXPECT_TRUE(distances.empty()) << "GL leaves the distances to the caller";
     const std::vector<collision::ProximityCandidate> expected =
-        cpu.find(f.vertices(), lists.cpu_motion(), lists.cpu_reach(), pairs);
+        cpu.search.find(f.vertices(), lists.cpu_motion(), lists.cpu_reach(), pairs);
     EXPECT_GT(expected.size(), 0u);
     EXPECT_EQ(found.size(), expected.size()) << "step " << step;
     EXPECT_TRUE(found == expected) << "step " << step;
+    // Every tenth vertex of mesh 1 reaches twice as far.
+    std::vector<std::array<std::uint32_t, 2>> widened;
+    for (std::uint32_t v = 0; v < f.data.meshes[1].vertex_count; v += 10u) {
+      widened.push_back({1u, v});
+      lists.reach[lists.first[1] + v] *= 2.0f;
+    }
+    std::vector<float> widened_distances;
+    const std::vector<collision::ProximityCandidate> found_widened =
+        collision.widen_proximity(lists.query(f.vertices(), pairs), widened, widened_distances);
+    std::vector<float> expected_distances;
+    const std::vector<collision::ProximityCandidate> expected_widened = cpu.search.widen(
+        f.vertices(), lists.cpu_motion(), lists.cpu_reach(), pairs, widened, expected_distances);
+    EXPECT_GT(expected_widened.size(), 0u) << "step " << step;
+    EXPECT_TRUE(found_widened == expected_widened) << "step " << step;
+    EXPECT_TRUE(widened_distances == expected_distances) << "step " << step;
   }
   const gpu::CollisionCounters after = collision.counters();
   EXPECT_EQ(after.face_pairs, before.face_pairs);
@@ -268,10 +286,11 @@ TEST_F(GlProximityTest, ListsOfTheWrongLengthAreRefused) {
 }
 
 // Through the public Detector: on GL, find_proximity runs the GL search over the GL backend's
-// trees and computes the distances from positions read back; its pairs equal the CPU
-// detector's field for field (order and distances included), with a reach per vertex or per
-// mesh, with and without motion, with positions in host arrays and in a GL buffer, after the
-// positions move without a detect(), and the GL detector's contacts are not disturbed.
+// trees and computes the distances from positions read back; its pairs, and a widening's,
+// equal the CPU detector's field for field (order and distances included), with a reach per
+// vertex or per mesh, with and without motion, with positions in host arrays and in a GL
+// buffer, after the positions move without a detect(), and the GL detector's contacts are not
+// disturbed.
 TEST_F(GlProximityTest, DetectorOnGlEqualsTheCpuDetector) {
   test::CollisionFixture f = test::collision_fixture(test::two_crossing_grids(), true);
   const std::vector<CollisionMesh> meshes = test::surface_meshes(test::two_crossing_grids(), true);
@@ -291,6 +310,7 @@ TEST_F(GlProximityTest, DetectorOnGlEqualsTheCpuDetector) {
     cpu_detector.set_positions(m, std::span<const glm::vec3>(host[m]));
   }
   const std::vector<glm::vec3> drift = {{0.004f, 0.0f, 0.0f}, {-0.006f, 0.002f, 0.0f}};
+  const auto moving_vertex_count = static_cast<std::uint32_t>(all.size());
   const auto expect_same = [&](const std::vector<float>& reach,
                                const std::vector<glm::vec3>& motion, const std::string& where) {
     const std::vector<ProximityPair> expected = cpu_detector.find_proximity(reach, motion);
@@ -298,6 +318,14 @@ TEST_F(GlProximityTest, DetectorOnGlEqualsTheCpuDetector) {
     EXPECT_GT(expected.size(), 0u) << where;
     EXPECT_EQ(found.size(), expected.size()) << where;
     EXPECT_TRUE(found == expected) << where;
+    // Every seventh vertex (over both meshes) reaching 3 cm: the widenings agree too.
+    std::vector<std::uint32_t> vertices;
+    for (std::uint32_t v = 0; v < moving_vertex_count; v += 7u)
+      vertices.push_back(v);
+    const std::vector<float> raised(vertices.size(), 0.03f);
+    const std::vector<ProximityPair> widened = cpu_detector.widen_proximity(vertices, raised);
+    EXPECT_GT(widened.size(), 0u) << where;
+    EXPECT_TRUE(gl_detector.widen_proximity(vertices, raised) == widened) << where;
   };
   const VertexLists moving =
       vertex_lists(f.data, std::vector<float>{0.01f, 0.015f}, drift, 0.003f, 3u);

@@ -37,7 +37,7 @@ TEST_F(GlSimulationErrorsTest, UseBeforeUploadIsAnError) {
   EXPECT_THROW(gl.substep(test::substep_constants(1e-3f)), Error);
   EXPECT_THROW(gl.download_positions(out), Error);
   EXPECT_THROW(gl.download_velocities(out), Error);
-  EXPECT_EQ(gl.gl_position_buffer(), 0u);
+  EXPECT_EQ(gl.node_buffers().gl_positions, 0u);
 }
 
 // upload() compares every buffer with the limit before allocating: the spring edges (16 bytes
@@ -100,7 +100,7 @@ TEST_F(GlSimulationErrorsTest, PositionBufferHoldsThePositions) {
   GlSimulation gl(context());
   gl.upload(world);
   gl.substep(test::substep_constants(1e-3f, {0.0f, -9.81f, 0.0f}));
-  const std::uint32_t name = gl.gl_position_buffer();
+  const std::uint32_t name = gl.node_buffers().gl_positions;
   ASSERT_NE(name, 0u);
   ASSERT_TRUE(glIsBuffer(name));
 

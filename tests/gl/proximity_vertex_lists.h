@@ -1,17 +1,22 @@
 #pragma once
 // Per-vertex reaches and motions for the proximity tests, in the two shapes the searches take
 // them: flat lists over every mesh's vertices, mesh 0's first (GlProximity, Detector), and
-// per-mesh views into them (CpuProximity).
+// per-mesh views into them (CpuProximity); and the host search over a fixture's own trees.
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "core/collision/bvh_upkeep.h"
+#include "core/collision/collision_backend.h"
 #include "core/collision/collision_data.h"
 #include "core/collision/proximity.h"
 #include "core/collision/vertex_positions.h"
+#include "cpu/cpu_proximity.h"
+#include "cpu/executor.h"
 #include "gl/sim_test_worlds.h"
 
 namespace deformcd::test {
@@ -54,6 +59,16 @@ class VertexLists {
   [[nodiscard]] collision::VertexPositions cpu_motion() const {
     return motion_of_.empty() ? nullptr : motion_of_.data();
   }
+  /// A backend's query on `positions` over `mesh_pairs`, with these lists.
+  [[nodiscard]] collision::ProximityQuery query(collision::VertexPositions positions,
+                                                std::span<const std::uint32_t> mesh_pairs) const {
+    return {.positions = positions,
+            .motion = cpu_motion(),
+            .reach = cpu_reach(),
+            .flat_motion = motion,
+            .flat_reach = reach,
+            .mesh_pairs = mesh_pairs};
+  }
 
  private:
   std::vector<const float*> reach_of_;              // per mesh, into `reach`
@@ -81,5 +96,27 @@ inline VertexLists vertex_lists(const collision::CollisionData& data, std::span<
   out.repoint();
   return out;
 }
+
+/// `data`'s trees (as a fixture uploads them to the GPU), fitted to `pose`.
+inline collision::BvhUpkeep fitted_trees(const collision::CollisionData& data,
+                                         collision::VertexPositions pose) {
+  collision::BvhUpkeep trees;
+  trees.reset(data, pose);
+  return trees;
+}
+
+/// The host search over a fixture's own trees: the list the GL search over the same trees
+/// must give, in the same order.
+struct HostProximity {
+  HostProximity(const collision::CollisionData& data, collision::VertexPositions pose)
+      : trees(fitted_trees(data, pose)),
+        search(trees, data.mesh_pairs, std::make_shared<cpu::Executor>(2)) {}
+  HostProximity(const HostProximity&) = delete;
+  HostProximity& operator=(const HostProximity&) = delete;
+  ~HostProximity() = default;
+
+  collision::BvhUpkeep trees;
+  cpu::CpuProximity search;
+};
 
 }  // namespace deformcd::test

@@ -783,7 +783,7 @@ std::uint64_t impact_searches(int every, int first, int frames) {
   ContactResponse response(*scene.response, bodies, state, step, *simulation, std::move(backend),
                            executor, false);
   Detector detector(test::surface_meshes(bodies), {.backend = BackendKind::kCpu, .threads = 2});
-  const std::vector<glm::vec4>& x = simulation->host_state()->positions;
+  const glm::vec4* x = simulation->node_buffers().host_positions;
   for (std::size_t b = 0; b < bodies.size(); ++b)
     detector.set_positions(b, HostPositions{&x[state.objects[b].node_offset].x, sizeof(glm::vec4)});
   const float h = step.dt / static_cast<float>(step.substeps);

@@ -1,11 +1,22 @@
 #include "core/collision/bvh_upkeep.h"
 
 #include <algorithm>
+#include <atomic>
 #include <string>
 
 #include "deformcd/error.h"
 
 namespace deformcd::collision {
+
+namespace {
+
+// A new generation stamp, unique in the process (1, 2, ...).
+std::uint64_t next_generation() {
+  static std::atomic<std::uint64_t> last{0};
+  return last.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
+}  // namespace
 
 void BvhUpkeep::reset(const CollisionData& data, VertexPositions pose) {
   faces_ = data.faces;
@@ -13,6 +24,7 @@ void BvhUpkeep::reset(const CollisionData& data, VertexPositions pose) {
   nodes_ = data.bvh_nodes;
   trees_ = data.mesh_bvhs;
   rebuilds_ = 0;
+  generation_ = next_generation();
   std::vector<gpu::Box> boxes(nodes_.size());
   built_ratio_.assign(trees_.size(), 0.0);
   for (std::uint32_t m = 0; m < trees_.size(); ++m) {
@@ -45,6 +57,7 @@ void BvhUpkeep::rebuild(std::uint32_t mesh, VertexPositions positions,
   refit_bvh(nodes_, t.root, t.node_count, positions, faces_, boxes);
   built_ratio_[mesh] = area_ratio(mesh, boxes);
   ++rebuilds_;
+  generation_ = next_generation();
 }
 
 }  // namespace deformcd::collision

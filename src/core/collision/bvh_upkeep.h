@@ -41,6 +41,13 @@ class BvhUpkeep {
   [[nodiscard]] double built_ratio(std::uint32_t mesh) const { return built_ratio_[mesh]; }
   /// Trees rebuilt since reset.
   [[nodiscard]] std::uint64_t rebuilds() const { return rebuilds_; }
+  /// Changes whenever the topology does (reset, rebuild), and differs between any two
+  /// topologies of any BvhUpkeep of the process: whoever keeps boxes per node (a proximity
+  /// search's swept boxes) knows from it whether they still fit the nodes.
+  [[nodiscard]] std::uint64_t generation() const { return generation_; }
+  /// The faces and meshes the trees are over (CollisionData's, as reset took them).
+  [[nodiscard]] const std::vector<gpu::Face>& faces() const { return faces_; }
+  [[nodiscard]] const std::vector<gpu::MeshInfo>& meshes() const { return meshes_; }
 
  private:
   std::vector<gpu::Face> faces_;
@@ -49,6 +56,7 @@ class BvhUpkeep {
   std::vector<gpu::BodyBvh> trees_;
   std::vector<double> built_ratio_;
   std::uint64_t rebuilds_ = 0;
+  std::uint64_t generation_ = 0;  // 0: no trees yet
 };
 
 }  // namespace deformcd::collision

@@ -122,11 +122,15 @@ void build_hierarchies(CollisionData& data, VertexPositions pose) {
   }
 }
 
-std::vector<std::uint32_t> vertex_firsts(const CollisionData& data) {
-  std::vector<std::uint32_t> first(data.mesh_count() + 1u, 0u);
-  for (std::size_t m = 0; m < data.mesh_count(); ++m)
-    first[m + 1u] = first[m] + data.meshes[m].vertex_count;
+std::vector<std::uint32_t> vertex_firsts(const std::vector<gpu::MeshInfo>& meshes) {
+  std::vector<std::uint32_t> first(meshes.size() + 1u, 0u);
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+    first[m + 1u] = first[m] + meshes[m].vertex_count;
   return first;
+}
+
+std::vector<std::uint32_t> vertex_firsts(const CollisionData& data) {
+  return vertex_firsts(data.meshes);
 }
 
 std::vector<std::uint32_t> searched_mesh_pairs(const CollisionData& data,

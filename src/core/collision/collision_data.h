@@ -43,6 +43,7 @@ struct CollisionData {
 
 /// Where each mesh's vertices start in the per-vertex arrays of a proximity search (every
 /// mesh's vertices, mesh after mesh), then their total: mesh_count() + 1 entries.
+[[nodiscard]] std::vector<std::uint32_t> vertex_firsts(const std::vector<gpu::MeshInfo>& meshes);
 [[nodiscard]] std::vector<std::uint32_t> vertex_firsts(const CollisionData& data);
 
 /// The mesh pairs a proximity search looks at (indices into data.mesh_pairs, ascending): every

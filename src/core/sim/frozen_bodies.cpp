@@ -28,13 +28,13 @@ FrozenBodies::FrozenBodies(const SimulationState& state) : node_body_(state.node
   still_.resize(bodies);
   until_frozen_.assign(bodies, 0u);
   for (std::uint32_t b = 0; b < bodies; ++b) {
-    still_[b] = can_move(b) ? 0u : 1u;
+    still_[b] = movable(b) ? 0u : 1u;
     if (still_[b] != 0u) until_frozen_[b] = 2u;  // the first substep zeroes its velocities
   }
   frozen_.assign(bodies, 0u);
 }
 
-bool FrozenBodies::can_move(std::uint32_t body) const {
+bool FrozenBodies::movable(std::uint32_t body) const {
   if (carried_[body] != 0u) return true;
   for (std::uint32_t i = first_node_[body]; i < first_node_[body] + node_count_[body]; ++i)
     if (node_body_[i] == body && inverse_mass_[i] > 0.0f) return true;
@@ -50,7 +50,7 @@ bool FrozenBodies::set_inverse_masses(std::uint32_t first, std::span<const float
   }
   bool thawed = false;
   for (const std::uint32_t b : touched) {
-    still_[b] = can_move(b) ? 0u : 1u;
+    still_[b] = movable(b) ? 0u : 1u;
     if (still_[b] == 0u) {
       thawed = thawed || frozen_[b] != 0u;
       frozen_[b] = 0u;

@@ -35,10 +35,15 @@ class FrozenBodies {
   /// Per body: 1 when substeps skip it, else 0.
   [[nodiscard]] const std::vector<std::uint8_t>& frozen() const { return frozen_; }
   [[nodiscard]] bool frozen(std::uint32_t body) const { return frozen_[body] != 0u; }
+  /// Whether body b can move now: a node of it has an inverse mass above 0, or a path carries
+  /// it. The one definition the substeps (which skip the others once frozen), sleeping (which
+  /// holds a body still by its nodes' inverse masses) and the contact response (whose
+  /// constraints between two bodies that cannot move would correct nothing) share.
+  [[nodiscard]] bool can_move(std::uint32_t body) const { return still_[body] == 0u; }
 
  private:
-  /// Whether body b can move: a node of it has an inverse mass above 0, or a path carries it.
-  [[nodiscard]] bool can_move(std::uint32_t body) const;
+  /// can_move(b) measured on the inverse masses now.
+  [[nodiscard]] bool movable(std::uint32_t body) const;
 
   std::vector<float> inverse_mass_;                     // per node
   std::vector<std::uint32_t> node_body_;                // per node

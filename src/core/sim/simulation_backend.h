@@ -11,10 +11,24 @@
 
 #include <glm/vec4.hpp>
 
+#include "core/sim/frozen_bodies.h"
 #include "core/sim/mass_spring.h"
 #include "deformcd/simulation_state.h"
 
 namespace deformcd::sim {
+
+/// Where a simulation keeps its nodes' positions and velocities (glm::vec4 per node, in node
+/// order; a position's w is the node's inverse mass), for the stages that read them in place (a
+/// detector, a renderer) or correct them between substeps (a contact response): arrays in host
+/// memory (the CPU backend; they stay where they are after upload) or GL buffers (the GL
+/// backend; an upload replaces them: ask again after one). All empty before upload.
+struct NodeBuffers {
+  std::uint32_t node_count = 0;
+  glm::vec4* host_positions = nullptr;   ///< the CPU backend's, else null
+  glm::vec4* host_velocities = nullptr;  ///< the CPU backend's, else null
+  std::uint32_t gl_positions = 0;        ///< GL buffer name (the GL backend's), else 0
+  std::uint32_t gl_velocities = 0;       ///< GL buffer name (the GL backend's), else 0
+};
 
 /// Throws Error unless nodes [first, first + count) lie within a state of `node_count` nodes.
 void check_node_range(std::uint32_t first, std::size_t count, std::size_t node_count);
@@ -45,18 +59,11 @@ class SimulationBackend {
   /// zeroes their velocities; their positions stay. A sleeping body's nodes are held so, and
   /// given their masses back when it wakes. Throws Error when the range is outside the state.
   virtual void set_inverse_masses(std::uint32_t first, std::span<const float> inverse_mass) = 0;
+  /// Which bodies can move (FrozenBodies::can_move) and which the substeps skip.
+  [[nodiscard]] virtual const FrozenBodies& frozen_bodies() const = 0;
 
-  /// GL buffer name of the node positions, or 0 when the backend is not GL.
-  [[nodiscard]] virtual std::uint32_t gl_position_buffer() const { return 0; }
-  /// The node positions in host memory (vec4 per node), where a CPU backend steps them in
-  /// place (they do not move after upload), or null when the backend is not the CPU.
-  [[nodiscard]] virtual const glm::vec4* host_positions() const { return nullptr; }
-  /// GL buffer name of the node velocities, or 0 when the backend is not GL.
-  [[nodiscard]] virtual std::uint32_t gl_velocity_buffer() const { return 0; }
-  /// The state a CPU backend steps, whose positions and velocities (vec4 per node, in node
-  /// order) stay valid between substeps, so that a contact response can correct them in
-  /// place; null when the backend is not the CPU.
-  [[nodiscard]] virtual SimulationState* host_state() { return nullptr; }
+  /// The nodes' positions and velocities where this backend keeps them (NodeBuffers).
+  [[nodiscard]] virtual NodeBuffers node_buffers() = 0;
 
  protected:
   SimulationBackend() = default;

@@ -9,6 +9,8 @@
 #include <utility>
 
 #include "core/collision/broad_phase.h"
+#include "cpu/cpu_proximity.h"
+#include "cpu/executor.h"
 #include "deformcd/error.h"
 #include "gpu/gl/buffer_from.h"
 #include "gpu/gl/buffer_limit.h"
@@ -57,11 +59,14 @@ std::uint32_t largest_row_count(const std::vector<glm::uvec2>& box_rows) {
 
 }  // namespace
 
-GlCollision::GlCollision(Context& context, const GlCollisionOptions& options)
-    : GlCollision(query_device_info(context), options) {}
+GlCollision::GlCollision(Context& context, const GlCollisionOptions& options,
+                         std::shared_ptr<cpu::Executor> executor)
+    : GlCollision(query_device_info(context), options, std::move(executor)) {}
 
-GlCollision::GlCollision(const DeviceInfo& device, const GlCollisionOptions& options)
-    : device_(device_summary(device)),
+GlCollision::GlCollision(const DeviceInfo& device, const GlCollisionOptions& options,
+                         std::shared_ptr<cpu::Executor> executor)
+    : device_info_(device),
+      device_(device_summary(device)),
       max_buffer_bytes_(buffer_limit(device, options.max_buffer_bytes)),
       limit_is_device_(limit_is_device(device, options.max_buffer_bytes)),
       max_work_groups_(device.max_work_group_count),
@@ -85,7 +90,10 @@ GlCollision::GlCollision(const DeviceInfo& device, const GlCollisionOptions& opt
       vertex_check_(device.max_work_group_count[0]),
       staging_({.max_block_bytes = device.max_ssbo_block_bytes,
                 .max_gathered_bytes = max_buffer_bytes_,
-                .limit_name = limit_name()}) {}
+                .limit_name = limit_name()}),
+      executor_(std::move(executor)) {}
+
+GlCollision::~GlCollision() = default;
 
 void GlCollision::upload(const collision::CollisionData& data) {
   // Everything is checked before the first allocation, so a failed upload keeps the old state.
@@ -170,6 +178,10 @@ void GlCollision::upload(const collision::CollisionData& data) {
   upkeep_ = std::move(upkeep);
   upkeep_pending_.reset();
   if (!positions_known) upkeep_pending_.emplace(data);
+  mesh_pairs_ = data.mesh_pairs;
+  // The searches' per-face and per-pair tables are the old data's.
+  proximity_.reset();
+  host_proximity_.reset();
 }
 
 void GlCollision::set_positions(const std::vector<collision::PositionSource>& sources) {

@@ -41,6 +41,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -57,6 +58,11 @@
 #include "gpu/gl/gl_position_staging.h"
 #include "gpu/gl/gl_proximity.h"
 #include "gpu/gl/gl_vertex_check.h"
+
+namespace deformcd::cpu {
+class CpuProximity;
+class Executor;
+}  // namespace deformcd::cpu
 
 namespace deformcd::gl {
 
@@ -89,7 +95,13 @@ class GlCollision final : public collision::CollisionBackend {
   // Makes `context` current and compiles the shaders (GlError if that fails). The context must
   // outlive this object and be current on the calling thread for every call, destruction
   // included. Throws Error when options.mask_slots or options.bvh_check_interval is 0.
-  explicit GlCollision(Context& context, const GlCollisionOptions& options = {});
+  // `executor`: the host threads a widened proximity search runs on (null: every core, made
+  // when first needed).
+  explicit GlCollision(Context& context, const GlCollisionOptions& options = {},
+                       std::shared_ptr<cpu::Executor> executor = nullptr);
+  ~GlCollision() override;
+  GlCollision(const GlCollision&) = delete;
+  GlCollision& operator=(const GlCollision&) = delete;
 
   [[nodiscard]] std::string_view name() const override { return "gl"; }
   // Renderer, GL version and EGL platform.
@@ -132,6 +144,15 @@ class GlCollision final : public collision::CollisionBackend {
   void download_face_pairs(std::vector<gpu::FacePair>& out) override;
   void download_face_flags(std::vector<std::uint32_t>& out) override;
   void download_boxes(std::vector<gpu::Box>& out) override;
+  // On the GPU (gl_proximity.h, made by the first search) over this backend's trees and
+  // positions, staged as a pass stages them: completes the last pass first (its results stay).
+  // Waits for the GPU; leaves `distances` empty (the caller measures them on the host).
+  [[nodiscard]] std::vector<collision::ProximityCandidate> find_proximity(
+      const collision::ProximityQuery& query, std::vector<float>& distances) override;
+  // On the host (cpu::CpuProximity), over the host copy of this backend's trees.
+  [[nodiscard]] std::vector<collision::ProximityCandidate> widen_proximity(
+      const collision::ProximityQuery& query, std::span<const std::array<std::uint32_t, 2>> widened,
+      std::vector<float>& distances) override;
   // SSBO 5 and SSBO 10 (0 before upload()).
   [[nodiscard]] std::uint32_t gl_face_flag_buffer() const override;
   [[nodiscard]] std::uint32_t gl_face_pair_buffer() const override;
@@ -150,14 +171,15 @@ class GlCollision final : public collision::CollisionBackend {
   [[nodiscard]] std::uint64_t bvh_rebuilds() const { return upkeep_.rebuilds(); }
   // Whether the last detect() read the caller's buffer in place (no gathering copy).
   [[nodiscard]] bool positions_in_place() const;
+
+ private:
+  GlCollision(const DeviceInfo& device, const GlCollisionOptions& options,
+              std::shared_ptr<cpu::Executor> executor);
   // For a proximity search (gl_proximity.h) on the current positions: completes the last pass,
   // stages the positions and leaves bound what GlProximity::find_bound reads (SSBOs 0, 7, 8,
   // 25, 27); returns the trees' refit order for the search's own boxes. The last pass's results
   // and boxes stay as they are. Throws as detect() does (gl_collision_proximity.cpp).
   [[nodiscard]] ProximityRefitOrder prepare_proximity();
-
- private:
-  GlCollision(const DeviceInfo& device, const GlCollisionOptions& options);
   CollisionBuffers& buffers(const char* operation);
   [[nodiscard]] std::string limit_name() const;
   [[nodiscard]] CollisionCapacities initial_capacities(const collision::CollisionData& data) const;
@@ -207,6 +229,7 @@ class GlCollision final : public collision::CollisionBackend {
   // The largest element count of a buffer of `element_bytes` under the limit.
   [[nodiscard]] std::uint64_t most_elements(std::uint64_t element_bytes) const;
 
+  DeviceInfo device_info_;
   std::string device_;
   std::uint64_t max_buffer_bytes_ = 0;
   bool limit_is_device_ = true;  // whether max_buffer_bytes_ is the device's, for messages
@@ -234,6 +257,10 @@ class GlCollision final : public collision::CollisionBackend {
   std::optional<CollisionBuffers> buffers_;  // after upload()
   collision::BvhUpkeep upkeep_;
   std::optional<collision::CollisionData> upkeep_pending_;  // reset at the next detect()
+  std::vector<gpu::BodyPair> mesh_pairs_;                   // the data's
+  std::shared_ptr<cpu::Executor> executor_;                 // for widen_proximity
+  std::unique_ptr<GlProximity> proximity_;                  // made by the first search
+  std::unique_ptr<cpu::CpuProximity> host_proximity_;       // made by the first widening
   std::uint32_t bvh_passes_ = 0;                // completed bvh passes since the last check
   BroadPhase last_method_ = BroadPhase::kNone;  // what complete_pass reruns
   bool pass_pending_ = false;                   // detect() ran, complete_pass() did not since

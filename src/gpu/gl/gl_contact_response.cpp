@@ -11,10 +11,16 @@
 #include "gpu/gl/buffer_from.h"
 #include "gpu/gl/buffer_limit.h"
 #include "gpu/gl/contact_upload_checks.h"
+#include "gpu/gl/gl_check.h"
 
 namespace deformcd::gl {
 
 namespace {
+
+// Binds GL buffer `buffer` whole at shader storage binding `binding`.
+void bind_buffer(gpu::Binding binding, std::uint32_t buffer) {
+  DEFORMCD_GL_CHECK(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer));
+}
 
 constexpr std::string_view kOwner = "GL contact response";
 
@@ -48,11 +54,11 @@ void adopt(std::optional<Ssbo<T>>& buffer, std::optional<Ssbo<T>>& grown) {
 
 }  // namespace
 
-GlContactResponse::GlContactResponse(Context& context, GlSimulation& simulation,
+GlContactResponse::GlContactResponse(Context& context, sim::SimulationBackend& simulation,
                                      const GlContactResponseOptions& options)
     : GlContactResponse(query_device_info(context), simulation, options) {}
 
-GlContactResponse::GlContactResponse(const DeviceInfo& device, GlSimulation& simulation,
+GlContactResponse::GlContactResponse(const DeviceInfo& device, sim::SimulationBackend& simulation,
                                      const GlContactResponseOptions& options)
     : simulation_(simulation),
       max_buffer_bytes_(buffer_limit(device, options.max_buffer_bytes)),
@@ -77,7 +83,7 @@ void GlContactResponse::update_frame(const response::FrameConstraints& constrain
 void GlContactResponse::upload(const response::FrameConstraints& constraints, bool keep_positions) {
   // Everything is checked, and every buffer that must grow allocated, before the first change:
   // a failure keeps the previous frame's constraints.
-  const SimulationBuffers& sim = simulation_.state_buffers();
+  const sim::NodeBuffers sim = gl_nodes(keep_positions ? "update_frame" : "begin_frame");
   const std::size_t first_volume = check_constraints_fit(constraints, sim.node_count);
   const response::NodeContactLists lists =
       response::index_constraints_by_node(sim.node_count, constraints.pairs);
@@ -125,7 +131,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   pair_count_ = static_cast<std::uint32_t>(pairs);
   first_volume_ = static_cast<std::uint32_t>(first_volume);
   node_count_ = sim.node_count;
-  frame_positions_ = sim.positions.name();
+  frame_positions_ = sim.gl_positions;
   activity_.set_uniform("u_pair_count", pair_count_);
   count_.set_uniform("u_node_count", node_count_);
   count_.set_uniform("u_first_volume", first_volume_);
@@ -134,7 +140,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   frame_start_.set_uniform("u_keep_positions", keep_positions ? 1u : 0u);
   deviation_.set_uniform("u_node_count", node_count_);
 
-  sim.positions.bind(gpu::kNodePosition);
+  bind_buffer(gpu::kNodePosition, sim.gl_positions);
   buffers_.node_motion->bind(gpu::kNodeMotion);
   buffers_.frame_start->bind(gpu::kFrameStart);
   frame_start_.dispatch_covering(node_count_);
@@ -143,13 +149,23 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   frame_ready_ = true;
 }
 
+sim::NodeBuffers GlContactResponse::gl_nodes(const char* caller) const {
+  const sim::NodeBuffers nodes = simulation_.node_buffers();
+  if (nodes.gl_positions == 0 || nodes.gl_velocities == 0) {
+    throw Error(std::string("GlContactResponse::") + caller +
+                ": the simulation keeps no nodes in GL buffers (not uploaded yet, or not a GL "
+                "simulation)");
+  }
+  return nodes;
+}
+
 void GlContactResponse::check_frame(const char* caller) const {
   if (!frame_ready_)
     throw Error(std::string("GlContactResponse::") + caller + " before begin_frame()");
-  const SimulationBuffers& sim = simulation_.state_buffers();
+  const sim::NodeBuffers sim = gl_nodes(caller);
   // A new upload allocates new buffers before releasing the old ones, so its positions buffer
   // has another name, and the frame starts recorded from the old one do not apply.
-  if (sim.node_count != node_count_ || sim.positions.name() != frame_positions_) {
+  if (sim.node_count != node_count_ || sim.gl_positions != frame_positions_) {
     throw Error(std::string("GlContactResponse::") + caller +
                 ": the simulation was uploaded again since begin_frame(); begin a frame with "
                 "constraints for its nodes first");
@@ -158,11 +174,11 @@ void GlContactResponse::check_frame(const char* caller) const {
 
 bool GlContactResponse::project(const response::ContactConstants& k, int iterations) {
   check_frame("project");
-  const SimulationBuffers& sim = simulation_.state_buffers();
+  const sim::NodeBuffers sim = simulation_.node_buffers();
   // Bound on every call: other passes (the simulation, the collision detector) may have rebound
   // the points since.
-  sim.positions.bind(gpu::kNodePosition);
-  sim.velocities.bind(gpu::kNodeVelocity);
+  bind_buffer(gpu::kNodePosition, sim.gl_positions);
+  bind_buffer(gpu::kNodeVelocity, sim.gl_velocities);
   buffers_.pairs->bind(gpu::kContactPair);
   buffers_.corrections->bind(gpu::kContactCorrection);
   buffers_.node_offset->bind(gpu::kNodeContactOffset);

@@ -28,12 +28,12 @@
 #include <glm/vec4.hpp>
 
 #include "core/response/response_backend.h"
+#include "core/sim/simulation_backend.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/device_info.h"
 #include "deformcd/gl/ssbo.h"
 #include "deformcd/gpu_layout.h"
 #include "gpu/gl/compute_program.h"
-#include "gpu/gl/gl_simulation.h"
 
 namespace deformcd::gl {
 
@@ -60,12 +60,13 @@ struct ContactBuffers {
 
 class GlContactResponse final : public response::ResponseBackend {
  public:
-  // Corrects `simulation`'s positions and velocities (SSBOs 0 and 1; SSBO 13 gives each node's
-  // body), which must outlive this. Makes `context` current and compiles the four shaders
-  // (GlError if that fails). The context must outlive this object and be current on the
-  // calling thread for every call, destruction included. The simulation may be uploaded (again)
-  // at any time before a begin_frame(); its buffers are looked up on every call.
-  GlContactResponse(Context& context, GlSimulation& simulation,
+  // Corrects the positions and velocities of `simulation` (a simulation in the same context that
+  // keeps its nodes in GL buffers: sim::NodeBuffers), which must outlive this. Makes `context`
+  // current and compiles the shaders (GlError if that fails). The context must outlive this
+  // object and be current on the calling thread for every call, destruction included. The
+  // simulation may be uploaded (again) at any time before a begin_frame(); its buffers are
+  // looked up on every call.
+  GlContactResponse(Context& context, sim::SimulationBackend& simulation,
                     const GlContactResponseOptions& options = {});
 
   // Checks the constraints against the simulation's nodes and bodies and against the buffer
@@ -84,10 +85,13 @@ class GlContactResponse final : public response::ResponseBackend {
   [[nodiscard]] std::vector<glm::vec4> download_frame_start() const;
 
  private:
-  GlContactResponse(const DeviceInfo& device, GlSimulation& simulation,
+  GlContactResponse(const DeviceInfo& device, sim::SimulationBackend& simulation,
                     const GlContactResponseOptions& options);
+  // The simulation's node buffers now; Error naming `caller` unless it keeps them in GL
+  // buffers (before its upload, or a simulation of another backend).
+  [[nodiscard]] sim::NodeBuffers gl_nodes(const char* caller) const;
 
-  GlSimulation& simulation_;
+  sim::SimulationBackend& simulation_;
   std::uint64_t max_buffer_bytes_ = 0;
   bool limit_is_device_ = true;  // whether max_buffer_bytes_ is the device's, for messages
   std::uint32_t max_work_groups_x_ = 0;

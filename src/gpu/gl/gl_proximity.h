@@ -80,6 +80,9 @@ class GlProximity {
   // `context` current and compiles the shaders (GlError if that fails, or when the work items
   // exceed one dispatch); the context must outlive this object and be current for every call.
   GlProximity(Context& context, const collision::CollisionData& data);
+  // The same on `device` (a GlCollision's, whose context is current), from `data`'s faces,
+  // meshes and mesh pairs.
+  GlProximity(const DeviceInfo& device, const collision::CollisionData& data);
 
   // The candidates on the positions `sources` hold, as CpuProximity::find gives them: each
   // vertex moving by its `motion` (m, one per vertex of every mesh, mesh 0's first; empty:
@@ -102,7 +105,6 @@ class GlProximity {
       std::span<const glm::vec3> motion, std::span<const std::uint32_t> mesh_pairs);
 
  private:
-  GlProximity(const DeviceInfo& device, const collision::CollisionData& data);
   // `vertex_first`: collision::vertex_firsts(data); `pair_first`: each mesh pair's first work
   // item, then their total. Each is made once and read twice here (a count and a buffer).
   GlProximity(const DeviceInfo& device, const collision::CollisionData& data,

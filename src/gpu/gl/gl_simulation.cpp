@@ -163,12 +163,11 @@ void GlSimulation::download_node_forces(std::vector<glm::vec4>& out) {
   out = b.node_forces.download(0, b.node_count);
 }
 
-std::uint32_t GlSimulation::gl_position_buffer() const {
-  return buffers_ ? buffers_->positions.name() : 0;
-}
-
-std::uint32_t GlSimulation::gl_velocity_buffer() const {
-  return buffers_ ? buffers_->velocities.name() : 0;
+sim::NodeBuffers GlSimulation::node_buffers() {
+  if (!buffers_) return {};
+  return {.node_count = buffers_->node_count,
+          .gl_positions = buffers_->positions.name(),
+          .gl_velocities = buffers_->velocities.name()};
 }
 
 const SimulationBuffers& GlSimulation::buffers(const char* operation) const {

@@ -88,16 +88,11 @@ class GlSimulation final : public sim::SimulationBackend {
   // The node forces (SSBO 3) of the last substep.
   void download_node_forces(std::vector<glm::vec4>& out);
 
-  // The uploaded buffers, for a stage that works on the nodes in place between substeps (the
-  // contact response, gl_contact_response.h), so that it need not hold names that a later
-  // upload() would replace: look them up on each use. Throws Error before upload().
-  [[nodiscard]] const SimulationBuffers& state_buffers() const { return buffers("state_buffers"); }
-
-  // SSBO 0's buffer name (0 before upload()).
-  [[nodiscard]] std::uint32_t gl_position_buffer() const override;
-  [[nodiscard]] std::uint32_t gl_velocity_buffer() const override;
-  // The bodies the shaders skip now (for tests).
-  [[nodiscard]] const sim::FrozenBodies& frozen_bodies() const { return frozen_; }
+  // SSBO 0 and 1's buffer names and the node count (all 0 before upload()). An upload()
+  // replaces the buffers: a stage that works on them (the contact response) looks them up on
+  // each use.
+  [[nodiscard]] sim::NodeBuffers node_buffers() override;
+  [[nodiscard]] const sim::FrozenBodies& frozen_bodies() const override { return frozen_; }
 
  private:
   GlSimulation(const DeviceInfo& device, const GlSimulationOptions& options);
