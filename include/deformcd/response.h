@@ -39,7 +39,7 @@ struct SleepSettings {
 /// Contact response parameters (a scene's `response` object; docs/simulation-and-response.md).
 struct ResponseSettings {
   /// m: the gap contacts keep between surfaces, for every body. Unset: each body's
-  /// relative_thickness x its mean surface edge length; two bodies keep the mean of theirs.
+  /// relative_thickness x its mean surface edge length; two bodies keep the thinner one's.
   std::optional<float> thickness;
   /// The thickness over the body's mean surface edge length, when thickness is unset.
   float relative_thickness = 0.2f;

@@ -153,6 +153,9 @@ class ContactResponse {
                                          const gpu::ContactPair& pair) const;
   /// Notes that a constraint of the frame joins bodies a and b (for the sleeping islands).
   void link(std::uint32_t a, std::uint32_t b);
+  /// The thickness contacts between bodies a and b keep: the thinner body's (a == b: the
+  /// body's, before self_thickness).
+  [[nodiscard]] float pair_thickness(std::uint32_t a, std::uint32_t b) const;
   /// A self-contact pair's thickness: the body's, or half the pair's distance in the pose the
   /// body was given in (its rest shape), whichever is less.
   [[nodiscard]] float self_thickness(const gpu::ContactPair& pair) const;
