@@ -51,6 +51,7 @@ class _ResponseCounts(TypedDict):
     widenings: int
     self_searches: int
     substeps: int
+    iterations: int
     asleep: int
 
 class _Census(TypedDict):

@@ -118,6 +118,7 @@ class PyWorld {
     d["widenings"] = c.widenings;
     d["self_searches"] = c.self_searches;
     d["substeps"] = c.substeps;
+    d["iterations"] = c.iterations;
     d["asleep"] = c.asleep;
     return d;
   }

@@ -173,7 +173,17 @@ void print_response(std::ostream& out, const SceneBench& b) {
                  frames
           << " (" << *fewest << "-" << *most << ")";
     }
-    out << " a frame\n";
+    out << " a frame";
+    const std::uint64_t substeps =
+        std::accumulate(r.substeps.begin(), r.substeps.end(), std::uint64_t{0});
+    if (substeps > 0) {
+      out << "; iterations "
+          << static_cast<double>(
+                 std::accumulate(r.iterations.begin(), r.iterations.end(), std::uint64_t{0})) /
+                 static_cast<double>(substeps)
+          << " a substep";
+    }
+    out << "\n";
     // The frames in contact apart: the response costs little in the others.
     const auto in_contact = static_cast<std::size_t>(
         std::count_if(r.constraints.begin(), r.constraints.end(), [](auto c) { return c > 0; }));
@@ -241,6 +251,7 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
         per_frame["response_ms"] = milliseconds(r.response_s);
         per_frame["searches"] = r.searches;
         per_frame["widenings"] = r.widenings;
+        per_frame["iterations"] = r.iterations;
         per_frame["self_searches"] = r.self_searches;
         per_frame["substeps"] = r.substeps;
         per_frame["constraints"] = r.constraints;

@@ -63,6 +63,7 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
       run.widenings.push_back(counts.widenings);
       run.self_searches.push_back(counts.self_searches);
       run.substeps.push_back(counts.substeps);
+      run.iterations.push_back(counts.iterations);
       run.constraints.push_back(counts.contact_constraints());
     }
 

@@ -43,7 +43,8 @@ struct MethodRun {
   std::vector<std::uint64_t> searches;
   std::vector<std::uint64_t> widenings;
   std::vector<std::uint64_t> self_searches;
-  std::vector<std::uint64_t> substeps;  // per frame, the response's (ResponseCounts::substeps)
+  std::vector<std::uint64_t> substeps;    // per frame, the response's (ResponseCounts::substeps)
+  std::vector<std::uint64_t> iterations;  // per frame, ResponseCounts::iterations
   /// Per frame 1..N with contact response: the contact constraints the frame ended with
   /// (ResponseCounts::contact_constraints(): proximity pairs, untangling, penetrating
   /// vertices). Empty without.

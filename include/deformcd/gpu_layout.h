@@ -270,7 +270,11 @@ struct ContactPair {
   /// kContactVolume: m, the most one projection moves a node (the tetrahedron's mean rest edge
   /// length: a tetrahedron collapsed to a line has gradients near zero). 0 for other kinds.
   float step_limit;
-  float pad1;  ///< std430 padding
+  /// 1: a projection iterates beyond the iterations asked while this constraint is still
+  /// violated (response::contact_violated); 0 for a constraint between bodies the frame's exact
+  /// pass found intersecting (taken apart over substeps), and for untangling and volume
+  /// constraints.
+  float converge;
   float pad2;  ///< std430 padding
 };
 static_assert(sizeof(ContactPair) == 48);

@@ -52,8 +52,9 @@ struct ResponseSettings {
   /// 0: the approach speed is absorbed at contact (the bodies' elasticity still makes them
   /// rebound); 1: it is given back.
   float restitution = 0.0f;
-  /// Most the untangling constraints move their nodes per substep (all iterations together),
-  /// relative to the smallest body's mean surface edge length. Small values separate
+  /// Most the untangling constraints move their nodes per substep (all iterations together; up
+  /// to 4 x in a substep whose projection iterates on, see `iterations`), relative to the
+  /// smallest body's mean surface edge length. Small values separate
   /// overlapped bodies gently but slowly, and the elastic bodies then push part of the way back
   /// between substeps: on the overlap scene 0.02 lets the intersection contour grow back by a
   /// quarter on its way to zero, 0.25 shrinks it every frame.
@@ -86,7 +87,9 @@ struct ResponseSettings {
   /// a face beside its edges), and the springs push it back every substep; on the impact scene
   /// 1 projection lets surfaces intersect in 13 of 80 frames, 8 in none. More projections
   /// converge further: resting bodies jitter less (the benchmarks log in docs/notes/,
-  /// "Accumulated corrections"), at a cost that grows with them.
+  /// "Accumulated corrections"), at a cost that grows with them. A projection runs more, up to
+  /// 4 x these, while an active contact is still deeper than half its thickness
+  /// (ResponseCounts::iterations counts them).
   int iterations = 8;
   /// Resting islands of bodies fall asleep (see SleepSettings). Unset: bodies never sleep.
   std::optional<SleepSettings> sleep;

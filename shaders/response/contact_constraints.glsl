@@ -173,6 +173,19 @@ bool contact_active(ContactPair pair, vec4 position[4]) {
   return contact_geometry(pair, x, n, b, c) && c < 0.0;
 }
 
+// kResidualShare and contact_violated, line for line: whether an active contact flagged
+// `converge` is still deeper than half its thickness after a projection's iterations (more
+// iterations are due).
+const float RESIDUAL_SHARE = 0.5;
+bool contact_violated(ContactPair pair, vec4 position[4]) {
+  if (!(pair.converge > 0.0)) return false;
+  const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
+  vec3 n = vec3(0.0);
+  float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
+  float c = 0.0;
+  return contact_geometry(pair, x, n, b, c) && c < -RESIDUAL_SHARE * pair.thickness;
+}
+
 // solve_volume, line for line: a volume constraint's corrections (the tetrahedron's collapse
 // rate cancelled, the volume below its floor restored by position alone, along the gradient,
 // mass split, no node moved more than step_limit in one iteration).

@@ -125,7 +125,7 @@ void main() {
   contact_pairs[i].closing_speed = probef(i, 7u);
   contact_pairs[i].side = probef(i, 8u);
   contact_pairs[i].step_limit = probef(i, 9u);
-  contact_pairs[i].pad1 = probef(i, 10u);
+  contact_pairs[i].converge = probef(i, 10u);
   contact_pairs[i].pad2 = probef(i, 11u);
 
   if (i == 0u) {

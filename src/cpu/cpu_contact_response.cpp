@@ -123,14 +123,15 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         active_slots_[slot_cursor_[pairs[p].nodes[corner]]++] = 4u * p + corner;
     const std::size_t split = static_cast<std::size_t>(
         std::lower_bound(acting_.begin(), acting_.end(), first_volume_) - acting_.begin());
-    for (int iteration = 0; iteration < iterations; ++iteration) {
-      // The contacts, then the volume constraints on the positions the contacts left.
+    // One Jacobi iteration: the contacts, then the volume constraints on the positions the
+    // contacts left. `last`: the friction's last-iteration rule applies (contact_constraints.h).
+    const auto iterate = [&](bool first_iteration, bool last) {
       for (std::uint32_t group = 0; group < 2u; ++group) {
         const std::size_t first = group == 0u ? 0u : split;
-        const std::size_t last = group == 0u ? split : acting_.size();
-        if (first == last) continue;
+        const std::size_t end = group == 0u ? split : acting_.size();
+        if (first == end) continue;
         parallel_for(
-            last - first,
+            end - first,
             [&](std::size_t a) {
               const std::uint32_t p = acting_[first + a];
               const gpu::ContactPair& pair = pairs[p];
@@ -141,9 +142,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
                 v[i] = nodes_.host_velocities[pair.nodes[i]];
                 count[i] = counts_[2u * pair.nodes[i] + group];
               }
-              response::solve_contact(pair, x, v, count, k, iteration == 0,
-                                      iteration + 1 == iterations, &impulses_[2u * p],
-                                      &corrections_[8u * p]);
+              response::solve_contact(pair, x, v, count, k, first_iteration, last,
+                                      &impulses_[2u * p], &corrections_[8u * p]);
             },
             256);
         // The node pass, over the nodes with an active constraint of the group (the others'
@@ -151,14 +151,38 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         parallel_for(touched_.size(), [&](std::size_t t) {
           const std::uint32_t i = touched_[t];
           const std::uint32_t begin = slot_begin_[i] + (group == 0u ? 0u : counts_[2u * i]);
-          const std::uint32_t end = begin + counts_[2u * i + group];
-          if (begin == end) return;
+          const std::uint32_t stop = begin + counts_[2u * i + group];
+          if (begin == stop) return;
           glm::vec3 dx(0.0f), dv(0.0f);
-          response::gather_correction(active_slots_.data(), begin, end, active_.data(),
+          response::gather_correction(active_slots_.data(), begin, stop, active_.data(),
                                       corrections_.data(), dx, dv);
           response::apply_correction(nodes_.host_positions[i], nodes_.host_velocities[i], dx, dv);
         });
       }
+    };
+    // Whether an active contact is still violated (contact_violated): an OR, the same whatever
+    // the order.
+    const auto violated = [&] {
+      std::atomic<bool> any{false};
+      parallel_for(
+          split,
+          [&](std::size_t a) {
+            const gpu::ContactPair& pair = pairs[acting_[a]];
+            const glm::vec4 x[4] = {
+                nodes_.host_positions[pair.nodes[0]], nodes_.host_positions[pair.nodes[1]],
+                nodes_.host_positions[pair.nodes[2]], nodes_.host_positions[pair.nodes[3]]};
+            if (response::contact_violated(pair, x)) any.store(true, std::memory_order_relaxed);
+          },
+          256);
+      return any.load();
+    };
+    for (int iteration = 0; iteration < iterations; ++iteration)
+      iterate(iteration == 0, iteration + 1 == iterations);
+    // More while the solve has not converged, to kMaxIterationFactor x the iterations asked.
+    iterations_done_ = iterations;
+    while (iterations_done_ < response::kMaxIterationFactor * iterations && violated()) {
+      iterate(false, true);
+      ++iterations_done_;
     }
     // The strays, as GL's last node pass flags them: an untouched node is where the deviation
     // pass measured it. An unwatched node never strays (its reach is infinite).

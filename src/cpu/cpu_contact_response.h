@@ -29,6 +29,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   void begin_frame(const response::FrameConstraints& constraints) override;
   void update_frame(const response::FrameConstraints& constraints) override;
   [[nodiscard]] bool project(const response::ContactConstants& constants, int iterations) override;
+  [[nodiscard]] int last_iterations() const override { return iterations_done_; }
 
  private:
   // Points at `constraints` (the caller keeps them) and sizes the per-constraint arrays.
@@ -37,7 +38,8 @@ class CpuContactResponse final : public response::ResponseBackend {
   void watch_reachable_nodes();
 
   sim::SimulationBackend& simulation_;
-  sim::NodeBuffers nodes_;  // the simulation's, as begin_frame() found them
+  int iterations_done_ = 0;  // by the last project()
+  sim::NodeBuffers nodes_;   // the simulation's, as begin_frame() found them
   std::shared_ptr<Executor> executor_;
   const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
   std::vector<glm::vec4> frame_start_;  // per node: position at the frame's start, w = reach

@@ -201,6 +201,7 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
   thinnest_ = *std::min_element(thickness_.begin(), thickness_.end());
   frame_substeps_ = step.substeps;  // until the first frame's search sets it
   linked_.assign(bodies.size() * bodies.size(), 0u);
+  intersecting_.assign(bodies.size() * bodies.size(), 0u);
   if (settings.sleep.has_value()) {
     std::vector<float> inverse_mass(state.positions.size());
     for (std::size_t i = 0; i < inverse_mass.size(); ++i)
@@ -355,6 +356,12 @@ void ContactResponse::begin_frame(Detector& detector, std::vector<Contact> inter
   tangled_ = std::make_unique<TangledPrimitives>(intersections_, objects_);
   counts_ = {};
   std::fill(linked_.begin(), linked_.end(), std::uint8_t{0});
+  std::fill(intersecting_.begin(), intersecting_.end(), std::uint8_t{0});
+  const std::size_t n = objects_.size();
+  for (const Contact& c : intersections_) {
+    intersecting_[c.a.body * n + c.b.body] = 1u;
+    intersecting_[c.b.body * n + c.a.body] = 1u;
+  }
   find_penetrations();
   search();
 }
@@ -490,6 +497,7 @@ void ContactResponse::search() {
   counts_.widenings = frame_so_far.widenings;
   counts_.self_searches = frame_so_far.self_searches;
   counts_.substeps = static_cast<std::uint64_t>(frame_substeps_);
+  counts_.iterations = frame_so_far.iterations;
   counts_.closest_distance = frame_so_far.closest_distance;  // the frame's, not the window's
   counts_.closest_thickness = frame_so_far.closest_thickness;
   // The positions now: the window's start, kept for the side each vertex-face pair's vertex
@@ -642,6 +650,8 @@ ContactResponse::ProximityConstraint ContactResponse::proximity_constraint(
   if (tangled_->holds(pair)) return out;
   pair.thickness = pair_thickness(p.mesh_a, p.mesh_b);
   if (p.mesh_a == p.mesh_b) pair.thickness = self_thickness(pair);
+  // Bodies that start the frame intersecting are taken apart over substeps (contact_violated).
+  pair.converge = intersecting_[p.mesh_a * objects_.size() + p.mesh_b] != 0u ? 0.0f : 1.0f;
   pair.gap = p.distance - pair.thickness;
   const glm::vec3 velocity[4] = {
       glm::vec3(node_motion[pair.nodes[0]]), glm::vec3(node_motion[pair.nodes[1]]),
@@ -786,6 +796,7 @@ void ContactResponse::project(float h, bool more_substeps) {
   k.max_untangle_step = max_untangle_step_ / static_cast<float>(settings_.iterations);
   ++substep_;
   const bool strayed = backend_->project(k, settings_.iterations);
+  counts_.iterations += static_cast<std::uint64_t>(backend_->last_iterations());
   if (!more_substeps) return;  // the next begin_frame() searches
   if (substep_ >= window_end_ || !self_pairs_hold(h)) {
     search();

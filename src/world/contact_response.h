@@ -216,6 +216,8 @@ class ContactResponse {
   ResponseCounts counts_;
   std::unique_ptr<BodySleep> sleep_;  // with ResponseSettings::sleep
   std::vector<std::uint8_t> linked_;  // bodies x bodies: joined by a constraint in the frame
+  /// bodies x bodies: the frame's exact pass found them intersecting (a body with itself too).
+  std::vector<std::uint8_t> intersecting_;
   /// Whether body b cannot move now (a fixed base, a sleeping body: the simulation's
   /// FrozenBodies::can_move): a constraint between two such bodies has only nodes of inverse
   /// mass 0, so it never corrects anything.

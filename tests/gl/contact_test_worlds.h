@@ -272,6 +272,9 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
     pair.kind = p % 3u;
     // Most vertex-face constraints started in front of their faces, some behind.
     if (pair.kind == gpu::kContactVertexFace) pair.side = unit(rng) < 0.8f ? 1.0f : 0.0f;
+    // Contacts iterate while violated (contact_violated), as the world sets them between bodies
+    // that do not start the frame intersecting.
+    if (pair.kind != gpu::kContactUntangle) pair.converge = 1.0f;
     pair.thickness = 0.005f + 0.03f * unit(rng);
     out.constraints.pairs.push_back(pair);
   }

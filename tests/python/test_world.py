@@ -175,6 +175,8 @@ def test_stage_times_and_response_counts(tmp_path):
         assert c["self_searches"] == 0  # no self-collision in this scene
         assert c["penetrating"] == 0  # the cubes never start inside each other
         assert c["substeps"] == scene["settings"]["substeps"]  # no substep_motion
+        # 8 iterations a projection, more where a contact is still deep (up to 4 x)
+        assert 8 * c["substeps"] <= c["iterations"] <= 32 * c["substeps"]
     times = w.last_frame_times()
     assert times["simulation_s"] > 0 and times["collision_s"] > 0 and times["response_s"] > 0
     assert max(pairs) > 0 and w.counts()["contacts"] == 0  # the response kept them apart

@@ -188,6 +188,32 @@ inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 positio
   return contact_geometry(pair, x, n, b, c) && c < 0.0f;
 }
 
+/// How deep below its thickness a contact may still be after a projection's iterations before
+/// more are due (contact_violated), as a share of the thickness.
+inline constexpr float kResidualShare = 0.5f;
+/// A projection runs at most this many times the iterations asked for.
+inline constexpr int kMaxIterationFactor = 4;
+
+/// Whether an active contact constraint is still violated by more than kResidualShare of its
+/// thickness after a projection's iterations (C < -share x thickness): the Jacobi solve has not
+/// converged there (a node in n constraints moves 1/n of what each asks), and another iteration
+/// is due. At three times the impact scene's speed with self-contact on, the bodies went
+/// through each other at their first contact after 8 iterations (and after 16) but not after 12,
+/// 24 or 32 (docs/notes/2026-12-05-self-contact-cost.md). Only constraints flagged `converge`
+/// count: the host leaves it 0 between bodies that the frame's exact pass found intersecting,
+/// which are taken apart over substeps (iterating on their deep constraints until they were out
+/// took half_overlap's bodies through each other), and for untangling and volume constraints
+/// (an untangling constraint moves at most max_untangle_step an iteration by design).
+inline bool contact_violated(const gpu::ContactPair& pair, const glm::vec4 position[4]) {
+  if (!(pair.converge > 0.0f)) return false;
+  const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
+                          glm::vec3(position[3])};
+  glm::vec3 n(0.0f);
+  float b[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  float c = 0.0f;
+  return contact_geometry(pair, x, n, b, c) && c < -kResidualShare * pair.thickness;
+}
+
 /// The solve pass of a volume constraint (kContactVolume), called by solve_contact: the
 /// tetrahedron's collapse rate (the volume's, sum of g_k . v_k) is cancelled, moving the nodes
 /// by that change x h, and the volume left below the floor (pair.thickness) is restored by

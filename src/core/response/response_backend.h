@@ -27,10 +27,14 @@ class ResponseBackend {
   virtual void update_frame(const FrameConstraints& constraints) = 0;
   /// The projection after a substep, on the current positions and velocities: the deviation,
   /// activity and count passes once, then `iterations` (>= 1) Jacobi projections of the active
-  /// constraints, each a solve and a node pass (see contact_constraints.h). Returns whether a
+  /// constraints, each a solve and a node pass (see contact_constraints.h), and more, to
+  /// kMaxIterationFactor x `iterations` in all, while an active contact is still violated
+  /// (contact_violated; the friction's last-iteration rule in each of those). Returns whether a
   /// free node ends it beyond its reach (apply_correction): the window's constraints no longer
   /// cover every pair, and a new search must begin one.
   [[nodiscard]] virtual bool project(const ContactConstants& constants, int iterations) = 0;
+  /// The iterations the last project() ran.
+  [[nodiscard]] virtual int last_iterations() const = 0;
 
  protected:
   ResponseBackend() = default;

@@ -69,7 +69,8 @@ GlContactResponse::GlContactResponse(const DeviceInfo& device, sim::SimulationBa
       activity_("response/contact_activity.comp"),
       pairs_("response/contact_pairs.comp"),
       count_("response/contact_count.comp"),
-      apply_("response/contact_apply.comp") {}
+      apply_("response/contact_apply.comp"),
+      residual_("response/contact_residual.comp") {}
 
 void GlContactResponse::begin_frame(const response::FrameConstraints& constraints) {
   upload(constraints, false);
@@ -105,7 +106,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   auto new_corrections = grow(buffers_.corrections, 8u * pairs, gpu::kContactCorrection);
   auto new_offset = grow(buffers_.node_offset, nodes + 1u, gpu::kNodeContactOffset);
   auto new_list = grow(buffers_.node_list, lists.list.size(), gpu::kNodeContactList);
-  auto new_count = grow(buffers_.node_count, 2u * nodes + 1u, gpu::kNodeContactCount);
+  auto new_count = grow(buffers_.node_count, 2u * nodes + 2u, gpu::kNodeContactCount);
   auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
   auto new_motion = grow(buffers_.node_motion, nodes, gpu::kNodeMotion);
   auto new_deviation = grow(buffers_.node_deviation, nodes, gpu::kNodeDeviation);
@@ -210,32 +211,52 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   apply_.set_uniform("u_elapsed", k.elapsed);
   // Each iteration solves the contacts, then the volume constraints on the positions the
   // contacts left (the CPU backend's order); a group without constraints is skipped, except
-  // that the last node pass always runs (it watches the reaches).
+  // that the last node pass always runs (it watches the reaches). `last`: the friction's
+  // last-iteration rule applies.
   const std::uint32_t group_begin[2] = {0u, first_volume_};
   const std::uint32_t group_end[2] = {first_volume_, pair_count_};
   const std::uint32_t last_group = first_volume_ < pair_count_ ? 1u : 0u;
-  for (int iteration = 0; iteration < iterations; ++iteration) {
+  const auto iterate = [&](bool first_iteration, bool last) {
     for (std::uint32_t group = 0; group <= last_group; ++group) {
-      const bool last = iteration + 1 == iterations && group == last_group;
-      if (group_begin[group] == group_end[group] && !last) continue;
+      const bool last_pass = last && group == last_group;
+      if (group_begin[group] == group_end[group] && !last_pass) continue;
       if (group_begin[group] < group_end[group]) {
         pairs_.set_uniform("u_pair_begin", group_begin[group]);
         pairs_.set_uniform("u_pair_end", group_end[group]);
         pairs_.set_uniform("u_group", group);
-        pairs_.set_uniform("u_first_iteration", static_cast<std::uint32_t>(iteration == 0));
-        pairs_.set_uniform("u_last_iteration",
-                           static_cast<std::uint32_t>(iteration + 1 == iterations));
+        pairs_.set_uniform("u_first_iteration", static_cast<std::uint32_t>(first_iteration));
+        pairs_.set_uniform("u_last_iteration", static_cast<std::uint32_t>(last));
         pairs_.dispatch_covering(group_end[group] - group_begin[group]);
         storage_barrier();  // the node pass reads the corrections
       }
       // Only the last pass's positions are the projection's: it alone watches the reaches.
       apply_.set_uniform("u_pair_begin", group_begin[group]);
       apply_.set_uniform("u_pair_end", group_end[group]);
-      apply_.set_uniform("u_watch_reach", static_cast<std::uint32_t>(last));
+      apply_.set_uniform("u_watch_reach", static_cast<std::uint32_t>(last_pass));
       apply_.dispatch_covering(node_count_);
       // The next solve pass reads the corrected nodes and overwrites the corrections read here.
-      if (!last) storage_barrier();
+      if (!last_pass) storage_barrier();
     }
+  };
+  for (int iteration = 0; iteration < iterations; ++iteration)
+    iterate(iteration == 0, iteration + 1 == iterations);
+  // More while the solve has not converged (the residual pass's flag, read back), to
+  // kMaxIterationFactor x the iterations asked; each such iteration is the last so far, so its
+  // node pass watches the reaches again, on a cleared stray flag.
+  iterations_done_ = iterations;
+  const std::size_t stray_flag = 2u * std::size_t{node_count_};
+  while (first_volume_ > 0 && iterations_done_ < response::kMaxIterationFactor * iterations) {
+    storage_barrier();  // the residual pass reads the last node pass's positions
+    const std::uint32_t zero = 0u;
+    buffers_.node_count->upload(std::span<const std::uint32_t>(&zero, 1), stray_flag + 1u);
+    residual_.set_uniform("u_contact_count", first_volume_);
+    residual_.set_uniform("u_node_count", node_count_);
+    residual_.dispatch_covering(first_volume_);
+    memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (buffers_.node_count->download(stray_flag + 1u, 1)[0] == 0u) break;
+    buffers_.node_count->upload(std::span<const std::uint32_t>(&zero, 1), stray_flag);
+    iterate(false, true);
+    ++iterations_done_;
   }
   // The next substep (and the next projection's pair pass), the collision shaders and renderers
   // drawing from SSBO 0 read the corrected nodes; the next pair pass overwrites the corrections

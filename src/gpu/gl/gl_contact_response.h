@@ -12,7 +12,9 @@
 // (SSBOs 31, 32) into SSBO 33; then, once per Jacobi iteration, response/contact_pairs.comp,
 // one per constraint, writing an active constraint's four corner slots (SSBO 30), and
 // response/contact_apply.comp, one per node, gathering its active corrections over the same
-// list in list order and writing only its own position and velocity.
+// list in list order and writing only its own position and velocity. After the iterations asked
+// for, response/contact_residual.comp, one per contact, flags an active one still violated
+// (its flag read back): then one more iteration, to kMaxIterationFactor x those asked.
 // Gathers instead of scattering with atomics: GL 4.3 has no float atomics, and a fixed
 // summation order makes the result independent of the schedule and equal to the CPU's bit for
 // bit (shaders/response/contact_constraints.glsl mirrors src/core/response/contact_constraints.h).
@@ -80,6 +82,7 @@ class GlContactResponse final : public response::ResponseBackend {
   // that the next substep, the collision shaders and renderers see the corrected nodes. Throws
   // Error before begin_frame(), or when the simulation was uploaded again since.
   [[nodiscard]] bool project(const response::ContactConstants& constants, int iterations) override;
+  [[nodiscard]] int last_iterations() const override { return iterations_done_; }
 
   // The frame starts (SSBO 34) that begin_frame recorded, one per node (for tests).
   [[nodiscard]] std::vector<glm::vec4> download_frame_start() const;
@@ -108,6 +111,8 @@ class GlContactResponse final : public response::ResponseBackend {
   ComputeProgram pairs_;
   ComputeProgram count_;
   ComputeProgram apply_;
+  ComputeProgram residual_;
+  int iterations_done_ = 0;  // by the last project()
   ContactBuffers buffers_;
   // The frame begin_frame set up: project() refuses to run on a simulation uploaded since (its
   // node count or buffers differ), whose frame starts would be stale.
