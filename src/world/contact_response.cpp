@@ -369,13 +369,14 @@ void ContactResponse::begin_frame(Detector& detector, std::vector<Contact> inter
 void ContactResponse::find_penetrations() {
   penetrations_.clear();
   ways_apart_.clear();
+  // The pairs of different bodies the frame's intersections join (begin_frame's intersecting_),
+  // in (a, b) order.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> joined;
-  for (const Contact& c : intersections_)
-    if (c.a.body != c.b.body)
-      joined.emplace_back(std::min(c.a.body, c.b.body), std::max(c.a.body, c.b.body));
+  const auto n = static_cast<std::uint32_t>(objects_.size());
+  for (std::uint32_t a = 0; a < n; ++a)
+    for (std::uint32_t b = a + 1u; b < n; ++b)
+      if (intersecting_[a * n + b] != 0u) joined.emplace_back(a, b);
   if (joined.empty()) return;
-  std::sort(joined.begin(), joined.end());
-  joined.erase(std::unique(joined.begin(), joined.end()), joined.end());
   const Detector& detector = *detector_;
   if (!overlap_) {
     std::vector<CollisionMesh> meshes;

@@ -1,6 +1,6 @@
 #pragma once
 // The backends' buffers, allocated so that a failure names the buffer: an SSBO of a given
-// count, or holding a copy of a host array (upload()).
+// count, or holding a copy of a host array (upload()); and a buffer bound by its name alone.
 
 #include <algorithm>
 #include <cstdint>
@@ -29,6 +29,9 @@ inline BufferLabel label_of(std::span<const BufferSize> sizes, std::uint32_t bin
                                [binding](const BufferSize& b) { return b.binding == binding; });
   return {owner, it != sizes.end() ? it->name : std::string_view("a buffer"), binding};
 }
+
+// Binds GL buffer `buffer` (a name, whoever owns it) whole at shader storage binding `binding`.
+void bind_storage_buffer(std::uint32_t binding, std::uint32_t buffer);
 
 // "<owner>: allocating <name> (SSBO <binding>), <bytes> bytes (<count> x <element>), failed:
 // <cause>", the cause being BufferObject's GlError (the driver's error, e.g. GL_OUT_OF_MEMORY).

@@ -82,7 +82,11 @@ void BufferObject::download(void* out, std::size_t bytes, std::size_t offset) co
 }
 
 void BufferObject::bind_storage(std::uint32_t index) const {
-  DEFORMCD_GL_CHECK(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, index, name_));
+  bind_storage_buffer(index, name_);
+}
+
+void bind_storage_buffer(std::uint32_t binding, std::uint32_t buffer) {
+  DEFORMCD_GL_CHECK(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer));
 }
 
 GlError allocation_error(const BufferLabel& label, std::uint64_t count, std::uint64_t element_bytes,

@@ -17,11 +17,6 @@ namespace deformcd::gl {
 
 namespace {
 
-// Binds GL buffer `buffer` whole at shader storage binding `binding`.
-void bind_buffer(gpu::Binding binding, std::uint32_t buffer) {
-  DEFORMCD_GL_CHECK(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer));
-}
-
 constexpr std::string_view kOwner = "GL contact response";
 
 // Each pass launches one invocation per element in a single 1D dispatch.
@@ -141,7 +136,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   frame_start_.set_uniform("u_keep_positions", keep_positions ? 1u : 0u);
   deviation_.set_uniform("u_node_count", node_count_);
 
-  bind_buffer(gpu::kNodePosition, sim.gl_positions);
+  bind_storage_buffer(gpu::kNodePosition, sim.gl_positions);
   buffers_.node_motion->bind(gpu::kNodeMotion);
   buffers_.frame_start->bind(gpu::kFrameStart);
   frame_start_.dispatch_covering(node_count_);
@@ -178,8 +173,8 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   const sim::NodeBuffers sim = simulation_.node_buffers();
   // Bound on every call: other passes (the simulation, the collision detector) may have rebound
   // the points since.
-  bind_buffer(gpu::kNodePosition, sim.gl_positions);
-  bind_buffer(gpu::kNodeVelocity, sim.gl_velocities);
+  bind_storage_buffer(gpu::kNodePosition, sim.gl_positions);
+  bind_storage_buffer(gpu::kNodeVelocity, sim.gl_velocities);
   buffers_.pairs->bind(gpu::kContactPair);
   buffers_.corrections->bind(gpu::kContactCorrection);
   buffers_.node_offset->bind(gpu::kNodeContactOffset);
@@ -252,7 +247,7 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
     residual_.set_uniform("u_contact_count", first_volume_);
     residual_.set_uniform("u_node_count", node_count_);
     residual_.dispatch_covering(first_volume_);
-    memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    // download() puts the barrier that makes the pass's write visible to it.
     if (buffers_.node_count->download(stray_flag + 1u, 1)[0] == 0u) break;
     buffers_.node_count->upload(std::span<const std::uint32_t>(&zero, 1), stray_flag);
     iterate(false, true);

@@ -42,10 +42,6 @@ Ssbo<T> at_least_one(const std::vector<T>& data) {
   return buffer;
 }
 
-void bind_name(std::uint32_t binding, std::uint32_t buffer) {
-  DEFORMCD_GL_CHECK(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer));
-}
-
 }  // namespace
 
 GlProximity::GlProximity(Context& context, const collision::CollisionData& data)
@@ -120,11 +116,11 @@ std::vector<collision::ProximityCandidate> GlProximity::find(
     const ProximitySources& sources, std::span<const float> reach,
     std::span<const glm::vec3> motion, std::span<const std::uint32_t> mesh_pairs) {
   check_lists(reach, motion, mesh_pairs);  // before anything is rebound
-  bind_name(gpu::kNodePosition, sources.positions);
-  bind_name(gpu::kFaceInfo, sources.faces);
-  bind_name(gpu::kMeshInfo, sources.meshes);
-  bind_name(gpu::kBvhNode, sources.bvh_nodes);
-  bind_name(gpu::kBodyBvh, sources.mesh_bvhs);
+  bind_storage_buffer(gpu::kNodePosition, sources.positions);
+  bind_storage_buffer(gpu::kFaceInfo, sources.faces);
+  bind_storage_buffer(gpu::kMeshInfo, sources.meshes);
+  bind_storage_buffer(gpu::kBvhNode, sources.bvh_nodes);
+  bind_storage_buffer(gpu::kBodyBvh, sources.mesh_bvhs);
   return find_bound(sources.refit, reach, motion, mesh_pairs);
 }
 
@@ -156,7 +152,7 @@ void GlProximity::refit(const ProximityRefitOrder& order, std::span<const float>
   motion_.bind(kProximityMotionBinding);
   vertex_first_.bind(kProximityVertexFirstBinding);
   boxes_.bind(gpu::kBvhBox);
-  bind_name(kProximityLevelsBinding, order.buffer);
+  bind_storage_buffer(kProximityLevelsBinding, order.buffer);
   refit_.dispatch_covering(node_count_);
   for (const glm::uvec2& level : order.levels) {
     storage_barrier();  // the level reads its children's boxes
