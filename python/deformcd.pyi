@@ -130,6 +130,7 @@ class World:
     @property
     def body_names(self) -> list[str]: ...
     broadphase: str
+    gravity: Sequence[float]
     @property
     def backend(self) -> str: ...
     @property

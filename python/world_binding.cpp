@@ -1,6 +1,7 @@
 // deformcd.World: a scene's bodies simulated and their collisions detected, stepped from
 // Python; positions, velocities and contacts come back as NumPy arrays.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -163,6 +164,14 @@ class PyWorld {
     const std::unique_lock<std::mutex> lock = lock_object(mutex_);
     world_->set_broadphase(method);
   }
+  std::array<float, 3> gravity() const {
+    const glm::vec3 g = world_->gravity();
+    return {g.x, g.y, g.z};
+  }
+  void set_gravity(const std::array<float, 3>& g) {
+    const std::unique_lock<std::mutex> lock = lock_object(mutex_);
+    world_->set_gravity(glm::vec3(g[0], g[1], g[2]));
+  }
   std::string backend() const { return std::string(world_->backend_name()); }
   std::string device() const { return world_->device(); }
   std::string notice() const { return world_->notice(); }
@@ -294,6 +303,9 @@ void bind_world(py::module_& m) {
       .def_property_readonly("body_names", &PyWorld::body_names, "Every body's name, in order.")
       .def_property("broadphase", &PyWorld::broadphase, &PyWorld::set_broadphase,
                     "The broad phase step() runs after the simulation; may be set between steps.")
+      .def_property("gravity", &PyWorld::gravity, &PyWorld::set_gravity,
+                    "m/s^2, (x, y, z): the gravity the next step() applies; may be set between "
+                    "steps (a tilting platform, a ramp of load); a change wakes sleeping bodies.")
       .def_property_readonly("backend", &PyWorld::backend, "\"cpu\" or \"gl\".")
       .def_property_readonly("device", &PyWorld::device,
                              "The GL renderer and version, or the CPU thread count.")

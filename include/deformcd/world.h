@@ -200,6 +200,11 @@ class World {
   [[nodiscard]] BroadPhase broadphase() const { return broadphase_; }
   /// Switches the broad phase from the next step() on (e.g. a viewer's key).
   void set_broadphase(BroadPhase method) { broadphase_ = method; }
+  /// m/s^2: the gravity the next step() applies (StepSettings::gravity at the start).
+  [[nodiscard]] glm::vec3 gravity() const { return settings_.gravity; }
+  /// Changes the gravity from the next step() on: a platform or a camera tilting, a ramp of
+  /// load instead of a step. Throws Error, changing nothing, when a component is not finite.
+  void set_gravity(const glm::vec3& gravity);
   /// The collision detector over the bodies' surfaces (mesh i = body i, its triangles the
   /// body's surface faces, its positions the simulation's, read in place).
   [[nodiscard]] const Detector& detector() const { return *detector_; }

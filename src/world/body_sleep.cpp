@@ -92,6 +92,17 @@ std::vector<std::uint32_t> BodySleep::end_frame(
   return changed;
 }
 
+std::vector<std::uint32_t> BodySleep::wake_all() {
+  std::vector<std::uint32_t> woken;
+  for (std::uint32_t b = 0; b < asleep_.size(); ++b) {
+    if (asleep_[b] == 0u) continue;
+    asleep_[b] = 0u;
+    slow_time_[b] = 0.0f;
+    woken.push_back(b);
+  }
+  return woken;
+}
+
 std::size_t BodySleep::asleep_count() const {
   return static_cast<std::size_t>(std::count(asleep_.begin(), asleep_.end(), std::uint8_t{1}));
 }

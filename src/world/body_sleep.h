@@ -44,6 +44,10 @@ class BodySleep {
       std::span<const glm::vec4> velocity,
       const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links);
 
+  /// Wakes every sleeping body (their slow time counts from zero again, as a woken island's
+  /// does). Returns the bodies that woke, ascending.
+  std::vector<std::uint32_t> wake_all();
+
   [[nodiscard]] bool asleep(std::size_t body) const { return asleep_[body] != 0u; }
   [[nodiscard]] std::size_t asleep_count() const;
   /// Body b's nodes' inverse masses while awake (as given), or zeros while asleep.

@@ -454,6 +454,17 @@ void ContactResponse::end_frame() {
   counts_.asleep = sleep_->asleep_count();
 }
 
+void ContactResponse::set_gravity(const glm::vec3& gravity) {
+  if (gravity == step_.gravity) return;
+  step_.gravity = gravity;
+  if (!sleep_) return;
+  for (const std::uint32_t b : sleep_->wake_all()) {
+    const std::vector<float> inverse_mass = sleep_->inverse_masses(b);
+    simulation_.set_inverse_masses(objects_[b].node_offset, inverse_mass);
+  }
+  counts_.asleep = sleep_->asleep_count();
+}
+
 bool ContactResponse::asleep(std::size_t body) const {
   return sleep_ && sleep_->asleep(body);
 }

@@ -69,6 +69,9 @@ class ContactResponse {
   /// bodies that have rested long enough fall asleep and those a moving body touched wake
   /// (BodySleep); their nodes' inverse masses change in the simulation.
   void end_frame();
+  /// The gravity the next substeps apply (World::set_gravity): the nodes' reaches allow for it,
+  /// and a change of load wakes every sleeping body (their rest was under the old one).
+  void set_gravity(const glm::vec3& gravity);
   /// Whether body b is asleep (false without ResponseSettings::sleep).
   [[nodiscard]] bool asleep(std::size_t body) const;
 

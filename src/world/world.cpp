@@ -192,6 +192,17 @@ bool World::asleep(std::size_t body) const {
   return response_ && response_->asleep(body);
 }
 
+void World::set_gravity(const glm::vec3& gravity) {
+  if (!std::isfinite(gravity.x) || !std::isfinite(gravity.y) || !std::isfinite(gravity.z)) {
+    std::ostringstream msg;
+    msg << "gravity (" << gravity.x << ", " << gravity.y << ", " << gravity.z
+        << ") m/s^2: every component must be finite";
+    throw Error(msg.str());
+  }
+  settings_.gravity = gravity;
+  if (response_) response_->set_gravity(gravity);
+}
+
 void World::detect_collisions() {
   detector_->set_broadphase(broadphase_);
   detector_->detect();

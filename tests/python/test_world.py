@@ -198,3 +198,21 @@ def test_intersection_census_counts_the_pairs_between_bodies_as_the_collision_pa
         assert census["between_pairs"] == w.counts()["contacts"]
         most_inside = max(most_inside, census["inside_vertices"])
     assert most_inside > 0
+
+
+def test_gravity_can_change_between_steps(tmp_path):
+    """Two cubes without gravity: given some along -y between steps, both fall as it says
+    (before they meet), and a gravity that is not finite is an error that changes nothing."""
+    w = deformcd.World.from_scene(write_two_cubes(tmp_path), backend="cpu")
+    assert tuple(w.gravity) == (0.0, 0.0, 0.0)
+    w.step()
+    before = [w.velocities(b)[:, 1].mean() for b in range(w.body_count)]
+    w.gravity = (0.0, -9.81, 0.0)
+    assert w.gravity == pytest.approx((0.0, -9.81, 0.0))
+    w.step()
+    after = [w.velocities(b)[:, 1].mean() for b in range(w.body_count)]
+    for b in range(w.body_count):
+        assert after[b] - before[b] == pytest.approx(-9.81 / 60, rel=1e-3)
+    with pytest.raises(deformcd.Error, match="gravity .*finite"):
+        w.gravity = (0.0, float("nan"), 0.0)
+    assert w.gravity == pytest.approx((0.0, -9.81, 0.0))
