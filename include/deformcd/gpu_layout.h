@@ -64,6 +64,10 @@ enum Binding : std::uint32_t {
   /// so far (normal speed, push, the first iteration's approach; friction, the first
   /// iteration's slip; response::solve_contact)
   kContactImpulse = 37,
+  /// uint per node: the last substep (a projection's count, from 1) in which one of its
+  /// contacts slid (response::solve_contact's slide flag, summed by the node pass); free nodes
+  /// only
+  kNodeSlid = 38,
 };
 
 /// BvhNode::face of an internal node.

@@ -46,6 +46,7 @@
 #define BINDING_NODE_MOTION 35          // vec4 per node: path velocity (xyz, m/s), reach (w, m)
 #define BINDING_NODE_DEVIATION 36       // float per node: its distance from its straight path (m)
 #define BINDING_CONTACT_IMPULSE 37      // vec4 per constraint: given this substep (solve_contact)
+#define BINDING_NODE_SLID 38            // uint per node: the last substep a contact of it slid in
 
 // Leaf boxes per body: a 3-level octree, 4 x 4 x 4 leaves (gpu::kLeafBoxesPerBody).
 #define LEAF_BOXES_PER_BODY 64u

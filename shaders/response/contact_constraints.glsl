@@ -233,10 +233,12 @@ void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], uint cou
 // speed (given[0].x) and push (y) given over the substep's iterations so far and the first
 // iteration's approach (z), and the friction given (given[1].xyz, a vector) and the first
 // iteration's slip (given[1].w); each iteration corrects the totals, the normal ones clamped at
-// zero, the friction to its cone of the accumulated normal change.
+// zero, the friction to its cone of the accumulated normal change. `was_sliding` (slid_before):
+// the contact slid through the last substep; the last iteration's slide flag goes to the w of
+// each corner's velocity correction.
 void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
                    ContactConstants k, bool first_iteration, bool last_iteration,
-                   inout vec4 given[2],
+                   bool was_sliding, inout vec4 given[2],
                    out vec4 correction[8]) {
   for (int i = 0; i < 8; ++i) correction[i] = vec4(0.0);
   if (first_iteration) {
@@ -276,7 +278,9 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   precise float push = total_push - given[0].y;
   given[0].y = total_push;
   // Coulomb friction as a vector total over the substep's iterations (given[1].xyz), clamped at
-  // every iteration to the cone of the accumulated normal change (given[0].x): friction_static's
+  // every iteration to the cone of the accumulated normal change (given[0].x): friction_dynamic's
+  // for a contact that slid through the last substep, which slides on while its first
+  // iteration's slip is more than friction_static's cone; for a sticking one friction_static's
   // until the last iteration, which takes friction_dynamic's where half or more of the first
   // iteration's slip (given[1].w) is left.
   precise vec3 tangential = relative_velocity - normal_velocity * n;
@@ -287,25 +291,38 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   precise float slip_left = reduce * sqrt(exact_dot(tangential, tangential));
   if (first_iteration) given[1].w = slip_left;
   precise float half_first = 0.5 * given[1].w;
-  const bool sliding = last_iteration && slip_left > half_first;
-  precise float coefficient = sliding ? k.friction_dynamic : k.friction_static;
+  const bool starts_sliding = !was_sliding && last_iteration && slip_left > half_first;
+  const bool dynamic = was_sliding || starts_sliding;
+  precise float coefficient = dynamic ? k.friction_dynamic : k.friction_static;
   precise float limit = coefficient * given[0].x;
   precise vec3 friction_total = wanted;
   if (wanted_length > limit) {
     precise float scale = limit / wanted_length;
     friction_total = wanted * scale;
   }
+  precise float static_cone = k.friction_static * given[0].x;
+  const bool slides = starts_sliding || (was_sliding && given[1].w > static_cone);
   given[1] = vec4(friction_total, given[1].w);
   precise vec3 friction = friction_total - held;
   precise vec3 dv = (normal_speed * n + friction) / weight;
   precise vec3 dx = dv * k.h + (push / weight) * n;
+  const float slide_flag = last_iteration && slides ? 1.0 : 0.0;
   for (int i = 0; i < 4; ++i) {
     precise float scale = position[i].w * b[i];
     precise vec3 move = scale * dx;
     precise vec3 speed = scale * dv;
     correction[2 * i] = vec4(move, 0.0);
-    correction[2 * i + 1] = vec4(speed, 0.0);
+    correction[2 * i + 1] = vec4(speed, slide_flag);
   }
+}
+
+// slid_before, line for line: each free node of the contact had a contact slide in the substep
+// before projection `substep`.
+bool slid_before(vec4 position[4], uint slid[4], uint substep) {
+  bool slid_all = true;
+  for (int i = 0; i < 4; ++i)
+    if (position[i].w > 0.0 && slid[i] + 1u != substep) slid_all = false;
+  return slid_all;
 }
 
 // apply_correction, line for line: the corrections move the position and the velocity. Fixed

@@ -4,7 +4,8 @@
 // the w of its first slot, 8 p) reads its four nodes' positions and velocities and writes their
 // corrections to the constraint's own slots: corner 4 p + k's at 2 (4 p + k) (position) and
 // 2 (4 p + k) + 1 (velocity) (solve_contact), the flag kept for the next iteration, and what it
-// has given over the substep's iterations to its own impulse slots 2 p and 2 p + 1. One dispatch
+// has given over the substep's iterations to its own impulse slots 2 p and 2 p + 1; it reads its
+// free nodes' slide stamps (the node pass writes them after the last iteration). One dispatch
 // covers one group, constraints [u_pair_begin, u_pair_end): the contacts (u_group 0) or the
 // volume constraints (1), its nodes weighing by their counts in the group. An inactive
 // constraint is left alone, as the CPU backend leaves it: the node pass skips its slots. No two
@@ -32,6 +33,9 @@ layout(std430, binding = BINDING_NODE_CONTACT_COUNT) readonly buffer NodeContact
 layout(std430, binding = BINDING_CONTACT_IMPULSE) buffer ContactImpulses {
   vec4 impulses[];
 };
+layout(std430, binding = BINDING_NODE_SLID) readonly buffer NodeSlid {
+  uint node_slid[];
+};
 
 uniform uint u_pair_begin;
 uniform uint u_pair_end;
@@ -43,6 +47,7 @@ uniform float u_restitution;
 uniform float u_max_untangle_step;
 uniform bool u_first_iteration;
 uniform bool u_last_iteration;
+uniform uint u_substep;
 
 void main() {
   const uint p = u_pair_begin + gl_GlobalInvocationID.x;
@@ -54,14 +59,18 @@ void main() {
     x[i] = positions[pair.nodes[i]];
     v[i] = velocities[pair.nodes[i]];
   }
-  uint count[4];
-  for (uint i = 0u; i < 4u; ++i) count[i] = node_contact_count[2u * pair.nodes[i] + u_group];
+  uint count[4], slid[4];
+  for (uint i = 0u; i < 4u; ++i) {
+    count[i] = node_contact_count[2u * pair.nodes[i] + u_group];
+    slid[i] = node_slid[pair.nodes[i]];
+  }
   vec4 correction[8];
   vec4 given[2] = vec4[2](impulses[2u * p], impulses[2u * p + 1u]);
   solve_contact(pair, x, v, count,
                 ContactConstants(u_h, u_friction_static, u_friction_dynamic, u_restitution,
                                  u_max_untangle_step, 0.0),
-                u_first_iteration, u_last_iteration, given, correction);
+                u_first_iteration, u_last_iteration, slid_before(x, slid, u_substep), given,
+                correction);
   correction[0].w = 1.0;  // the activity flag, for the next iteration's solve and node passes
   for (uint k = 0u; k < 8u; ++k) corrections[8u * p + k] = correction[k];
   impulses[2u * p] = given[0];

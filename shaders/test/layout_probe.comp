@@ -167,24 +167,25 @@ void main() {
     bindings[35] = BINDING_NODE_MOTION;
     bindings[36] = BINDING_NODE_DEVIATION;
     bindings[37] = BINDING_CONTACT_IMPULSE;
+    bindings[38] = BINDING_NODE_SLID;
     // Not gpu::Binding: the shared constants, then the GL backend's private work buffers.
-    bindings[38] = LEAF_BOXES_PER_BODY;
-    bindings[39] = BVH_INTERNAL;
-    bindings[40] = BVH_MAX_DEPTH;
-    bindings[41] = BINDING_DISPATCH_ARGS;
-    bindings[42] = BINDING_BOX_PAIR_LIST;
-    bindings[43] = BINDING_BVH_LEVELS;
-    bindings[44] = BINDING_TOUCHING_PAIRS;
-    bindings[45] = DISPATCH_ARGS_EXPAND;
-    bindings[46] = DISPATCH_ARGS_TOUCHING;
-    bindings[47] = DISPATCH_ARGS_NARROW;
-    bindings[48] = DISPATCH_ARGS_TRAVERSE;
-    bindings[49] = BINDING_BVH_LEAVES;
-    bindings[50] = BINDING_MESH_INFO;
-    bindings[51] = BINDING_NON_FINITE;
-    bindings[52] = CONTACT_VERTEX_FACE;
-    bindings[53] = CONTACT_EDGE_EDGE;
-    bindings[54] = CONTACT_UNTANGLE;
-    bindings[55] = CONTACT_VOLUME;
+    bindings[39] = LEAF_BOXES_PER_BODY;
+    bindings[40] = BVH_INTERNAL;
+    bindings[41] = BVH_MAX_DEPTH;
+    bindings[42] = BINDING_DISPATCH_ARGS;
+    bindings[43] = BINDING_BOX_PAIR_LIST;
+    bindings[44] = BINDING_BVH_LEVELS;
+    bindings[45] = BINDING_TOUCHING_PAIRS;
+    bindings[46] = DISPATCH_ARGS_EXPAND;
+    bindings[47] = DISPATCH_ARGS_TOUCHING;
+    bindings[48] = DISPATCH_ARGS_NARROW;
+    bindings[49] = DISPATCH_ARGS_TRAVERSE;
+    bindings[50] = BINDING_BVH_LEAVES;
+    bindings[51] = BINDING_MESH_INFO;
+    bindings[52] = BINDING_NON_FINITE;
+    bindings[53] = CONTACT_VERTEX_FACE;
+    bindings[54] = CONTACT_EDGE_EDGE;
+    bindings[55] = CONTACT_UNTANGLE;
+    bindings[56] = CONTACT_VOLUME;
   }
 }

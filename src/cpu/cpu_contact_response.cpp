@@ -63,6 +63,8 @@ void CpuContactResponse::watch_reachable_nodes() {
 
 bool CpuContactResponse::project(const response::ContactConstants& k, int iterations) {
   if (constraints_ == nullptr) throw Error("CpuContactResponse::project before begin_frame()");
+  ++substep_;
+  if (slid_.size() != nodes_.node_count) slid_.assign(nodes_.node_count, response::kNeverSlid);
   std::atomic<bool> any_strayed{false};  // an OR: the same whatever the order
   const std::vector<gpu::ContactPair>& pairs = constraints_->pairs;
   executor_->run([&] {
@@ -136,14 +138,16 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
               const std::uint32_t p = acting_[first + a];
               const gpu::ContactPair& pair = pairs[p];
               glm::vec4 x[4], v[4];
-              std::uint32_t count[4];
+              std::uint32_t count[4], slid[4];
               for (std::uint32_t i = 0; i < 4u; ++i) {
                 x[i] = nodes_.host_positions[pair.nodes[i]];
                 v[i] = nodes_.host_velocities[pair.nodes[i]];
                 count[i] = counts_[2u * pair.nodes[i] + group];
+                slid[i] = slid_[pair.nodes[i]];
               }
               response::solve_contact(pair, x, v, count, k, first_iteration, last,
-                                      &impulses_[2u * p], &corrections_[8u * p]);
+                                      response::slid_before(x, slid, substep_), &impulses_[2u * p],
+                                      &corrections_[8u * p]);
             },
             256);
         // The node pass, over the nodes with an active constraint of the group (the others'
@@ -153,10 +157,14 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
           const std::uint32_t begin = slot_begin_[i] + (group == 0u ? 0u : counts_[2u * i]);
           const std::uint32_t stop = begin + counts_[2u * i + group];
           if (begin == stop) return;
-          glm::vec3 dx(0.0f), dv(0.0f);
+          glm::vec3 dx(0.0f);
+          glm::vec4 dv(0.0f);
           response::gather_correction(active_slots_.data(), begin, stop, active_.data(),
                                       corrections_.data(), dx, dv);
-          response::apply_correction(nodes_.host_positions[i], nodes_.host_velocities[i], dx, dv);
+          if (last && group == 0u && dv.w > 0.0f && nodes_.host_positions[i].w > 0.0f)
+            slid_[i] = substep_;
+          response::apply_correction(nodes_.host_positions[i], nodes_.host_velocities[i], dx,
+                                     glm::vec3(dv));
         });
       }
     };

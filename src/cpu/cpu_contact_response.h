@@ -51,6 +51,8 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep
   std::vector<std::uint32_t> acting_;   // the active constraints, ascending
   std::vector<std::uint32_t> touched_;  // the nodes of active constraints, as first named
+  std::uint32_t substep_ = 0;           // project() calls so far
+  std::vector<std::uint32_t> slid_;     // per node: the last substep a contact of it slid in
   std::vector<std::uint32_t> watched_;  // the nodes with a finite reach, ascending
   std::vector<float> deviation_;        // per node: its distance from its straight path
   // Per touched node n, its active slots: active_slots_[slot_begin_[n] ..), the contacts'

@@ -139,6 +139,24 @@ inline bool contact_awake(const gpu::ContactPair& pair, const float deviation[4]
   return !(closest > collision::largest_per_side(pair.kind, deviation) + 1e-4f * pair.thickness);
 }
 
+/// A node's slide stamp (gpu::kNodeSlid) before any of its contacts slid: no projection counts
+/// to it (the backends count projections from 1).
+inline constexpr std::uint32_t kNeverSlid = 0xFFFFFFFFu;
+
+/// Whether a contact slid through the substep before projection `substep`: each of its free
+/// nodes (inverse mass position[k].w > 0) had a contact slide in it (slid[k], their stamps). A
+/// contact between a sliding body and one its points stick to shares no free node with the
+/// other side's other contacts, and a body whose points all slide keeps its contacts sliding;
+/// one free node's stamp alone spread a slide from contact to contact over a whole face and
+/// let a block held at static 0.7 go.
+inline bool slid_before(const glm::vec4 position[4], const std::uint32_t slid[4],
+                        std::uint32_t substep) {
+  bool slid_all = true;
+  for (int i = 0; i < 4; ++i)
+    if (position[i].w > 0.0f && slid[i] + 1u != substep) slid_all = false;
+  return slid_all;
+}
+
 /// The sum of the absolute values of v's components: at least its length, without a root.
 inline float abs_sum(const glm::vec3& v) {
   return (std::abs(v.x) + std::abs(v.y)) + std::abs(v.z);
@@ -280,6 +298,10 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
 /// so momentum is conserved; a node moves at most its share of the whole correction (see
 /// `reduce`).
 ///
+/// `was_sliding`: the contact slid through the last substep (slid_before); in the last
+/// iteration the w of each corner's velocity correction is 1 where it slides on (the node pass
+/// records it for the next substep), else 0.
+///
 /// `given` (two ContactImpulse slots, 2 p and 2 p + 1, per constraint) carries what the
 /// constraint has given over the substep's iterations so far: given[0] x the normal speed, y the
 /// push, z the first iteration's approach; given[1] xyz the friction (a velocity, in the units
@@ -294,7 +316,7 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
 inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position[4],
                           const glm::vec4 velocity[4], const std::uint32_t count[4],
                           const ContactConstants& k, bool first_iteration, bool last_iteration,
-                          glm::vec4 given[2], glm::vec4 correction[8]) {
+                          bool was_sliding, glm::vec4 given[2], glm::vec4 correction[8]) {
   for (int i = 0; i < 8; ++i)
     correction[i] = glm::vec4(0.0f);
   if (first_iteration) given[0] = given[1] = glm::vec4(0.0f);
@@ -349,15 +371,21 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   // sliding with dynamic 0.45 got 0.479 x (0.93 m in 2 s against Coulomb's 1.415 m;
   // docs/notes/2026-12-04-friction.md).
   //
-  // The cone is friction_static's until the last iteration; there the constraint slides
+  // Sticking or sliding is a state, as Coulomb's law has it: a contact that slid through the
+  // last substep (`was_sliding`, slid_before) has friction_dynamic's cone from its first
+  // iteration, and slides on while its first iteration's slip is more than friction_static's
+  // cone could have stopped (it sticks again once its points have all but stopped). A sticking
+  // contact has friction_static's cone until the last iteration; there it starts sliding
   // (friction_dynamic's cone) only if half or more of its first iteration's slip is left. A
   // constraint whose cone its share of a node's slip overflows, while the node's other
   // constraints stop the node, does not slide: its point does not move. Judged by its own cone
   // alone (slide when the wanted total leaves friction_static's), an elastic block on 28 degrees
   // with 0.7 / 0.45 slid at the dynamic cone's net friction within 4 frames of the tilt, though
-  // held it needs 0.53. The half sets how slow a slip still has the static cone (up to twice
-  // what it can stop in a substep); at 0.9 the block held with 0.55 / 0.45 but one with
-  // 0.5 / 0.45 slid half Coulomb's distance.
+  // held it needs 0.53. Without the state (the choice made afresh each substep), a slow slip
+  // was stopped by the static cone in the iterations before each last one: a block tilted
+  // gradually past its static angle broke away late and slid 10-21 % short of Coulomb's
+  // distance (docs/notes/2026-12-05-friction-tilt.md). The slide flag of the last iteration
+  // (1 in the w of each corner's velocity slot) is what the node pass records.
   const glm::vec3 tangential = relative_velocity - normal_velocity * n;
   const glm::vec3 before = glm::vec3(given[1]);
   const glm::vec3 held = before - glm::dot(before, n) * n;  // in the tangent plane of now
@@ -365,18 +393,22 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   const float wanted_length = std::sqrt(glm::dot(wanted, wanted));
   const float slip_left = reduce * std::sqrt(glm::dot(tangential, tangential));
   if (first_iteration) given[1].w = slip_left;
-  const bool sliding = last_iteration && slip_left > 0.5f * given[1].w;
-  const float limit = (sliding ? k.friction_dynamic : k.friction_static) * given[0].x;
+  const bool starts_sliding = !was_sliding && last_iteration && slip_left > 0.5f * given[1].w;
+  const bool dynamic = was_sliding || starts_sliding;
+  const float limit = (dynamic ? k.friction_dynamic : k.friction_static) * given[0].x;
   glm::vec3 friction_total = wanted;
   if (wanted_length > limit) friction_total = wanted * (limit / wanted_length);
+  const bool slides =
+      starts_sliding || (was_sliding && given[1].w > k.friction_static * given[0].x);
   given[1] = glm::vec4(friction_total, given[1].w);
   const glm::vec3 friction = friction_total - held;
   const glm::vec3 dv = (normal_speed * n + friction) / weight;
   const glm::vec3 dx = dv * k.h + (push / weight) * n;
+  const float slide_flag = last_iteration && slides ? 1.0f : 0.0f;
   for (int i = 0; i < 4; ++i) {
     const float scale = position[i].w * b[i];
     correction[2 * i] = glm::vec4(scale * dx, 0.0f);
-    correction[2 * i + 1] = glm::vec4(scale * dv, 0.0f);
+    correction[2 * i + 1] = glm::vec4(scale * dv, slide_flag);
   }
 }
 
@@ -386,14 +418,14 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
 /// a constraint's first slot).
 inline void gather_correction(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
                               const std::uint32_t* active, const glm::vec4* corrections,
-                              glm::vec3& dx, glm::vec3& dv) {
+                              glm::vec3& dx, glm::vec4& dv) {
   dx = glm::vec3(0.0f);
-  dv = glm::vec3(0.0f);
+  dv = glm::vec4(0.0f);
   for (std::uint32_t e = begin; e < end; ++e) {
     const std::uint32_t slot = list[e];
     if (active[slot / 4u] == 0u) continue;
     dx += glm::vec3(corrections[2u * slot]);
-    dv += glm::vec3(corrections[2u * slot + 1u]);
+    dv += corrections[2u * slot + 1u];
   }
 }
 

@@ -60,6 +60,7 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
       {"Node Motion", gpu::kNodeMotion, nodes, sizeof(glm::vec4)},
       {"Node Deviation", gpu::kNodeDeviation, nodes, sizeof(float)},
       {"Contact Impulse", gpu::kContactImpulse, 2u * pairs, sizeof(glm::vec4)},
+      {"Node Slid", gpu::kNodeSlid, nodes, sizeof(std::uint32_t)},
   };
 }
 

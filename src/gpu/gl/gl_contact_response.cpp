@@ -106,6 +106,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   auto new_motion = grow(buffers_.node_motion, nodes, gpu::kNodeMotion);
   auto new_deviation = grow(buffers_.node_deviation, nodes, gpu::kNodeDeviation);
   auto new_impulses = grow(buffers_.impulses, 2u * pairs, gpu::kContactImpulse);
+  auto new_slid = grow(buffers_.node_slid, nodes, gpu::kNodeSlid);
 
   frame_ready_ = false;  // until the upload below has completed
   adopt(buffers_.pairs, new_pairs);
@@ -117,6 +118,13 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   adopt(buffers_.node_motion, new_motion);
   adopt(buffers_.node_deviation, new_deviation);
   adopt(buffers_.impulses, new_impulses);
+  // The slide stamps outlive a window (a contact's slide goes on across searches): set only
+  // where the buffer is new (or the nodes others), to a substep no projection has.
+  if (new_slid.has_value() || node_count_ != sim.node_count) {
+    adopt(buffers_.node_slid, new_slid);
+    const std::vector<std::uint32_t> never(nodes, response::kNeverSlid);
+    buffers_.node_slid->upload(std::span<const std::uint32_t>(never));
+  }
   // Corrections, impulses and counts need no initial values: each projection writes all it
   // reads (a substep's first iteration resets the impulses).
   buffers_.pairs->upload(std::span<const gpu::ContactPair>(constraints.pairs));
@@ -184,6 +192,10 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   buffers_.node_motion->bind(gpu::kNodeMotion);
   buffers_.node_deviation->bind(gpu::kNodeDeviation);
   buffers_.impulses->bind(gpu::kContactImpulse);
+  buffers_.node_slid->bind(gpu::kNodeSlid);
+  ++substep_;
+  pairs_.set_uniform("u_substep", substep_);
+  apply_.set_uniform("u_substep", substep_);
 
   // Deviation, activity, count, solve, node pass (contact_constraints.h), each reading what the
   // one before wrote. With no constraints the node passes still run: the node pass watches
@@ -228,6 +240,7 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
       apply_.set_uniform("u_pair_begin", group_begin[group]);
       apply_.set_uniform("u_pair_end", group_end[group]);
       apply_.set_uniform("u_watch_reach", static_cast<std::uint32_t>(last_pass));
+      apply_.set_uniform("u_record_slide", static_cast<std::uint32_t>(last && group == 0u));
       apply_.dispatch_covering(node_count_);
       // The next solve pass reads the corrected nodes and overwrites the corrections read here.
       if (!last_pass) storage_barrier();

@@ -58,6 +58,7 @@ struct ContactBuffers {
   std::optional<Ssbo<glm::vec4>> node_motion;      // SSBO 35: per node
   std::optional<Ssbo<float>> node_deviation;       // SSBO 36: per node
   std::optional<Ssbo<glm::vec4>> impulses;         // SSBO 37: two per constraint
+  std::optional<Ssbo<std::uint32_t>> node_slid;    // SSBO 38: per node, kept across frames
 };
 
 class GlContactResponse final : public response::ResponseBackend {
@@ -112,7 +113,8 @@ class GlContactResponse final : public response::ResponseBackend {
   ComputeProgram count_;
   ComputeProgram apply_;
   ComputeProgram residual_;
-  int iterations_done_ = 0;  // by the last project()
+  int iterations_done_ = 0;    // by the last project()
+  std::uint32_t substep_ = 0;  // project() calls so far (the node_slid stamps)
   ContactBuffers buffers_;
   // The frame begin_frame set up: project() refuses to run on a simulation uploaded since (its
   // node count or buffers differ), whose frame starts would be stale.
