@@ -32,6 +32,9 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   take(constraints);
   const std::size_t nodes = nodes_.node_count;
   frame_start_.resize(nodes);
+  // The slide stamps outlive a window (a contact's slide goes on across searches): set only for
+  // new nodes, to a substep no projection has.
+  if (slid_.size() != nodes) slid_.assign(nodes, response::kNeverSlid);
   deviation_.assign(nodes, 0.0f);
   counts_.assign(2u * nodes, 0u);
   slot_begin_.resize(nodes);
@@ -64,7 +67,6 @@ void CpuContactResponse::watch_reachable_nodes() {
 bool CpuContactResponse::project(const response::ContactConstants& k, int iterations) {
   if (constraints_ == nullptr) throw Error("CpuContactResponse::project before begin_frame()");
   ++substep_;
-  if (slid_.size() != nodes_.node_count) slid_.assign(nodes_.node_count, response::kNeverSlid);
   std::atomic<bool> any_strayed{false};  // an OR: the same whatever the order
   const std::vector<gpu::ContactPair>& pairs = constraints_->pairs;
   executor_->run([&] {

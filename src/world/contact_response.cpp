@@ -447,18 +447,17 @@ void ContactResponse::end_frame() {
   for (std::uint32_t a = 0; a < n; ++a)
     for (std::uint32_t b = a; b < n; ++b)
       if (linked_[a * n + b] != 0u) links.emplace_back(a, b);
-  for (const std::uint32_t b : sleep_->end_frame(velocities(), links)) {
-    const std::vector<float> inverse_mass = sleep_->inverse_masses(b);
-    simulation_.set_inverse_masses(objects_[b].node_offset, inverse_mass);
-  }
-  counts_.asleep = sleep_->asleep_count();
+  apply_sleep_changes(sleep_->end_frame(velocities(), links));
 }
 
 void ContactResponse::set_gravity(const glm::vec3& gravity) {
   if (gravity == step_.gravity) return;
   step_.gravity = gravity;
-  if (!sleep_) return;
-  for (const std::uint32_t b : sleep_->wake_all()) {
+  if (sleep_) apply_sleep_changes(sleep_->wake_all());
+}
+
+void ContactResponse::apply_sleep_changes(const std::vector<std::uint32_t>& changed) {
+  for (const std::uint32_t b : changed) {
     const std::vector<float> inverse_mass = sleep_->inverse_masses(b);
     simulation_.set_inverse_masses(objects_[b].node_offset, inverse_mass);
   }

@@ -156,6 +156,9 @@ class ContactResponse {
                                          const gpu::ContactPair& pair) const;
   /// Notes that a constraint of the frame joins bodies a and b (for the sleeping islands).
   void link(std::uint32_t a, std::uint32_t b);
+  /// Gives the bodies BodySleep put to sleep or woke (`changed`) their inverse masses in the
+  /// simulation (zeros asleep, as given awake), and counts the sleeping bodies.
+  void apply_sleep_changes(const std::vector<std::uint32_t>& changed);
   /// The thickness contacts between bodies a and b keep: the thinner body's (a == b: the
   /// body's, before self_thickness).
   [[nodiscard]] float pair_thickness(std::uint32_t a, std::uint32_t b) const;

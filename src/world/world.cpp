@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/geometry.h"
 #include "core/sim/stability_estimate.h"
 #include "cpu/executor.h"
 #include "deformcd/gl/context.h"
@@ -193,7 +194,7 @@ bool World::asleep(std::size_t body) const {
 }
 
 void World::set_gravity(const glm::vec3& gravity) {
-  if (!std::isfinite(gravity.x) || !std::isfinite(gravity.y) || !std::isfinite(gravity.z)) {
+  if (!geom::is_finite(glm::dvec3(gravity))) {
     std::ostringstream msg;
     msg << "gravity (" << gravity.x << ", " << gravity.y << ", " << gravity.z
         << ") m/s^2: every component must be finite";
