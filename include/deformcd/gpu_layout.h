@@ -59,10 +59,12 @@ enum Binding : std::uint32_t {
   kNodeContactCount = 33,   ///< uint per node: its active constraints this substep
   kFrameStart = 34,         ///< glm::vec4 per node: position at the frame's start, w = reach
   kNodeMotion = 35,         ///< glm::vec4 per node: path velocity (xyz, m/s), reach (w, m)
-  kNodeDeviation = 36,      ///< float per node: its distance from its straight path (m)
-  /// two glm::vec4 per constraint (2 p, 2 p + 1): what it has given in the substep's iterations
-  /// so far (normal speed, push, the first iteration's approach; friction, the first
-  /// iteration's slip; response::solve_contact)
+  /// glm::vec4 per node at a projection's start: position - h x velocity (xyz), distance from
+  /// its straight path (w, m) (response::projection_start)
+  kProjectionStart = 36,
+  /// three glm::vec4 per constraint (3 p to 3 p + 2): what it has given in the substep's
+  /// iterations so far (normal speed, push, the first iteration's approach; friction, the first
+  /// iteration's slip; the hold; response::solve_contact)
   kContactImpulse = 37,
   /// uint per node: the last substep (a projection's count, from 1) in which one of its
   /// contacts slid (response::solve_contact's slide flag, summed by the node pass); free nodes

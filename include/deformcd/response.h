@@ -27,8 +27,10 @@ inline constexpr int kMaxResponseIterations = 64;
 /// nodes hold still (velocity 0, and to the contact response they are fixed, immovable
 /// obstacles) until a body that is not asleep comes into contact with one of them, which wakes
 /// the whole island. Bodies with fixed nodes only (a base) join no island and bodies carried
-/// along a path never sleep. A body is slow while the mass-weighted root mean square of its
-/// nodes' speeds stays below `speed` x its mean surface edge length per second.
+/// along a path never sleep. A body is slow in a frame when the mass-weighted root mean square
+/// of its nodes' moves over the frame stays below `speed` x its mean surface edge length per
+/// second x the frame's length (the motion a viewer sees: velocities that cancel within the
+/// frame, where constraints fight at rest, do not keep a body awake).
 struct SleepSettings {
   /// Mean surface edges per second (> 0).
   float speed = 0.5f;

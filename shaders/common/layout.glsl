@@ -44,7 +44,7 @@
 #define BINDING_NODE_CONTACT_COUNT 33   // uint per node: active constraints this substep
 #define BINDING_FRAME_START 34          // vec4 per node: frame-start position, w = reach
 #define BINDING_NODE_MOTION 35          // vec4 per node: path velocity (xyz, m/s), reach (w, m)
-#define BINDING_NODE_DEVIATION 36       // float per node: its distance from its straight path (m)
+#define BINDING_PROJECTION_START 36     // vec4 per node: x - h v (xyz), path deviation (w)
 #define BINDING_CONTACT_IMPULSE 37      // vec4 per constraint: given this substep (solve_contact)
 #define BINDING_NODE_SLID 38            // uint per node: the last substep a contact of it slid in
 

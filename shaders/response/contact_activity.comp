@@ -18,8 +18,8 @@ layout(std430, binding = BINDING_CONTACT_PAIR) readonly buffer ContactPairs {
 layout(std430, binding = BINDING_CONTACT_CORRECTION) writeonly buffer ContactCorrections {
   vec4 corrections[];
 };
-layout(std430, binding = BINDING_NODE_DEVIATION) readonly buffer NodeDeviation {
-  float node_deviation[];
+layout(std430, binding = BINDING_PROJECTION_START) readonly buffer ProjectionStarts {
+  vec4 projection_starts[];
 };
 
 uniform uint u_pair_count;
@@ -30,7 +30,7 @@ void main() {
   if (p >= u_pair_count) return;  // the last work group reaches past the end
   const ContactPair pair = pairs[p];
   float deviation[4];
-  for (uint i = 0u; i < 4u; ++i) deviation[i] = node_deviation[pair.nodes[i]];
+  for (uint i = 0u; i < 4u; ++i) deviation[i] = projection_starts[pair.nodes[i]].w;
   bool acting = contact_awake(pair, deviation, u_elapsed);
   if (acting) {
     vec4 x[4];

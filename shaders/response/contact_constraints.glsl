@@ -33,6 +33,11 @@ struct ContactConstants {
   float elapsed;            // s: from the frame's start to the end of this substep
 };
 
+// slid_before's answers (response::kNoneSlid, kSomeSlid, kAllSlid).
+const uint NONE_SLID = 0u;
+const uint SOME_SLID = 1u;
+const uint ALL_SLID = 2u;
+
 
 // plane_barycentric: the closest point of the plane projection of p on triangle (a, b, c) as
 // barycentric weights (u, v, w), u + v + w = 1 (not clamped here); false for a degenerate
@@ -117,6 +122,14 @@ float path_deviation(vec3 position, vec4 frame_start, vec4 node_motion, float el
   return deviation;
 }
 
+// projection_start, line for line: a node's position less h x its velocity (xyz), which only
+// position corrections move, and its distance from its straight path (w).
+vec4 projection_start(vec4 position, vec4 velocity, float h, vec4 frame_start, vec4 node_motion,
+                      float elapsed) {
+  precise vec3 base = position.xyz - h * velocity.xyz;
+  return vec4(base, path_deviation(position.xyz, frame_start, node_motion, elapsed));
+}
+
 // contact_awake, line for line: whether the constraint may act `elapsed` seconds into its
 // window, its nodes deviation[k] from their straight paths (a margin of 1e-4 of the thickness
 // for rounding).
@@ -190,7 +203,7 @@ bool contact_violated(ContactPair pair, vec4 position[4]) {
 // rate cancelled, the volume below its floor restored by position alone, along the gradient,
 // mass split, no node moved more than step_limit in one iteration).
 void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
-                  ContactConstants k, inout vec4 given[2], inout vec4 correction[8]) {
+                  ContactConstants k, inout vec4 given[3], inout vec4 correction[8]) {
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
   vec3 g[4];
   precise float volume = tetrahedron_volume(x, g);
@@ -233,17 +246,19 @@ void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], uint cou
 // speed (given[0].x) and push (y) given over the substep's iterations so far and the first
 // iteration's approach (z), and the friction given (given[1].xyz, a vector) and the first
 // iteration's slip (given[1].w); each iteration corrects the totals, the normal ones clamped at
-// zero, the friction to its cone of the accumulated normal change. `was_sliding` (slid_before):
-// the contact slid through the last substep; the last iteration's slide flag goes to the w of
-// each corner's velocity correction.
+// zero, the friction to its cone of the accumulated normal change; a sticking contact's hold
+// (given[2].xyz) takes back the tangential drift position corrections gave its point since the
+// projection's start (`start`), within the static cone of the push. `history` (slid_before):
+// none, some or all of its free nodes slid in the last substep (all: it slid through it); the
+// last iteration's slide flag goes to the w of each corner's velocity correction.
 void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
-                   ContactConstants k, bool first_iteration, bool last_iteration,
-                   bool was_sliding, inout vec4 given[2],
-                   out vec4 correction[8]) {
+                   vec4 start[4], ContactConstants k, bool first_iteration, bool last_iteration,
+                   uint history, inout vec4 given[3], out vec4 correction[8]) {
   for (int i = 0; i < 8; ++i) correction[i] = vec4(0.0);
   if (first_iteration) {
     given[0] = vec4(0.0);
     given[1] = vec4(0.0);
+    given[2] = vec4(0.0);
   }
   if (pair.kind == CONTACT_VOLUME) {
     solve_volume(pair, position, velocity, count, k, given, correction);
@@ -256,9 +271,11 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   if (!contact_geometry(pair, x, n, b, c)) return;
   precise float weight = 0.0;
   precise vec3 relative_velocity = vec3(0.0);
+  precise vec3 drift = vec3(0.0);  // how far position corrections carried the contact point
   for (int i = 0; i < 4; ++i) {
     weight += float(count[i]) * position[i].w * b[i] * b[i];
     relative_velocity += b[i] * velocity[i].xyz;
+    drift += b[i] * ((x[i] - k.h * velocity[i].xyz) - start[i].xyz);
   }
   if (!(weight > 0.0)) return;  // every node fixed
   precise float reduce = 1.0;  // no node moves more than 10 x its share of the correction
@@ -291,6 +308,7 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   precise float slip_left = reduce * sqrt(exact_dot(tangential, tangential));
   if (first_iteration) given[1].w = slip_left;
   precise float half_first = 0.5 * given[1].w;
+  const bool was_sliding = history == ALL_SLID;
   const bool starts_sliding = !was_sliding && last_iteration && slip_left > half_first;
   const bool dynamic = was_sliding || starts_sliding;
   precise float coefficient = dynamic ? k.friction_dynamic : k.friction_static;
@@ -304,8 +322,26 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   const bool slides = starts_sliding || (was_sliding && given[1].w > static_cone);
   given[1] = vec4(friction_total, given[1].w);
   precise vec3 friction = friction_total - held;
+  // The hold: a sticking contact none of whose free nodes slid in the last substep takes back
+  // its point's tangential drift, within friction_static's cone of the push.
+  precise vec3 drift_tangential = drift - exact_dot(drift, n) * n;
+  precise vec3 before_hold = given[2].xyz;
+  precise vec3 held_hold = before_hold - exact_dot(before_hold, n) * n;
+  precise vec3 hold_total = vec3(0.0);
+  if (!dynamic && history == NONE_SLID) {
+    precise vec3 wanted_hold = held_hold - reduce * drift_tangential;
+    precise float wanted_hold_length = sqrt(exact_dot(wanted_hold, wanted_hold));
+    precise float hold_limit = k.friction_static * given[0].y;
+    hold_total = wanted_hold;
+    if (wanted_hold_length > hold_limit) {
+      precise float hold_scale = hold_limit / wanted_hold_length;
+      hold_total = wanted_hold * hold_scale;
+    }
+  }
+  given[2] = vec4(hold_total, 0.0);
+  precise vec3 hold = hold_total - held_hold;
   precise vec3 dv = (normal_speed * n + friction) / weight;
-  precise vec3 dx = dv * k.h + (push / weight) * n;
+  precise vec3 dx = dv * k.h + (push / weight) * n + hold / weight;
   const float slide_flag = last_iteration && slides ? 1.0 : 0.0;
   for (int i = 0; i < 4; ++i) {
     precise float scale = position[i].w * b[i];
@@ -316,13 +352,18 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   }
 }
 
-// slid_before, line for line: each free node of the contact had a contact slide in the substep
-// before projection `substep`.
-bool slid_before(vec4 position[4], uint slid[4], uint substep) {
-  bool slid_all = true;
-  for (int i = 0; i < 4; ++i)
-    if (position[i].w > 0.0 && slid[i] + 1u != substep) slid_all = false;
-  return slid_all;
+// slid_before, line for line: how many of the contact's free nodes had a contact slide in the
+// substep before projection `substep`: none, some or all.
+uint slid_before(vec4 position[4], uint slid[4], uint substep) {
+  uint free_nodes = 0u;
+  uint slid_nodes = 0u;
+  for (int i = 0; i < 4; ++i) {
+    if (!(position[i].w > 0.0)) continue;
+    ++free_nodes;
+    if (slid[i] + 1u == substep) ++slid_nodes;
+  }
+  if (slid_nodes == 0u) return NONE_SLID;
+  return slid_nodes == free_nodes ? ALL_SLID : SOME_SLID;
 }
 
 // apply_correction, line for line: the corrections move the position and the velocity. Fixed

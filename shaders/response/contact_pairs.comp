@@ -4,8 +4,9 @@
 // the w of its first slot, 8 p) reads its four nodes' positions and velocities and writes their
 // corrections to the constraint's own slots: corner 4 p + k's at 2 (4 p + k) (position) and
 // 2 (4 p + k) + 1 (velocity) (solve_contact), the flag kept for the next iteration, and what it
-// has given over the substep's iterations to its own impulse slots 2 p and 2 p + 1; it reads its
-// free nodes' slide stamps (the node pass writes them after the last iteration). One dispatch
+// has given over the substep's iterations to its own impulse slots 3 p to 3 p + 2; it reads its
+// free nodes' slide stamps (the node pass writes them after the last iteration) and projection
+// starts (the deviation pass's). One dispatch
 // covers one group, constraints [u_pair_begin, u_pair_end): the contacts (u_group 0) or the
 // volume constraints (1), its nodes weighing by their counts in the group. An inactive
 // constraint is left alone, as the CPU backend leaves it: the node pass skips its slots. No two
@@ -36,6 +37,9 @@ layout(std430, binding = BINDING_CONTACT_IMPULSE) buffer ContactImpulses {
 layout(std430, binding = BINDING_NODE_SLID) readonly buffer NodeSlid {
   uint node_slid[];
 };
+layout(std430, binding = BINDING_PROJECTION_START) readonly buffer ProjectionStarts {
+  vec4 projection_starts[];
+};
 
 uniform uint u_pair_begin;
 uniform uint u_pair_end;
@@ -54,10 +58,11 @@ void main() {
   if (p >= u_pair_end) return;  // the last work group reaches past the end
   if (!(corrections[8u * p].w > 0.0)) return;  // not acting in this substep
   const ContactPair pair = pairs[p];
-  vec4 x[4], v[4];
+  vec4 x[4], v[4], start[4];
   for (uint i = 0u; i < 4u; ++i) {
     x[i] = positions[pair.nodes[i]];
     v[i] = velocities[pair.nodes[i]];
+    start[i] = projection_starts[pair.nodes[i]];
   }
   uint count[4], slid[4];
   for (uint i = 0u; i < 4u; ++i) {
@@ -65,14 +70,15 @@ void main() {
     slid[i] = node_slid[pair.nodes[i]];
   }
   vec4 correction[8];
-  vec4 given[2] = vec4[2](impulses[2u * p], impulses[2u * p + 1u]);
-  solve_contact(pair, x, v, count,
+  vec4 given[3] = vec4[3](impulses[3u * p], impulses[3u * p + 1u], impulses[3u * p + 2u]);
+  solve_contact(pair, x, v, count, start,
                 ContactConstants(u_h, u_friction_static, u_friction_dynamic, u_restitution,
                                  u_max_untangle_step, 0.0),
                 u_first_iteration, u_last_iteration, slid_before(x, slid, u_substep), given,
                 correction);
   correction[0].w = 1.0;  // the activity flag, for the next iteration's solve and node passes
   for (uint k = 0u; k < 8u; ++k) corrections[8u * p + k] = correction[k];
-  impulses[2u * p] = given[0];
-  impulses[2u * p + 1u] = given[1];
+  impulses[3u * p] = given[0];
+  impulses[3u * p + 1u] = given[1];
+  impulses[3u * p + 2u] = given[2];
 }

@@ -165,7 +165,7 @@ void main() {
     bindings[33] = BINDING_NODE_CONTACT_COUNT;
     bindings[34] = BINDING_FRAME_START;
     bindings[35] = BINDING_NODE_MOTION;
-    bindings[36] = BINDING_NODE_DEVIATION;
+    bindings[36] = BINDING_PROJECTION_START;
     bindings[37] = BINDING_CONTACT_IMPULSE;
     bindings[38] = BINDING_NODE_SLID;
     // Not gpu::Binding: the shared constants, then the GL backend's private work buffers.

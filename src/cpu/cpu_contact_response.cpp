@@ -19,7 +19,7 @@ void CpuContactResponse::take(const response::FrameConstraints& constraints) {
   constraints_ = &constraints;
   // Not cleared: a projection writes every slot of the constraints it solves and reads no other.
   corrections_.resize(8u * constraints_->pairs.size());
-  impulses_.resize(2u * constraints_->pairs.size());  // reset by each substep's first iteration
+  impulses_.resize(3u * constraints_->pairs.size());  // reset by each substep's first iteration
   active_.assign(constraints_->pairs.size(), 0u);
   acting_.clear();
 }
@@ -35,7 +35,7 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   // The slide stamps outlive a window (a contact's slide goes on across searches): set only for
   // new nodes, to a substep no projection has.
   if (slid_.size() != nodes) slid_.assign(nodes, response::kNeverSlid);
-  deviation_.assign(nodes, 0.0f);
+  start_.assign(nodes, glm::vec4(0.0f));
   counts_.assign(2u * nodes, 0u);
   slot_begin_.resize(nodes);
   slot_cursor_.resize(nodes);
@@ -76,15 +76,16 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
     // (those a constraint can name) or the touched ones (those an active constraint names).
     parallel_for(watched_.size(), [&](std::size_t w) {
       const std::uint32_t i = watched_[w];
-      deviation_[i] = response::path_deviation(glm::vec3(nodes_.host_positions[i]), frame_start_[i],
-                                               constraints_->node_motion[i], k.elapsed);
+      start_[i] =
+          response::projection_start(nodes_.host_positions[i], nodes_.host_velocities[i], k.h,
+                                     frame_start_[i], constraints_->node_motion[i], k.elapsed);
     });
     parallel_for(
         pairs.size(),
         [&](std::size_t p) {
           const gpu::ContactPair& pair = pairs[p];
-          const float deviation[4] = {deviation_[pair.nodes[0]], deviation_[pair.nodes[1]],
-                                      deviation_[pair.nodes[2]], deviation_[pair.nodes[3]]};
+          const float deviation[4] = {start_[pair.nodes[0]].w, start_[pair.nodes[1]].w,
+                                      start_[pair.nodes[2]].w, start_[pair.nodes[3]].w};
           bool active = response::contact_awake(pair, deviation, k.elapsed);
           if (active) {
             const glm::vec4 x[4] = {
@@ -139,16 +140,17 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
             [&](std::size_t a) {
               const std::uint32_t p = acting_[first + a];
               const gpu::ContactPair& pair = pairs[p];
-              glm::vec4 x[4], v[4];
+              glm::vec4 x[4], v[4], start[4];
               std::uint32_t count[4], slid[4];
               for (std::uint32_t i = 0; i < 4u; ++i) {
                 x[i] = nodes_.host_positions[pair.nodes[i]];
                 v[i] = nodes_.host_velocities[pair.nodes[i]];
+                start[i] = start_[pair.nodes[i]];
                 count[i] = counts_[2u * pair.nodes[i] + group];
                 slid[i] = slid_[pair.nodes[i]];
               }
-              response::solve_contact(pair, x, v, count, k, first_iteration, last,
-                                      response::slid_before(x, slid, substep_), &impulses_[2u * p],
+              response::solve_contact(pair, x, v, count, start, k, first_iteration, last,
+                                      response::slid_before(x, slid, substep_), &impulses_[3u * p],
                                       &corrections_[8u * p]);
             },
             256);
@@ -202,7 +204,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       const bool beyond =
           counts_[2u * i] + counts_[2u * i + 1u] != 0u
               ? response::strayed(x, frame_start_[i], constraints_->node_motion[i], k.elapsed)
-              : response::beyond_reach(deviation_[i], x, frame_start_[i]);
+              : response::beyond_reach(start_[i].w, x, frame_start_[i]);
       if (beyond) any_strayed.store(true, std::memory_order_relaxed);
     });
   });

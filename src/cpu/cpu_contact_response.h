@@ -44,7 +44,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
   std::vector<glm::vec4> frame_start_;  // per node: position at the frame's start, w = reach
   std::vector<glm::vec4> corrections_;  // two per corner (slot 4 p + k): position, velocity change
-  std::vector<glm::vec4> impulses_;     // two per constraint: what it gave this substep
+  std::vector<glm::vec4> impulses_;     // three per constraint: what it gave this substep
   // Per node n: its active contacts (2 n) and volume constraints (2 n + 1) this substep.
   std::vector<std::uint32_t> counts_;
   std::size_t first_volume_ = 0;        // the first volume constraint (all after it are)
@@ -54,7 +54,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::uint32_t substep_ = 0;           // project() calls so far
   std::vector<std::uint32_t> slid_;     // per node: the last substep a contact of it slid in
   std::vector<std::uint32_t> watched_;  // the nodes with a finite reach, ascending
-  std::vector<float> deviation_;        // per node: its distance from its straight path
+  std::vector<glm::vec4> start_;        // per node: response::projection_start, this substep
   // Per touched node n, its active slots: active_slots_[slot_begin_[n] ..), the contacts'
   // (counts_[2 n]) then the volume constraints' (counts_[2 n + 1]).
   std::vector<std::uint32_t> slot_begin_;

@@ -28,30 +28,34 @@ BodySleep::BodySleep(const SleepSettings& settings, const std::vector<gpu::Objec
   }
 }
 
-double BodySleep::rms_speed(std::size_t body, std::span<const glm::vec4> velocity) const {
+double BodySleep::rms_motion(std::size_t body, std::span<const glm::vec4> position) const {
   // In node order, in double: the same sum on every backend and thread count.
   const gpu::ObjectInfo& o = objects_[body];
-  double mass = 0.0, twice_energy = 0.0;
+  double mass = 0.0, weighted = 0.0;
   for (std::uint32_t i = o.node_offset; i < o.node_offset + o.node_count; ++i) {
     if (!(inverse_mass_[i] > 0.0f)) continue;
     const double m = 1.0 / static_cast<double>(inverse_mass_[i]);
-    const glm::dvec3 v(velocity[i]);
+    const glm::dvec3 d = glm::dvec3(glm::vec3(position[i])) - glm::dvec3(last_position_[i]);
     mass += m;
-    twice_energy += m * (v.x * v.x + v.y * v.y + v.z * v.z);
+    weighted += m * (d.x * d.x + d.y * d.y + d.z * d.z);
   }
-  return mass > 0.0 ? std::sqrt(twice_energy / mass) : 0.0;
+  return mass > 0.0 ? std::sqrt(weighted / mass) / static_cast<double>(dt_) : 0.0;
 }
 
 std::vector<std::uint32_t> BodySleep::end_frame(
-    std::span<const glm::vec4> velocity,
+    std::span<const glm::vec4> position,
     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links) {
   const std::size_t n = objects_.size();
+  const bool first_frame = last_position_.empty();
   for (std::size_t b = 0; b < n; ++b) {
     if (fixed_[b] != 0u) continue;
-    const bool slow =
-        asleep_[b] != 0u || rms_speed(b, velocity) < static_cast<double>(slow_speed_[b]);
+    const bool slow = asleep_[b] != 0u || (!first_frame && rms_motion(b, position) <
+                                                               static_cast<double>(slow_speed_[b]));
     slow_time_[b] = slow ? slow_time_[b] + dt_ : 0.0f;
   }
+  last_position_.resize(position.size());
+  for (std::size_t i = 0; i < position.size(); ++i)
+    last_position_[i] = glm::vec3(position[i]);
   // Islands: union-find over the links between bodies that are not fixed, each set named by
   // its smallest body (so the result does not depend on the links' order).
   std::vector<std::uint32_t> root(n);

@@ -1,7 +1,8 @@
 #pragma once
 // Sleeping bodies (ResponseSettings::sleep): which bodies of a world are asleep, decided after
-// each frame from the bodies' speeds and the contact links between them. It decides only; the
-// contact response holds a sleeping body's nodes still through the simulation backend.
+// each frame from how far the bodies' nodes moved over it and the contact links between them. It
+// decides only; the contact response holds a sleeping body's nodes still through the simulation
+// backend.
 //
 // As Box2D does for rigid bodies, the unit that falls asleep and wakes is an island: the bodies
 // linked by the frame's contact constraints, through any chain of them. Bodies whose nodes are
@@ -20,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "deformcd/gpu_layout.h"
@@ -36,12 +38,20 @@ class BodySleep {
             std::vector<float> inverse_mass, const std::vector<float>& mean_edge,
             const std::vector<std::uint8_t>& may_sleep, float dt);
 
-  /// After a frame: `velocity` per node, `links` the body pairs that the frame's contact
-  /// constraints joined (those between two sleeping bodies may be left out: they are joined
-  /// by the island they fell asleep in). Returns the bodies that fell asleep or woke,
-  /// ascending.
+  /// After a frame: `position` per node (the frame's end), `links` the body pairs that the
+  /// frame's contact constraints joined (those between two sleeping bodies may be left out:
+  /// they are joined by the island they fell asleep in). A body is slow in a frame when its
+  /// nodes moved less than the slow speed x dt since the last frame's end, as a root mean
+  /// square (the first frame, with no last one, is not slow). Returns the bodies that fell
+  /// asleep or woke, ascending.
+  ///
+  /// Why the motion over the frame, not the velocities: a body held at rest by constraints
+  /// that fight (the volume floor's pushes against the contacts' on a crushed bottom layer)
+  /// keeps node velocities of 3-8 x the slow speed that cancel over a substep or two, while the
+  /// body moves less than the slow speed; judged by its velocities the stack with the floor
+  /// never slept (docs/notes/2026-12-05-friction-tilt.md).
   std::vector<std::uint32_t> end_frame(
-      std::span<const glm::vec4> velocity,
+      std::span<const glm::vec4> position,
       const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links);
 
   /// Wakes every sleeping body (their slow time counts from zero again, as a woken island's
@@ -54,8 +64,9 @@ class BodySleep {
   [[nodiscard]] std::vector<float> inverse_masses(std::size_t body) const;
 
  private:
-  /// The mass-weighted root mean square of body b's free nodes' speeds (m/s).
-  [[nodiscard]] double rms_speed(std::size_t body, std::span<const glm::vec4> velocity) const;
+  /// The mass-weighted root mean square of body b's free nodes' moves from last_position_ to
+  /// `position`, over dt (m/s).
+  [[nodiscard]] double rms_motion(std::size_t body, std::span<const glm::vec4> position) const;
 
   SleepSettings settings_;
   std::vector<gpu::ObjectInfo> objects_;
@@ -66,6 +77,7 @@ class BodySleep {
   std::vector<std::uint8_t> asleep_;       // per body
   std::vector<std::uint32_t> slept_with_;  // per sleeping body: its island's smallest body
   std::vector<float> slow_time_;           // per body: s it has been slow without a break
+  std::vector<glm::vec3> last_position_;   // per node: at the last frame's end (none before)
   float dt_ = 0.0f;
 };
 

@@ -447,7 +447,7 @@ void ContactResponse::end_frame() {
   for (std::uint32_t a = 0; a < n; ++a)
     for (std::uint32_t b = a; b < n; ++b)
       if (linked_[a * n + b] != 0u) links.emplace_back(a, b);
-  apply_sleep_changes(sleep_->end_frame(velocities(), links));
+  apply_sleep_changes(sleep_->end_frame(positions(), links));
 }
 
 void ContactResponse::set_gravity(const glm::vec3& gravity) {

@@ -301,5 +301,62 @@ TEST(ContactConstraints, ClearNeverHidesAnActingConstraint) {
   EXPECT_GT(cleared, beyond / 2) << cleared << " of " << beyond;
 }
 
+// slid_before: none, some or all of a contact's free nodes had a contact slide in the substep
+// before (the stamps equal to the projection's count less one); fixed nodes do not count.
+TEST(ContactConstraints, SlidBeforeCountsOnlyFreeNodes) {
+  const glm::vec4 x[4] = {{0.0f, 0.0f, 0.0f, 1.0f},
+                          {0.0f, 0.0f, 0.0f, 2.0f},
+                          {0.0f, 0.0f, 0.0f, 0.0f},
+                          {0.0f, 0.0f, 0.0f, 0.0f}};
+  const std::uint32_t substep = 7u;
+  const std::uint32_t all[4] = {6u, 6u, response::kNeverSlid, 3u};
+  const std::uint32_t some[4] = {6u, 5u, 6u, 6u};
+  const std::uint32_t none[4] = {5u, response::kNeverSlid, 6u, 6u};
+  EXPECT_EQ(response::slid_before(x, all, substep), response::kAllSlid);
+  EXPECT_EQ(response::slid_before(x, some, substep), response::kSomeSlid);
+  EXPECT_EQ(response::slid_before(x, none, substep), response::kNoneSlid);
+}
+
+// The hold: a vertex 5 mm deep in the thickness of a fixed face (normal +z) whose projection
+// start says pushes carried it `drift` along x since the projection began. One iteration of a
+// sticking contact (static 0.5: its push is the 5 mm of depth, so the hold may take back up to
+// 2.5 mm) takes the drift back, all of it below 2.5 mm and 2.5 mm of it above; a contact with a
+// free node that slid in the last substep holds nothing; and a tangential velocity, which
+// moves the node by h x it but leaves its position less h x its velocity as it was, is no
+// drift (the velocity friction's, not the hold's).
+TEST(ContactConstraints, AStickingContactHoldsItsPointAgainstPushesWithinItsStaticCone) {
+  gpu::ContactPair pair = constraint(gpu::kContactVertexFace, glm::uvec4(0u, 1u, 2u, 3u));
+  const glm::vec4 x[4] = {{0.01f, 0.01f, 0.005f, 1.0f},
+                          {0.0f, 0.0f, 0.0f, 0.0f},
+                          {0.05f, 0.0f, 0.0f, 0.0f},
+                          {0.0f, 0.05f, 0.0f, 0.0f}};
+  const std::uint32_t count[4] = {1u, 1u, 1u, 1u};
+  response::ContactConstants k{};
+  k.h = 1e-3f;
+  k.friction_static = 0.5f;
+  k.friction_dynamic = 0.4f;
+  // The vertex's x move (its position correction) after one iteration.
+  const auto held = [&](float drift, glm::vec3 velocity, std::uint32_t history) {
+    const glm::vec4 v[4] = {glm::vec4(velocity, 0.0f), glm::vec4(0.0f), glm::vec4(0.0f),
+                            glm::vec4(0.0f)};
+    glm::vec4 start[4];
+    for (int i = 0; i < 4; ++i)
+      start[i] = glm::vec4(glm::vec3(x[i]) - k.h * glm::vec3(v[i]), 0.0f);
+    start[0].x -= drift;
+    glm::vec4 given[3], correction[8];
+    // First iteration, not the last (where a slip may start sliding).
+    response::solve_contact(pair, x, v, count, start, k, true, false, history, given, correction);
+    EXPECT_NEAR(correction[0].z, 0.005f, 1e-6f) << "pushed out of the thickness";
+    return correction[0].x;
+  };
+  EXPECT_NEAR(held(0.001f, glm::vec3(0.0f), response::kNoneSlid), -0.001f, 1e-6f);
+  EXPECT_NEAR(held(0.004f, glm::vec3(0.0f), response::kNoneSlid), -0.0025f, 1e-6f);
+  EXPECT_EQ(held(0.001f, glm::vec3(0.0f), response::kSomeSlid), 0.0f);
+  EXPECT_EQ(held(0.001f, glm::vec3(0.0f), response::kAllSlid), 0.0f);
+  // 0.1 m/s along x, no drift: the velocity friction alone (its cone is empty here: the vertex
+  // does not approach, so it stops nothing of the slip), no hold.
+  EXPECT_EQ(held(0.0f, glm::vec3(0.1f, 0.0f, 0.0f), response::kNoneSlid), 0.0f);
+}
+
 }  // namespace
 }  // namespace deformcd

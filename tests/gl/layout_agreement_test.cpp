@@ -214,7 +214,7 @@ TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
       gpu::kBodyBvh,           gpu::kCandidatePair,     gpu::kContactPair,
       gpu::kContactCorrection, gpu::kNodeContactOffset, gpu::kNodeContactList,
       gpu::kNodeContactCount,  gpu::kFrameStart,        gpu::kNodeMotion,
-      gpu::kNodeDeviation,     gpu::kContactImpulse,    gpu::kNodeSlid};
+      gpu::kProjectionStart,   gpu::kContactImpulse,    gpu::kNodeSlid};
   ASSERT_EQ(expected.size(), kBindingCount);
   std::vector<std::uint32_t> bindings = run_layout_probe(1).bindings;
   ASSERT_EQ(bindings.size(), kBindingCount + kConstantCount);

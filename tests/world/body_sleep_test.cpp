@@ -109,18 +109,26 @@ TEST(BodySleep, AnIslandThatFellAsleepTogetherWakesTogether) {
   }
   BodySleep sleep({.speed = 0.5f, .time = 0.25f}, objects, std::vector<float>(4, 1.0f),
                   std::vector<float>(4, 1.0f), std::vector<std::uint8_t>(4, 1u), 0.1f);
-  std::vector<glm::vec4> velocity(4, glm::vec4(0.0f));
-  velocity[3] = glm::vec4(3.0f, 0.0f, 0.0f, 0.0f);
+  // Body 3 moves 0.3 m a frame (3 m/s); 0 jitters by 0.01 m a frame (slow) around a point.
+  std::vector<glm::vec4> position(4, glm::vec4(0.0f));
+  const auto frame_end = [&](int frame) {
+    position[3].x = 0.3f * static_cast<float>(frame);
+    position[0].y = frame % 2 == 0 ? 0.0f : 0.01f;
+    return position;
+  };
   const std::vector<std::pair<std::uint32_t, std::uint32_t>> resting = {{0u, 1u}};
-  for (int frame = 0; frame < 2; ++frame)  // slow for 0.1 s, 0.2 s
-    EXPECT_TRUE(sleep.end_frame(velocity, resting).empty()) << "frame " << frame;
+  int frame = 0;
+  // The first frame has no last one to be measured from: no body is slow yet.
+  EXPECT_TRUE(sleep.end_frame(frame_end(frame++), resting).empty());
+  for (int i = 0; i < 2; ++i)  // slow for 0.1 s, 0.2 s
+    EXPECT_TRUE(sleep.end_frame(frame_end(frame++), resting).empty()) << "frame " << frame;
   // 0.3 s: the islands of the slow bodies sleep.
-  EXPECT_EQ(sleep.end_frame(velocity, resting), (std::vector<std::uint32_t>{0u, 1u, 2u}));
+  EXPECT_EQ(sleep.end_frame(frame_end(frame++), resting), (std::vector<std::uint32_t>{0u, 1u, 2u}));
   // Asleep: no links between the sleeping bodies any more.
-  for (int frame = 0; frame < 5; ++frame)
-    EXPECT_TRUE(sleep.end_frame(velocity, {}).empty()) << "frame " << frame;
+  for (int i = 0; i < 5; ++i)
+    EXPECT_TRUE(sleep.end_frame(frame_end(frame++), {}).empty()) << "frame " << frame;
   // Body 3 reaches 1: 0 wakes with it, 2 sleeps on.
-  EXPECT_EQ(sleep.end_frame(velocity, {{1u, 3u}}), (std::vector<std::uint32_t>{0u, 1u}));
+  EXPECT_EQ(sleep.end_frame(frame_end(frame++), {{1u, 3u}}), (std::vector<std::uint32_t>{0u, 1u}));
   EXPECT_TRUE(sleep.asleep(2));
   EXPECT_EQ(sleep.inverse_masses(0), std::vector<float>{1.0f});
   EXPECT_EQ(sleep.inverse_masses(2), std::vector<float>{0.0f});

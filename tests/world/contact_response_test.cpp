@@ -413,21 +413,21 @@ TEST(ContactResponse, SelfContactAtThreeTimesTheImpactsSpeedStaysApart) {
 #endif
 }
 
-// Four bodies dropped in two columns onto a fixed base: no face pair intersects in any of the
-// scene's 180 frames (3 s); the stack comes to rest: every body is asleep (the scene's sleep
-// settings) by frame 170, the kinetic energy at 3 s is below 1e-6 of its peak (the upper bodies
-// landing), and from the frame the whole stack sleeps no body's centroid drifts (the issue's
-// bound: 1 % of the mean surface edge a second). Without sleeping, the stack's energy at 3 s is
-// 1e-5 to 4e-5 of its peak (docs/benchmarks.md).
-TEST(ContactResponse, StackedBodiesComeToRestWithoutIntersecting) {
+// Four bodies dropped in two columns onto a fixed base (scenes/stack.json, `volume_floor` as
+// given): no face pair intersects in any of `frames` frames; the stack comes to rest: every
+// body is asleep (the scene's sleep settings) by frame `asleep_by`, the kinetic energy at the
+// end is below 1e-6 of its peak (the upper bodies landing), and from the frame the whole stack
+// sleeps no body's centroid drifts (the bound: 1 % of the mean surface edge a second).
+void expect_the_stack_rests(float volume_floor, int frames, int asleep_by) {
 #ifdef DEFORMCD_UNDER_ASAN
   // Under the sanitizers (20x slower here) the landings only: every body is on the base or on
   // another by frame 30.
-  constexpr int kFrames = 40;
+  const int kFrames = 40;
 #else
-  constexpr int kFrames = 180;
+  const int kFrames = frames;
 #endif
-  SceneWorld s = open_scene("stack", 180);
+  SceneWorld s = open_scene("stack", frames, 0, 0.0f,
+                            [&](Scene& scene) { scene.response->volume_floor = volume_floor; });
   World& world = *s.world;
   const auto kinetic_energy = [&] {
     double sum = 0.0;
@@ -470,9 +470,9 @@ TEST(ContactResponse, StackedBodiesComeToRestWithoutIntersecting) {
     }
   });
   EXPECT_GT(constraints, 100000u) << "the bodies should have landed";
-  if (kFrames < 180) return;
+  if (kFrames < frames) return;
   EXPECT_GT(all_asleep, 0) << "the stack never came to rest";
-  EXPECT_LE(all_asleep, 170) << "the stack came to rest late";
+  EXPECT_LE(all_asleep, asleep_by) << "the stack came to rest late";
   EXPECT_LT(last, 1e-6 * peak) << "peak " << peak << " J";
   const double rest_time = static_cast<double>(kFrames - all_asleep) / 60.0;
   for (std::size_t b = 1; b < n && all_asleep > 0; ++b) {
@@ -480,11 +480,27 @@ TEST(ContactResponse, StackedBodiesComeToRestWithoutIntersecting) {
         world.contact_thickness(b) / static_cast<double>(s.world_response.relative_thickness);
     const double drift = glm::length(centroid(b) - rest_centroid[b]);
     EXPECT_LE(drift, 0.01 * edge * rest_time) << "body " << b << " drifted at rest";
-    RecordProperty("body" + std::to_string(b) + "_centroid_moved_over_the_last_second_m",
-                   std::to_string(glm::length(centroid(b) - second_ago[b])));
+    testing::Test::RecordProperty(
+        "body" + std::to_string(b) + "_centroid_moved_over_the_last_second_m",
+        std::to_string(glm::length(centroid(b) - second_ago[b])));
   }
-  RecordProperty("kinetic_energy_ratio_at_3s", std::to_string(last / peak));
-  RecordProperty("frame_the_stack_fell_asleep", std::to_string(all_asleep));
+  testing::Test::RecordProperty("kinetic_energy_ratio_at_the_end", std::to_string(last / peak));
+  testing::Test::RecordProperty("frame_the_stack_fell_asleep", std::to_string(all_asleep));
+}
+
+// The scene as shipped, 180 frames (3 s): asleep by frame 170 (160 measured). Without sleeping,
+// the stack's energy at 3 s is 1e-5 to 4e-5 of its peak (docs/benchmarks.md).
+TEST(ContactResponse, StackedBodiesComeToRestWithoutIntersecting) {
+  expect_the_stack_rests(0.0f, 180, 170);
+}
+
+// With the volume floor (0.3), 240 frames: asleep by frame 220 (204 measured). The floor's
+// pushes on the crushed bottom tetrahedra move nodes along the surface without a velocity;
+// before static friction held positions (solve_contact's hold) and sleep was judged by the
+// motion over a frame, the bottom bodies crept at 2-8 mm/s and the stack never slept
+// (docs/notes/2026-12-05-hold.md).
+TEST(ContactResponse, StackedBodiesWithTheVolumeFloorComeToRest) {
+  expect_the_stack_rests(0.3f, 240, 220);
 }
 
 // A pair as the brute-force enumeration names it: kind (0 vertex-triangle, 1 edge-edge), the

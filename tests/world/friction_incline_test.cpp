@@ -186,6 +186,7 @@ Slide slide_on_incline(const Incline& incline) {
 
 void expect_held(const Incline& incline) {
   const Slide slide = slide_on_incline(incline);
+  testing::Test::RecordProperty("slid_m", std::to_string(slide.distance));
   EXPECT_LT(std::abs(slide.distance), 0.01)
       << incline.degrees << " degrees, " << incline.friction_static << " / "
       << incline.friction_dynamic << ": slid " << slide.distance << " m in "
@@ -197,6 +198,8 @@ void expect_held(const Incline& incline) {
 void expect_coulomb(const Incline& incline, double share = 0.1) {
   const Slide slide = slide_on_incline(incline);
   ASSERT_GT(slide.coulomb, 0.0);
+  testing::Test::RecordProperty("slid_m", std::to_string(slide.distance));
+  testing::Test::RecordProperty("coulomb_m", std::to_string(slide.coulomb));
   EXPECT_NEAR(slide.distance, slide.coulomb, share * slide.coulomb)
       << incline.degrees << " degrees, " << incline.friction_static << " / "
       << incline.friction_dynamic << ": slid " << slide.distance << " m in "

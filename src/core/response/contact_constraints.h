@@ -128,6 +128,18 @@ inline float path_deviation(const glm::vec3& position, const glm::vec4& frame_st
   return std::sqrt(glm::dot(moved, moved));
 }
 
+/// What the deviation pass records of a node at a projection's start (gpu::kProjectionStart):
+/// xyz its position less h x its velocity, which velocity corrections leave as it is (they move
+/// the node by their change x h) and only position corrections move, so that a contact sees how
+/// far pushes (its neighbours', the volume floor's) have carried its point (solve_contact's
+/// hold); w its distance from its straight path (path_deviation), which the activity pass reads.
+inline glm::vec4 projection_start(const glm::vec4& position, const glm::vec4& velocity, float h,
+                                  const glm::vec4& frame_start, const glm::vec4& node_motion,
+                                  float elapsed) {
+  const glm::vec3 base = glm::vec3(position) - h * glm::vec3(velocity);
+  return glm::vec4(base, path_deviation(glm::vec3(position), frame_start, node_motion, elapsed));
+}
+
 /// Whether a constraint may act `elapsed` seconds into its search window, its nodes
 /// deviation[k] from their straight paths: along the paths its distance shrinks by at most
 /// closing_speed x elapsed, and each side's deviation takes at most that side's largest off it.
@@ -143,18 +155,32 @@ inline bool contact_awake(const gpu::ContactPair& pair, const float deviation[4]
 /// to it (the backends count projections from 1).
 inline constexpr std::uint32_t kNeverSlid = 0xFFFFFFFFu;
 
-/// Whether a contact slid through the substep before projection `substep`: each of its free
-/// nodes (inverse mass position[k].w > 0) had a contact slide in it (slid[k], their stamps). A
-/// contact between a sliding body and one its points stick to shares no free node with the
-/// other side's other contacts, and a body whose points all slide keeps its contacts sliding;
-/// one free node's stamp alone spread a slide from contact to contact over a whole face and
-/// let a block held at static 0.7 go.
-inline bool slid_before(const glm::vec4 position[4], const std::uint32_t slid[4],
-                        std::uint32_t substep) {
-  bool slid_all = true;
-  for (int i = 0; i < 4; ++i)
-    if (position[i].w > 0.0f && slid[i] + 1u != substep) slid_all = false;
-  return slid_all;
+/// slid_before's answers: none, some or all of a contact's free nodes had a contact slide in
+/// the substep before.
+inline constexpr std::uint32_t kNoneSlid = 0u;
+inline constexpr std::uint32_t kSomeSlid = 1u;
+inline constexpr std::uint32_t kAllSlid = 2u;
+
+/// How many of a contact's free nodes (inverse mass position[k].w > 0) had a contact slide in
+/// the substep before projection `substep` (slid[k], their stamps): kAllSlid, kSomeSlid or
+/// kNoneSlid (also for a contact without free nodes). A contact slides on (solve_contact's
+/// `was_sliding`) only where all did: a contact between a sliding body and one its points
+/// stick to shares no free node with the other side's other contacts, and a body whose points
+/// all slide keeps its contacts sliding; one free node's stamp alone spread a slide from
+/// contact to contact over a whole face and let a block held at static 0.7 go. It holds its
+/// point (the hold) only where none did: on a sliding block the contacts that stick for a
+/// substep (new ones at its front, where its nodes climb onto the next faces) held the block
+/// back, 1.313 m against 1.330 m without the hold in 3 s (Coulomb 1.460 m).
+inline std::uint32_t slid_before(const glm::vec4 position[4], const std::uint32_t slid[4],
+                                 std::uint32_t substep) {
+  std::uint32_t free_nodes = 0u, slid_nodes = 0u;
+  for (int i = 0; i < 4; ++i) {
+    if (!(position[i].w > 0.0f)) continue;
+    ++free_nodes;
+    if (slid[i] + 1u == substep) ++slid_nodes;
+  }
+  if (slid_nodes == 0u) return kNoneSlid;
+  return slid_nodes == free_nodes ? kAllSlid : kSomeSlid;
 }
 
 /// The sum of the absolute values of v's components: at least its length, without a root.
@@ -250,7 +276,7 @@ inline bool contact_violated(const gpu::ContactPair& pair, const glm::vec4 posit
 /// volume, at most 18 and 6 (docs/notes/2026-12-05-volume-floor.md).
 inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[4],
                          const glm::vec4 velocity[4], const std::uint32_t count[4],
-                         const ContactConstants& k, glm::vec4 given[2], glm::vec4 correction[8]) {
+                         const ContactConstants& k, glm::vec4 given[3], glm::vec4 correction[8]) {
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
                           glm::vec3(position[3])};
   glm::vec3 g[4];
@@ -298,14 +324,18 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
 /// so momentum is conserved; a node moves at most its share of the whole correction (see
 /// `reduce`).
 ///
-/// `was_sliding`: the contact slid through the last substep (slid_before); in the last
-/// iteration the w of each corner's velocity correction is 1 where it slides on (the node pass
-/// records it for the next substep), else 0.
+/// `history`: how many of its free nodes slid in the last substep (slid_before); the contact
+/// slid through it (`was_sliding`) where all did. In the last iteration the w of each corner's
+/// velocity correction is 1 where it slides on (the node pass records it for the next
+/// substep), else 0. `start`: the nodes' projection starts
+/// (projection_start), from which a sticking contact's hold measures how far pushes carried its
+/// point.
 ///
-/// `given` (two ContactImpulse slots, 2 p and 2 p + 1, per constraint) carries what the
+/// `given` (three ContactImpulse slots, 3 p to 3 p + 2, per constraint) carries what the
 /// constraint has given over the substep's iterations so far: given[0] x the normal speed, y the
 /// push, z the first iteration's approach; given[1] xyz the friction (a velocity, in the units
-/// of given[0].x), w the first iteration's slip; the first iteration resets both. Each
+/// of given[0].x), w the first iteration's slip; given[2] xyz the hold (a position); the first
+/// iteration resets them. Each
 /// iteration corrects the totals (the normal ones never below zero, the friction within its
 /// cone: a projected Jacobi solve on accumulated corrections, as sequential impulses clamp
 /// theirs): a constraint that an earlier iteration over-corrected, because its nodes' other
@@ -315,11 +345,12 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
 /// once the contact point separated), the main source of the stack scene's resting jitter.
 inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position[4],
                           const glm::vec4 velocity[4], const std::uint32_t count[4],
-                          const ContactConstants& k, bool first_iteration, bool last_iteration,
-                          bool was_sliding, glm::vec4 given[2], glm::vec4 correction[8]) {
+                          const glm::vec4 start[4], const ContactConstants& k, bool first_iteration,
+                          bool last_iteration, std::uint32_t history, glm::vec4 given[3],
+                          glm::vec4 correction[8]) {
   for (int i = 0; i < 8; ++i)
     correction[i] = glm::vec4(0.0f);
-  if (first_iteration) given[0] = given[1] = glm::vec4(0.0f);
+  if (first_iteration) given[0] = given[1] = given[2] = glm::vec4(0.0f);
   if (pair.kind == gpu::kContactVolume) {
     solve_volume(pair, position, velocity, count, k, given, correction);
     return;
@@ -332,9 +363,11 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   if (!contact_geometry(pair, x, n, b, c)) return;
   float weight = 0.0f;
   glm::vec3 relative_velocity(0.0f);
+  glm::vec3 drift(0.0f);  // how far position corrections carried the contact point
   for (int i = 0; i < 4; ++i) {
     weight += static_cast<float>(count[i]) * position[i].w * b[i] * b[i];
     relative_velocity += b[i] * glm::vec3(velocity[i]);
+    drift += b[i] * ((x[i] - k.h * glm::vec3(velocity[i])) - glm::vec3(start[i]));
   }
   if (!(weight > 0.0f)) return;  // every node fixed
   // No node moves more than 10 x its share (1 / its count) of the whole correction: a node
@@ -393,6 +426,7 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   const float wanted_length = std::sqrt(glm::dot(wanted, wanted));
   const float slip_left = reduce * std::sqrt(glm::dot(tangential, tangential));
   if (first_iteration) given[1].w = slip_left;
+  const bool was_sliding = history == kAllSlid;
   const bool starts_sliding = !was_sliding && last_iteration && slip_left > 0.5f * given[1].w;
   const bool dynamic = was_sliding || starts_sliding;
   const float limit = (dynamic ? k.friction_dynamic : k.friction_static) * given[0].x;
@@ -402,8 +436,31 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
       starts_sliding || (was_sliding && given[1].w > k.friction_static * given[0].x);
   given[1] = glm::vec4(friction_total, given[1].w);
   const glm::vec3 friction = friction_total - held;
+  // Static friction holds positions too (the hold, given[2].xyz): a sticking contact none of
+  // whose free nodes slid in the last substep (history, slid_before) takes back the tangential
+  // drift of its point that position corrections made in this projection (the velocity
+  // friction above sees only velocities), within friction_static's cone of the push (a
+  // position correction bounded by the normal position correction, as the friction is by the
+  // normal speed). A sliding contact holds nothing. Why: the volume floor's pushes move the
+  // nodes of a resting body along the tetrahedra's gradients without a velocity, and the stack
+  // with the floor crept at 2-8 mm/s and never slept; with the hold it sleeps
+  // (docs/notes/2026-12-05-hold.md).
+  const glm::vec3 drift_tangential = drift - glm::dot(drift, n) * n;
+  const glm::vec3 before_hold = glm::vec3(given[2]);
+  const glm::vec3 held_hold = before_hold - glm::dot(before_hold, n) * n;
+  glm::vec3 hold_total(0.0f);
+  if (!dynamic && history == kNoneSlid) {
+    const glm::vec3 wanted_hold = held_hold - reduce * drift_tangential;
+    const float wanted_hold_length = std::sqrt(glm::dot(wanted_hold, wanted_hold));
+    const float hold_limit = k.friction_static * given[0].y;
+    hold_total = wanted_hold;
+    if (wanted_hold_length > hold_limit)
+      hold_total = wanted_hold * (hold_limit / wanted_hold_length);
+  }
+  given[2] = glm::vec4(hold_total, 0.0f);
+  const glm::vec3 hold = hold_total - held_hold;
   const glm::vec3 dv = (normal_speed * n + friction) / weight;
-  const glm::vec3 dx = dv * k.h + (push / weight) * n;
+  const glm::vec3 dx = dv * k.h + (push / weight) * n + hold / weight;
   const float slide_flag = last_iteration && slides ? 1.0f : 0.0f;
   for (int i = 0; i < 4; ++i) {
     const float scale = position[i].w * b[i];

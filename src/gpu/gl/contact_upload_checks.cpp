@@ -58,8 +58,8 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
       {"Node Contact Count", gpu::kNodeContactCount, 2u * nodes + 1u, sizeof(std::uint32_t)},
       {"Frame Start", gpu::kFrameStart, nodes, sizeof(glm::vec4)},
       {"Node Motion", gpu::kNodeMotion, nodes, sizeof(glm::vec4)},
-      {"Node Deviation", gpu::kNodeDeviation, nodes, sizeof(float)},
-      {"Contact Impulse", gpu::kContactImpulse, 2u * pairs, sizeof(glm::vec4)},
+      {"Projection Start", gpu::kProjectionStart, nodes, sizeof(glm::vec4)},
+      {"Contact Impulse", gpu::kContactImpulse, 3u * pairs, sizeof(glm::vec4)},
       {"Node Slid", gpu::kNodeSlid, nodes, sizeof(std::uint32_t)},
   };
 }

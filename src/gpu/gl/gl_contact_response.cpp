@@ -104,8 +104,8 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   auto new_count = grow(buffers_.node_count, 2u * nodes + 2u, gpu::kNodeContactCount);
   auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
   auto new_motion = grow(buffers_.node_motion, nodes, gpu::kNodeMotion);
-  auto new_deviation = grow(buffers_.node_deviation, nodes, gpu::kNodeDeviation);
-  auto new_impulses = grow(buffers_.impulses, 2u * pairs, gpu::kContactImpulse);
+  auto new_projection_start = grow(buffers_.projection_start, nodes, gpu::kProjectionStart);
+  auto new_impulses = grow(buffers_.impulses, 3u * pairs, gpu::kContactImpulse);
   auto new_slid = grow(buffers_.node_slid, nodes, gpu::kNodeSlid);
 
   frame_ready_ = false;  // until the upload below has completed
@@ -116,7 +116,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   adopt(buffers_.node_count, new_count);
   adopt(buffers_.frame_start, new_start);
   adopt(buffers_.node_motion, new_motion);
-  adopt(buffers_.node_deviation, new_deviation);
+  adopt(buffers_.projection_start, new_projection_start);
   adopt(buffers_.impulses, new_impulses);
   // The slide stamps outlive a window (a contact's slide goes on across searches): set only
   // where the buffer is new (or the nodes others), to a substep no projection has.
@@ -190,7 +190,7 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   buffers_.node_count->bind(gpu::kNodeContactCount);
   buffers_.frame_start->bind(gpu::kFrameStart);
   buffers_.node_motion->bind(gpu::kNodeMotion);
-  buffers_.node_deviation->bind(gpu::kNodeDeviation);
+  buffers_.projection_start->bind(gpu::kProjectionStart);
   buffers_.impulses->bind(gpu::kContactImpulse);
   buffers_.node_slid->bind(gpu::kNodeSlid);
   ++substep_;
@@ -202,6 +202,7 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   // every free node's reach, as the CPU backend does.
   if (pair_count_ > 0) {
     deviation_.set_uniform("u_elapsed", k.elapsed);
+    deviation_.set_uniform("u_h", k.h);
     deviation_.dispatch_covering(node_count_);
     storage_barrier();  // the activity pass reads the deviations
     activity_.set_uniform("u_elapsed", k.elapsed);

@@ -5,8 +5,8 @@
 //
 // Thread-to-data mapping: response/contact_frame_start.comp runs once per search window, one
 // invocation per node, recording its position and its reach (SSBO 34). Each projection then runs
-// response/contact_deviation.comp, one invocation per node, writing its distance from its
-// straight path (SSBO 36); response/contact_activity.comp, one per constraint, flagging whether
+// response/contact_deviation.comp, one invocation per node, writing its projection start (its
+// position less h x its velocity, and its distance from its straight path: SSBO 36); response/contact_activity.comp, one per constraint, flagging whether
 // it acts (only constraints the deviations can have woken look at their geometry);
 // response/contact_count.comp, one per node, counting its active corners over its CSR list
 // (SSBOs 31, 32) into SSBO 33; then, once per Jacobi iteration, response/contact_pairs.comp,
@@ -49,16 +49,16 @@ struct GlContactResponseOptions {
 // The response's own buffers, bound at the gpu::Binding points. Each is reallocated only when a
 // frame needs more than it holds, so a contact set of steady size allocates nothing per frame.
 struct ContactBuffers {
-  std::optional<Ssbo<gpu::ContactPair>> pairs;     // SSBO 29
-  std::optional<Ssbo<glm::vec4>> corrections;      // SSBO 30: 8 per constraint
-  std::optional<Ssbo<std::uint32_t>> node_offset;  // SSBO 31: nodes + 1
-  std::optional<Ssbo<std::uint32_t>> node_list;    // SSBO 32
-  std::optional<Ssbo<std::uint32_t>> node_count;   // SSBO 33: per node, + 1: the stray flag
-  std::optional<Ssbo<glm::vec4>> frame_start;      // SSBO 34: per node
-  std::optional<Ssbo<glm::vec4>> node_motion;      // SSBO 35: per node
-  std::optional<Ssbo<float>> node_deviation;       // SSBO 36: per node
-  std::optional<Ssbo<glm::vec4>> impulses;         // SSBO 37: two per constraint
-  std::optional<Ssbo<std::uint32_t>> node_slid;    // SSBO 38: per node, kept across frames
+  std::optional<Ssbo<gpu::ContactPair>> pairs;      // SSBO 29
+  std::optional<Ssbo<glm::vec4>> corrections;       // SSBO 30: 8 per constraint
+  std::optional<Ssbo<std::uint32_t>> node_offset;   // SSBO 31: nodes + 1
+  std::optional<Ssbo<std::uint32_t>> node_list;     // SSBO 32
+  std::optional<Ssbo<std::uint32_t>> node_count;    // SSBO 33: per node, + 1: the stray flag
+  std::optional<Ssbo<glm::vec4>> frame_start;       // SSBO 34: per node
+  std::optional<Ssbo<glm::vec4>> node_motion;       // SSBO 35: per node
+  std::optional<Ssbo<glm::vec4>> projection_start;  // SSBO 36: per node
+  std::optional<Ssbo<glm::vec4>> impulses;          // SSBO 37: three per constraint
+  std::optional<Ssbo<std::uint32_t>> node_slid;     // SSBO 38: per node, kept across frames
 };
 
 class GlContactResponse final : public response::ResponseBackend {
