@@ -327,22 +327,21 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
 /// `history`: how many of its free nodes slid in the last substep (slid_before); the contact
 /// slid through it (`was_sliding`) where all did. In the last iteration the w of each corner's
 /// velocity correction is 1 where it slides on (the node pass records it for the next
-/// substep), else 0. `start`: the nodes' projection starts
-/// (projection_start), from which a sticking contact's hold measures how far pushes carried its
-/// point.
+/// substep), else 0. `start`: the nodes' projection starts (projection_start), from which a
+/// sticking contact's hold measures how far pushes carried its point.
 ///
 /// `given` (three ContactImpulse slots, 3 p to 3 p + 2, per constraint) carries what the
 /// constraint has given over the substep's iterations so far: given[0] x the normal speed, y the
 /// push, z the first iteration's approach; given[1] xyz the friction (a velocity, in the units
 /// of given[0].x), w the first iteration's slip; given[2] xyz the hold (a position); the first
-/// iteration resets them. Each
-/// iteration corrects the totals (the normal ones never below zero, the friction within its
-/// cone: a projected Jacobi solve on accumulated corrections, as sequential impulses clamp
-/// theirs): a constraint that an earlier iteration over-corrected, because its nodes' other
-/// constraints then moved them too, takes the excess back instead of leaving it. Without that,
-/// a light node on an edge whose heavier end another constraint also stops was thrown off the
-/// surface every substep (the rigid-lever correction of the edge-edge constraint, never undone
-/// once the contact point separated), the main source of the stack scene's resting jitter.
+/// iteration resets them. Each iteration corrects the totals (the normal ones never below
+/// zero, the friction within its cone: a projected Jacobi solve on accumulated corrections, as
+/// sequential impulses clamp theirs): a constraint that an earlier iteration over-corrected,
+/// because its nodes' other constraints then moved them too, takes the excess back instead of
+/// leaving it. Without that, a light node on an edge whose heavier end another constraint also
+/// stops was thrown off the surface every substep (the rigid-lever correction of the edge-edge
+/// constraint, never undone once the contact point separated), the main source of the stack
+/// scene's resting jitter.
 inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position[4],
                           const glm::vec4 velocity[4], const std::uint32_t count[4],
                           const glm::vec4 start[4], const ContactConstants& k, bool first_iteration,
