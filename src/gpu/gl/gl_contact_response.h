@@ -6,7 +6,8 @@
 // Thread-to-data mapping: response/contact_frame_start.comp runs once per search window, one
 // invocation per node, recording its position and its reach (SSBO 34). Each projection then runs
 // response/contact_deviation.comp, one invocation per node, writing its projection start (its
-// position less h x its velocity, and its distance from its straight path: SSBO 36); response/contact_activity.comp, one per constraint, flagging whether
+// position less h x its velocity, and its distance from its straight path: SSBO 36);
+// response/contact_activity.comp, one per constraint, flagging whether
 // it acts (only constraints the deviations can have woken look at their geometry);
 // response/contact_count.comp, one per node, counting its active corners over its CSR list
 // (SSBOs 31, 32) into SSBO 33; then, once per Jacobi iteration, response/contact_pairs.comp,
