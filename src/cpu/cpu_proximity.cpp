@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/collision/bvh.h"
+#include "cpu/cpu_bvh_pair_traversal.h"
 #include "cpu/parallel_for.h"
 
 namespace deformcd::cpu {
@@ -44,6 +45,7 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
   // Each leaf its face's swept box grown by the face's reach, each parent the union of its
   // children, in reverse preorder.
   const std::vector<gpu::BvhNode>& nodes = trees_.nodes();
+  if (records_generation_ != trees_.generation()) make_records();
   boxes_.resize(nodes.size());
   leaf_of_.resize(faces.size());
   for (const gpu::BodyBvh& tree : trees_.trees()) {
@@ -56,10 +58,114 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
         const gpu::Box& l = boxes_[n.left];
         const gpu::Box& r = boxes_[n.right];
         boxes_[i] = {glm::min(l.min, r.min), glm::max(l.max, r.max)};
+        ChildBoxes& record = records_[record_of_[i]];
+        for (int axis = 0; axis < 3; ++axis) {
+          record.min[axis][0] = l.min[axis];
+          record.max[axis][0] = l.max[axis];
+          record.min[axis][1] = r.min[axis];
+          record.max[axis][1] = r.max[axis];
+        }
       }
     }
   }
   boxes_generation_ = trees_.generation();
+}
+
+void CpuProximity::make_records() {
+  const std::vector<gpu::BvhNode>& nodes = trees_.nodes();
+  record_of_.assign(nodes.size(), gpu::kBvhInternal);
+  std::uint32_t count = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (nodes[i].face == gpu::kBvhInternal) record_of_[i] = count++;
+  records_.assign(count, ChildBoxes{});
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].face != gpu::kBvhInternal) continue;
+    ChildBoxes& record = records_[record_of_[i]];
+    const std::uint32_t children[2] = {nodes[i].left, nodes[i].right};
+    for (int k = 0; k < 2; ++k) {
+      const gpu::BvhNode& child = nodes[children[k]];
+      record.child[k] =
+          child.face != gpu::kBvhInternal ? kLeafChild | child.face : record_of_[children[k]];
+    }
+  }
+  records_generation_ = trees_.generation();
+}
+
+std::vector<std::array<std::uint32_t, 2>> CpuProximity::met_face_pairs(
+    std::span<const std::uint32_t> mesh_pairs) {
+  // Each mesh pair's trees descended together, cut into a fixed number of independent node
+  // pairs (expand_frontier: the cut does not depend on the thread count), each traversed by one
+  // task into a list of its own. A face pair is recorded under its bucket (the mesh pair's, then
+  // its first face's), with its second face.
+  constexpr std::size_t kPieces = 64;
+  struct Piece {
+    std::uint32_t slot;  // index into mesh_pairs
+    NodePair nodes;
+  };
+  std::vector<Piece> pieces;
+  std::vector<std::uint32_t> bucket_base(mesh_pairs.size() + 1u, 0u);
+  std::vector<NodePair> frontier, scratch;
+  const gpu::BvhNode* nodes = trees_.nodes().data();
+  for (std::uint32_t slot = 0; slot < mesh_pairs.size(); ++slot) {
+    const gpu::BodyPair& pair = mesh_pairs_[mesh_pairs[slot]];
+    bucket_base[slot + 1u] = bucket_base[slot] + trees_.meshes()[pair.a].face_count;
+    const std::uint32_t root_a = trees_.tree(pair.a).root, root_b = trees_.tree(pair.b).root;
+    if (!collision::boxes_overlap(boxes_[root_a], boxes_[root_b])) continue;
+    frontier.assign(1, NodePair{root_a, root_b});
+    expand_frontier(nodes, boxes_.data(), pair.a == pair.b, kPieces, frontier, scratch);
+    for (const NodePair& p : frontier)
+      pieces.push_back({slot, p});
+  }
+  struct Met {
+    std::uint32_t bucket, face_b;
+  };
+  std::vector<std::vector<Met>> met(pieces.size());
+  const TraversalTrees t{nodes, boxes_.data(), records_.data(), record_of_.data()};
+  parallel_for(
+      pieces.size(),
+      [&](std::size_t i) {
+        const Piece& piece = pieces[i];
+        const gpu::BodyPair& pair = mesh_pairs_[mesh_pairs[piece.slot]];
+        const bool self = pair.a == pair.b;
+        const std::uint32_t base = bucket_base[piece.slot] - trees_.meshes()[pair.a].face_offset;
+        traverse_node_pair(t, self, piece.nodes, [&](std::uint32_t a, std::uint32_t b) {
+          if (self && b < a) std::swap(a, b);
+          met[i].push_back({base + a, b});
+        });
+      },
+      1);
+  // A counting sort by bucket (the order of the mesh pairs and their first faces), then each
+  // bucket by the second face's leaf: one query per first face meets its leaves in preorder.
+  std::vector<std::uint32_t> offset(bucket_base.back() + 1u, 0u);
+  for (const std::vector<Met>& list : met)
+    for (const Met& m : list)
+      ++offset[m.bucket + 1u];
+  for (std::size_t b = 1; b < offset.size(); ++b)
+    offset[b] += offset[b - 1u];
+  std::vector<std::uint32_t> bucket_of_face(bucket_base.back());
+  std::vector<std::array<std::uint32_t, 2>> sorted(offset.back());
+  {
+    std::vector<std::uint32_t> cursor(offset.begin(), offset.end() - 1);
+    for (std::uint32_t slot = 0; slot < mesh_pairs.size(); ++slot) {
+      const gpu::MeshInfo& mesh_a = trees_.meshes()[mesh_pairs_[mesh_pairs[slot]].a];
+      for (std::uint32_t f = 0; f < mesh_a.face_count; ++f)
+        bucket_of_face[bucket_base[slot] + f] = mesh_a.face_offset + f;
+    }
+    for (const std::vector<Met>& list : met)
+      for (const Met& m : list)
+        sorted[cursor[m.bucket]++] = {bucket_of_face[m.bucket], m.face_b};
+  }
+  parallel_for(
+      offset.size() - 1u,
+      [&](std::size_t b) {
+        std::sort(
+            sorted.begin() + offset[b], sorted.begin() + offset[b + 1u],
+            [&](const std::array<std::uint32_t, 2>& x, const std::array<std::uint32_t, 2>& y) {
+              return leaf_of_[x[1]] < leaf_of_[y[1]];
+            });
+      },
+      256);
+  return sorted;
 }
 
 void CpuProximity::sweep_primitives_of_met_faces() {
@@ -79,54 +185,29 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(
   const std::vector<gpu::Face>& faces = trees_.faces();
   executor_->run([&] {
     refit(positions, motion, reach);
-    // Fixed chunks of each mesh pair's first mesh's faces, each with its own lists, joined in
-    // chunk order: the order does not depend on the schedule, and a face costs no allocation of
-    // its own. First every chunk's face pairs (its faces in order, each one's in its traversal
-    // order), marking the faces met; then the primitive boxes of those faces alone (most faces
-    // meet none); then each chunk's candidates from its face pairs, in their order.
-    constexpr std::size_t kChunk = 64;
-    struct Chunk {
-      std::uint32_t mesh_pair, first, end;  // faces [first, end) of the pair's mesh a
-    };
-    std::vector<Chunk> chunks;
-    for (const std::uint32_t p : mesh_pairs) {
-      const gpu::MeshInfo& mesh_a = trees_.meshes()[mesh_pairs_[p].a];
-      for (std::uint32_t first = 0; first < mesh_a.face_count; first += kChunk) {
-        chunks.push_back(
-            {p, mesh_a.face_offset + first,
-             mesh_a.face_offset + std::min<std::uint32_t>(first + kChunk, mesh_a.face_count)});
-      }
-    }
-    std::vector<std::vector<std::array<std::uint32_t, 2>>> met(chunks.size());
+    // The face pairs met, in order (met_face_pairs); the primitive boxes of their faces alone
+    // (most faces meet none); then the candidates of fixed chunks of the face pairs, each chunk
+    // into a list of its own, joined in order.
+    const std::vector<std::array<std::uint32_t, 2>> met = met_face_pairs(mesh_pairs);
     parallel_for(
-        chunks.size(),
-        [&](std::size_t c) {
-          const Chunk& chunk = chunks[c];
-          const gpu::BodyPair& pair = mesh_pairs_[chunk.mesh_pair];
-          const gpu::BodyBvh& tree_b = trees_.tree(pair.b);
-          const bool self = pair.a == pair.b;
-          for (std::uint32_t index_a = chunk.first; index_a < chunk.end; ++index_a) {
-            // Within one mesh each face pair once (a face with itself pairs only surface
-            // neighbours, which the emit leaves out).
-            collision::query_bvh(trees_.nodes().data(), boxes_.data(), tree_b.root,
-                                 swept_[index_a].box, [&](std::uint32_t index_b) {
-                                   if (self && index_b <= index_a) return;
-                                   met[c].push_back({index_a, index_b});
-                                   want_primitives(index_a);
-                                   want_primitives(index_b);
-                                 });
-          }
+        met.size(),
+        [&](std::size_t i) {
+          want_primitives(met[i][0]);
+          want_primitives(met[i][1]);
         },
-        1);
+        1024);
     sweep_primitives_of_met_faces();
-    std::vector<std::vector<collision::ProximityCandidate>> per_chunk(chunks.size());
-    std::vector<std::vector<float>> per_chunk_distance(chunks.size());
+    constexpr std::size_t kChunk = 512;
+    const std::size_t chunks = (met.size() + kChunk - 1u) / kChunk;
+    std::vector<std::vector<collision::ProximityCandidate>> per_chunk(chunks);
+    std::vector<std::vector<float>> per_chunk_distance(chunks);
     parallel_for(
-        chunks.size(),
+        chunks,
         [&](std::size_t c) {
           auto& out = per_chunk[c];
           auto& out_distance = per_chunk_distance[c];
-          for (const auto& [a, b] : met[c]) {
+          for (std::size_t i = c * kChunk; i < std::min(met.size(), (c + 1u) * kChunk); ++i) {
+            const auto [a, b] = met[i];
             collision::emit_face_pair_candidates(
                 faces[a], swept_[a], primitives_[a], a, owners_[a], faces[b], swept_[b],
                 primitives_[b], b, owners_[b],

@@ -5,10 +5,14 @@
 // passes and this search), with boxes of its own: each leaf its face swept along its vertices'
 // motion and grown by its reach, each parent the union of its children. The owner keeps the
 // trees fitted (rebuilds them by the shared upkeep rule); the search only reads their topology.
-// Faces run in parallel in fixed chunks, each face's candidates in its traversal order; the
-// chunks' lists are joined in face order, so the result does not depend on the thread count
-// (and is the GL search's order over the same trees). A search can then be widened (widen()):
-// some vertices' reaches raised, only the faces at them swept again and queried.
+// Each mesh pair's two trees are descended together (cpu_bvh_pair_traversal.h, over records of
+// this search's boxes), a tree against itself visiting each pair of its leaves once instead of
+// once from each face; the face pairs met are then put in the order of one query per face of the
+// pair's first mesh (by that face, then by the other's leaf, which a depth-first query meets in
+// preorder), and their candidates are emitted in fixed chunks of that list, joined in order: the
+// result does not depend on the thread count and is the GL search's order over the same trees. A
+// search can then be widened (widen()): some vertices' reaches raised, only the faces at them swept
+// again and queried.
 //
 // The CPU backend runs every search here (CpuCollision::find_proximity); the GL backend runs
 // the search on the GPU (gl_proximity.h) and widens here, over its trees' host copy.
@@ -23,6 +27,7 @@
 #include "core/collision/bvh_upkeep.h"
 #include "core/collision/collision_data.h"
 #include "core/collision/proximity.h"
+#include "cpu/cpu_bvh_trees.h"
 #include "cpu/executor.h"
 
 namespace deformcd::cpu {
@@ -61,9 +66,17 @@ class CpuProximity {
   void forget_boxes() { boxes_generation_ = 0; }
 
  private:
-  /// Sweeps every face and fits the boxes over the trees as they are now.
+  /// Sweeps every face and fits the boxes (and the traversal's records of them) over the trees
+  /// as they are now.
   void refit(collision::VertexPositions positions, collision::VertexPositions motion,
              collision::VertexReach reach);
+  /// The records of the trees' internal nodes (children only; refit() writes their boxes).
+  void make_records();
+  /// The face pairs of the mesh pairs `mesh_pairs` whose boxes overlap, in find()'s order: mesh
+  /// pair by mesh pair, by the face of the pair's first mesh (within one mesh the lower face),
+  /// then by the other face's leaf.
+  [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> met_face_pairs(
+      std::span<const std::uint32_t> mesh_pairs);
   /// Face `face` meets another face's box: its primitive boxes are needed. Any thread may call
   /// it, for any face, at once (each stores the same value).
   void want_primitives(std::uint32_t face) {
@@ -81,9 +94,12 @@ class CpuProximity {
   const collision::BvhUpkeep& trees_;
   std::vector<gpu::BodyPair> mesh_pairs_;
   std::vector<std::uint32_t> owners_;
-  std::vector<gpu::Box> boxes_;         // per node: swept over the period, grown by the reaches
-  std::uint64_t boxes_generation_ = 0;  // the trees' generation boxes_ fit (0: none)
-  std::vector<std::uint32_t> leaf_of_;  // per face (layout order): its tree's leaf node
+  std::vector<gpu::Box> boxes_;           // per node: swept over the period, grown by the reaches
+  std::uint64_t boxes_generation_ = 0;    // the trees' generation boxes_ fit (0: none)
+  std::vector<std::uint32_t> leaf_of_;    // per face (layout order): its tree's leaf node
+  std::vector<ChildBoxes> records_;       // per internal node: its children's boxes_ (traversal)
+  std::vector<std::uint32_t> record_of_;  // per node: its record, kBvhInternal for a leaf
+  std::uint64_t records_generation_ = 0;  // the trees' generation records_ fit (0: none)
   std::vector<collision::SweptFace> swept_;  // per face (layout order): of the last search
   std::vector<collision::SweptPrimitives> primitives_;  // per face: of the faces met (state)
   std::vector<std::uint8_t> primitives_state_;          // per face: kPrimitives*

@@ -193,6 +193,11 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
         merged.push_back(e);
       }
     }
+    std::vector<std::uint32_t>& first = edge_first_.emplace_back(objects_[b].node_count + 1u, 0u);
+    for (const EdgeFaces& e : merged)
+      ++first[e.a + 1u];
+    for (std::size_t v = 1; v < first.size(); ++v)
+      first[v] += first[v - 1u];
   }
   if (self_contact)
     self_contact_ = std::make_unique<SelfContact>(objects_, on_surface_, thickness_);
@@ -345,6 +350,25 @@ float ContactResponse::self_thickness(const gpu::ContactPair& pair) const {
   // distance instead, which still keeps them from passing through each other.
   const glm::vec3 x[4] = {rest_[pair.nodes[0]], rest_[pair.nodes[1]], rest_[pair.nodes[2]],
                           rest_[pair.nodes[3]]};
+  // Most pairs are farther apart at rest than twice the thickness: the distance between the two
+  // primitives' boxes (a lower bound on theirs, in double from the float corners) says so for
+  // them without the closest points. The margin of 1e-6 of it covers the rounding of the exact
+  // distance to float, so that the answer is the exact one's.
+  const std::uint32_t split = pair.kind == gpu::kContactEdgeEdge ? 2u : 1u;
+  glm::dvec3 lo_a(x[0]), hi_a(x[0]), lo_b(x[split]), hi_b(x[split]);
+  for (std::uint32_t k = 1; k < 4u; ++k) {
+    const glm::dvec3 p(x[k]);
+    if (k < split) {
+      lo_a = glm::min(lo_a, p);
+      hi_a = glm::max(hi_a, p);
+    } else if (k > split) {
+      lo_b = glm::min(lo_b, p);
+      hi_b = glm::max(hi_b, p);
+    }
+  }
+  const glm::dvec3 gap = glm::max(glm::max(lo_b - hi_a, lo_a - hi_b), glm::dvec3(0.0));
+  const double apart = 2.0 * static_cast<double>(pair.thickness) * (1.0 + 1e-6);
+  if (glm::dot(gap, gap) >= apart * apart) return pair.thickness;
   return std::min(pair.thickness, 0.5f * collision::primitive_distance(pair.kind, x));
 }
 
@@ -726,12 +750,10 @@ bool ContactResponse::over_a_face_beside(std::uint32_t body, std::uint32_t e0, s
   const std::uint32_t first = objects_[body].node_offset;
   const std::uint32_t lo = std::min(e0, e1) - first, hi = std::max(e0, e1) - first;
   const std::vector<EdgeFaces>& edges = edge_faces_[body];
-  const auto it =
-      std::lower_bound(edges.begin(), edges.end(), std::pair(lo, hi),
-                       [](const EdgeFaces& e, const std::pair<std::uint32_t, std::uint32_t>& key) {
-                         return std::pair(e.a, e.b) < key;
-                       });
-  if (it == edges.end() || it->a != lo || it->b != hi) return false;  // not a surface edge
+  const std::vector<std::uint32_t>& first_of = edge_first_[body];
+  const auto it = std::find_if(edges.begin() + first_of[lo], edges.begin() + first_of[lo + 1u],
+                               [&](const EdgeFaces& e) { return e.b == hi; });
+  if (it == edges.begin() + first_of[lo + 1u]) return false;  // not a surface edge
   const glm::dvec3 a(window_start_[first + lo]), b(window_start_[first + hi]);
   for (std::uint32_t f = 0; f < it->faces; ++f) {
     // Inside the face by 1e-3 of it on every side (the vertex-face pairs' weights, in double):

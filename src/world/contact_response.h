@@ -184,11 +184,14 @@ class ContactResponse {
     std::uint32_t faces = 0;  // 1 or 2 (more: a non-manifold edge keeps the first two)
   };
   std::vector<std::vector<EdgeFaces>> edge_faces_;  // per body, sorted by (a, b)
-  std::vector<float> thickness_;                    // per body
-  std::vector<float> mean_edge_;                    // per body, surface
-  std::vector<glm::vec4> velocities_;               // read back from a GL simulation
-  std::vector<glm::vec4> positions_;                // read back from a GL simulation
-  std::vector<glm::vec4> last_velocities_;          // per node, at the last search
+  // Per body, per vertex v + 1: where the edges with a == v start in edge_faces_ (a CSR index:
+  // over_a_face_beside scans a vertex's few edges instead of searching them all).
+  std::vector<std::vector<std::uint32_t>> edge_first_;
+  std::vector<float> thickness_;            // per body
+  std::vector<float> mean_edge_;            // per body, surface
+  std::vector<glm::vec4> velocities_;       // read back from a GL simulation
+  std::vector<glm::vec4> positions_;        // read back from a GL simulation
+  std::vector<glm::vec4> last_velocities_;  // per node, at the last search
   float max_untangle_step_ = 0.0f;
   /// A tetrahedron's volume constraint (kContactVolume) and its body: every window lists those
   /// of the bodies that can move.
