@@ -1,6 +1,7 @@
 #include "cpu/cpu_proximity.h"
 
 #include <algorithm>
+#include <functional>
 
 #include "core/collision/bvh.h"
 #include "cpu/cpu_bvh_pair_traversal.h"
@@ -243,7 +244,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
   executor_->run([&] {
     if (boxes_generation_ != trees_.generation()) refit(positions, motion, reach);
     // The faces with a widened corner: their leaves swept again with the raised reaches, then
-    // every tree's parents in reverse preorder (unions only).
+    // their ancestors (unions only).
     std::vector<std::uint8_t> is_widened(vertex_first_.back(), 0u);
     std::vector<std::uint32_t> faces;
     for (const auto& [mesh, vertex] : widened) {
@@ -255,25 +256,36 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
     const std::vector<gpu::BvhNode>& nodes = trees_.nodes();
-    for (const std::uint32_t face : faces) {
+    parallel_for(faces.size(), [&](std::size_t i) {
+      const std::uint32_t face = faces[i];
       swept_[face] = collision::sweep_face(positions, motion, reach, faces_of[face]);
       primitives_state_[face] = kPrimitivesStale;
       boxes_[leaf_of_[face]] = swept_[face].box;
-    }
-    for (const gpu::BodyBvh& tree : trees_.trees()) {
-      for (std::uint32_t i = tree.root + tree.node_count; i-- > tree.root;) {
-        const gpu::BvhNode& n = nodes[i];
-        if (n.face != gpu::kBvhInternal) continue;
-        const gpu::Box& l = boxes_[n.left];
-        const gpu::Box& r = boxes_[n.right];
-        boxes_[i] = {glm::min(l.min, r.min), glm::max(l.max, r.max)};
+    });
+    // Their ancestors' boxes, children first (a parent precedes its children in preorder): the
+    // unions a refit of every parent would give, the other parents' being unchanged.
+    std::vector<std::uint32_t> ancestors;
+    {
+      std::vector<std::uint8_t> listed(nodes.size(), 0u);
+      for (const std::uint32_t face : faces) {
+        for (std::uint32_t i = nodes[leaf_of_[face]].parent;
+             i != gpu::kBvhInternal && listed[i] == 0u; i = nodes[i].parent) {
+          listed[i] = 1u;
+          ancestors.push_back(i);
+        }
       }
+    }
+    std::sort(ancestors.begin(), ancestors.end(), std::greater<>());
+    for (const std::uint32_t i : ancestors) {
+      const gpu::Box& l = boxes_[nodes[i].left];
+      const gpu::Box& r = boxes_[nodes[i].right];
+      boxes_[i] = {glm::min(l.min, r.min), glm::max(l.max, r.max)};
     }
     // Each widened face's face pairs, with the pair's faces as find() orders them (the first
     // mesh's face first; within one mesh the lower face first), sorted: the order does not
-    // depend on the trees (which the GL and CPU backends rebuild on schedules of their own). A
-    // pair of two widened faces is met from both: each keeps the candidates it is responsible
-    // for (below), so that every candidate comes once.
+    // depend on the trees (which the GL and CPU backends rebuild on schedules of their own) nor
+    // on the threads that query them. A pair of two widened faces is met from both: each keeps
+    // the candidates it is responsible for (below), so that every candidate comes once.
     std::vector<std::uint8_t> face_widened(faces_of.size(), 0u);
     for (const std::uint32_t face : faces)
       face_widened[face] = 1u;
@@ -285,25 +297,32 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
       // NOLINTNEXTLINE(modernize-use-nullptr)
       auto operator<=>(const FacePair&) const = default;
     };
+    std::vector<std::vector<FacePair>> met(faces.size());
+    parallel_for(
+        faces.size(),
+        [&](std::size_t i) {
+          const std::uint32_t face = faces[i];
+          const std::uint32_t mesh = faces_of[face].body;
+          for (const std::uint32_t p : mesh_pairs) {
+            const gpu::BodyPair& mp = mesh_pairs_[p];
+            if (mesh != mp.a && mesh != mp.b) continue;
+            const bool first = mesh == mp.a;
+            collision::query_bvh(
+                nodes.data(), boxes_.data(), trees_.tree(first ? mp.b : mp.a).root,
+                boxes_[leaf_of_[face]], [&](std::uint32_t other) {
+                  if (mp.a == mp.b) {
+                    if (other != face)
+                      met[i].push_back({p, std::min(face, other), std::max(face, other), face});
+                  } else {
+                    met[i].push_back({p, first ? face : other, first ? other : face, face});
+                  }
+                });
+          }
+        },
+        8);
     std::vector<FacePair> pairs;
-    for (const std::uint32_t p : mesh_pairs) {
-      const gpu::BodyPair& mp = mesh_pairs_[p];
-      for (const std::uint32_t face : faces) {
-        const std::uint32_t mesh = faces_of[face].body;
-        if (mesh != mp.a && mesh != mp.b) continue;
-        const bool first = mesh == mp.a;
-        collision::query_bvh(
-            nodes.data(), boxes_.data(), trees_.tree(first ? mp.b : mp.a).root,
-            boxes_[leaf_of_[face]], [&](std::uint32_t other) {
-              if (mp.a == mp.b) {
-                if (other != face)
-                  pairs.push_back({p, std::min(face, other), std::max(face, other), face});
-              } else {
-                pairs.push_back({p, first ? face : other, first ? other : face, face});
-              }
-            });
-      }
-    }
+    for (const std::vector<FacePair>& list : met)
+      pairs.insert(pairs.end(), list.begin(), list.end());
     std::sort(pairs.begin(), pairs.end());
     for (const FacePair& fp : pairs) {
       want_primitives(fp.a);
@@ -313,29 +332,46 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
     const auto widened_vertex = [&](std::uint32_t mesh, std::uint32_t v) {
       return is_widened[vertex_first_[mesh] + v] != 0u;
     };
-    for (const FacePair& fp : pairs) {
-      // A candidate involves a widened vertex when its vertex (or an edge's end) is one, or its
-      // face has one as a corner. The widened face that owns such a vertex or edge emits it; a
-      // candidate whose widened part is only the face (or the second edge) is emitted from that.
-      const auto responsible = [&](const collision::ProximityCandidate& c) {
-        if (c.kind == gpu::kContactVertexFace) {
-          if (widened_vertex(c.mesh_a, c.vertices[0])) return fp.from != c.face_b;
-          return face_widened[c.face_b] != 0u && fp.from == c.face_b;
-        }
-        if (widened_vertex(c.mesh_a, c.vertices[0]) || widened_vertex(c.mesh_a, c.vertices[1]))
-          return fp.from == fp.a;
-        return (widened_vertex(c.mesh_b, c.vertices[2]) ||
-                widened_vertex(c.mesh_b, c.vertices[3])) &&
-               fp.from == fp.b;
-      };
-      collision::emit_face_pair_candidates(
-          faces_of[fp.a], swept_[fp.a], primitives_[fp.a], fp.a, owners_[fp.a], faces_of[fp.b],
-          swept_[fp.b], primitives_[fp.b], fp.b, owners_[fp.b],
-          [&](const collision::ProximityCandidate& c, float distance) {
-            out.push_back(c);
-            distances.push_back(distance);
-          },
-          responsible);
+    // The candidates of fixed chunks of the sorted face pairs, joined in order.
+    constexpr std::size_t kChunk = 256;
+    const std::size_t chunks = (pairs.size() + kChunk - 1u) / kChunk;
+    std::vector<std::vector<collision::ProximityCandidate>> per_chunk(chunks);
+    std::vector<std::vector<float>> per_chunk_distance(chunks);
+    parallel_for(
+        chunks,
+        [&](std::size_t c) {
+          for (std::size_t i = c * kChunk; i < std::min(pairs.size(), (c + 1u) * kChunk); ++i) {
+            const FacePair& fp = pairs[i];
+            // A candidate involves a widened vertex when its vertex (or an edge's end) is one,
+            // or its face has one as a corner. The widened face that owns such a vertex or edge
+            // emits it; a candidate whose widened part is only the face (or the second edge) is
+            // emitted from that.
+            const auto responsible = [&](const collision::ProximityCandidate& cand) {
+              if (cand.kind == gpu::kContactVertexFace) {
+                if (widened_vertex(cand.mesh_a, cand.vertices[0])) return fp.from != cand.face_b;
+                return face_widened[cand.face_b] != 0u && fp.from == cand.face_b;
+              }
+              if (widened_vertex(cand.mesh_a, cand.vertices[0]) ||
+                  widened_vertex(cand.mesh_a, cand.vertices[1]))
+                return fp.from == fp.a;
+              return (widened_vertex(cand.mesh_b, cand.vertices[2]) ||
+                      widened_vertex(cand.mesh_b, cand.vertices[3])) &&
+                     fp.from == fp.b;
+            };
+            collision::emit_face_pair_candidates(
+                faces_of[fp.a], swept_[fp.a], primitives_[fp.a], fp.a, owners_[fp.a],
+                faces_of[fp.b], swept_[fp.b], primitives_[fp.b], fp.b, owners_[fp.b],
+                [&](const collision::ProximityCandidate& cand, float distance) {
+                  per_chunk[c].push_back(cand);
+                  per_chunk_distance[c].push_back(distance);
+                },
+                responsible);
+          }
+        },
+        1);
+    for (std::size_t c = 0; c < chunks; ++c) {
+      out.insert(out.end(), per_chunk[c].begin(), per_chunk[c].end());
+      distances.insert(distances.end(), per_chunk_distance[c].begin(), per_chunk_distance[c].end());
     }
   });
   return out;
