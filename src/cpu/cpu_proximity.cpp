@@ -9,6 +9,44 @@
 
 namespace deformcd::cpu {
 
+namespace {
+
+// Calls emit_pair(i, push) for i in [0, count) in fixed chunks of `chunk`, in parallel, each
+// chunk's push(candidate, distance) into lists of its own, and appends the lists in chunk
+// order to `out` and `distances` (when not null): the same result on any thread count.
+template <class EmitPair>
+void emit_in_chunks(std::size_t count, std::size_t chunk, const EmitPair& emit_pair,
+                    std::vector<collision::ProximityCandidate>& out,
+                    std::vector<float>* distances) {
+  const std::size_t chunks = (count + chunk - 1u) / chunk;
+  std::vector<std::vector<collision::ProximityCandidate>> per_chunk(chunks);
+  std::vector<std::vector<float>> per_chunk_distance(chunks);
+  parallel_for(
+      chunks,
+      [&](std::size_t c) {
+        const auto push = [&](const collision::ProximityCandidate& candidate, float distance) {
+          per_chunk[c].push_back(candidate);
+          per_chunk_distance[c].push_back(distance);
+        };
+        for (std::size_t i = c * chunk; i < std::min(count, (c + 1u) * chunk); ++i)
+          emit_pair(i, push);
+      },
+      1);
+  std::size_t total = out.size();
+  for (const auto& list : per_chunk)
+    total += list.size();
+  out.reserve(total);
+  for (const auto& list : per_chunk)
+    out.insert(out.end(), list.begin(), list.end());
+  if (distances != nullptr) {
+    distances->reserve(total);
+    for (const auto& list : per_chunk_distance)
+      distances->insert(distances->end(), list.begin(), list.end());
+  }
+}
+
+}  // namespace
+
 CpuProximity::CpuProximity(const collision::BvhUpkeep& trees, std::vector<gpu::BodyPair> mesh_pairs,
                            std::shared_ptr<Executor> executor)
     : trees_(trees),
@@ -198,38 +236,15 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(
         },
         1024);
     sweep_primitives_of_met_faces();
-    constexpr std::size_t kChunk = 512;
-    const std::size_t chunks = (met.size() + kChunk - 1u) / kChunk;
-    std::vector<std::vector<collision::ProximityCandidate>> per_chunk(chunks);
-    std::vector<std::vector<float>> per_chunk_distance(chunks);
-    parallel_for(
-        chunks,
-        [&](std::size_t c) {
-          auto& out = per_chunk[c];
-          auto& out_distance = per_chunk_distance[c];
-          for (std::size_t i = c * kChunk; i < std::min(met.size(), (c + 1u) * kChunk); ++i) {
-            const auto [a, b] = met[i];
-            collision::emit_face_pair_candidates(
-                faces[a], swept_[a], primitives_[a], a, owners_[a], faces[b], swept_[b],
-                primitives_[b], b, owners_[b],
-                [&](const collision::ProximityCandidate& candidate, float distance) {
-                  out.push_back(candidate);
-                  out_distance.push_back(distance);
-                });
-          }
+    emit_in_chunks(
+        met.size(), 512,
+        [&](std::size_t i, const auto& push) {
+          const auto [a, b] = met[i];
+          collision::emit_face_pair_candidates(faces[a], swept_[a], primitives_[a], a, owners_[a],
+                                               faces[b], swept_[b], primitives_[b], b, owners_[b],
+                                               push);
         },
-        1);
-    std::size_t total = 0;
-    for (const auto& list : per_chunk)
-      total += list.size();
-    all.reserve(total);
-    for (const auto& list : per_chunk)
-      all.insert(all.end(), list.begin(), list.end());
-    if (distances != nullptr) {
-      distances->reserve(total);
-      for (const auto& list : per_chunk_distance)
-        distances->insert(distances->end(), list.begin(), list.end());
-    }
+        all, distances);
   });
   return all;
 }
@@ -333,46 +348,30 @@ std::vector<collision::ProximityCandidate> CpuProximity::widen(
       return is_widened[vertex_first_[mesh] + v] != 0u;
     };
     // The candidates of fixed chunks of the sorted face pairs, joined in order.
-    constexpr std::size_t kChunk = 256;
-    const std::size_t chunks = (pairs.size() + kChunk - 1u) / kChunk;
-    std::vector<std::vector<collision::ProximityCandidate>> per_chunk(chunks);
-    std::vector<std::vector<float>> per_chunk_distance(chunks);
-    parallel_for(
-        chunks,
-        [&](std::size_t c) {
-          for (std::size_t i = c * kChunk; i < std::min(pairs.size(), (c + 1u) * kChunk); ++i) {
-            const FacePair& fp = pairs[i];
-            // A candidate involves a widened vertex when its vertex (or an edge's end) is one,
-            // or its face has one as a corner. The widened face that owns such a vertex or edge
-            // emits it; a candidate whose widened part is only the face (or the second edge) is
-            // emitted from that.
-            const auto responsible = [&](const collision::ProximityCandidate& cand) {
-              if (cand.kind == gpu::kContactVertexFace) {
-                if (widened_vertex(cand.mesh_a, cand.vertices[0])) return fp.from != cand.face_b;
-                return face_widened[cand.face_b] != 0u && fp.from == cand.face_b;
-              }
-              if (widened_vertex(cand.mesh_a, cand.vertices[0]) ||
-                  widened_vertex(cand.mesh_a, cand.vertices[1]))
-                return fp.from == fp.a;
-              return (widened_vertex(cand.mesh_b, cand.vertices[2]) ||
-                      widened_vertex(cand.mesh_b, cand.vertices[3])) &&
-                     fp.from == fp.b;
-            };
-            collision::emit_face_pair_candidates(
-                faces_of[fp.a], swept_[fp.a], primitives_[fp.a], fp.a, owners_[fp.a],
-                faces_of[fp.b], swept_[fp.b], primitives_[fp.b], fp.b, owners_[fp.b],
-                [&](const collision::ProximityCandidate& cand, float distance) {
-                  per_chunk[c].push_back(cand);
-                  per_chunk_distance[c].push_back(distance);
-                },
-                responsible);
-          }
+    emit_in_chunks(
+        pairs.size(), 256,
+        [&](std::size_t i, const auto& push) {
+          const FacePair& fp = pairs[i];
+          // A candidate involves a widened vertex when its vertex (or an edge's end) is one, or
+          // its face has one as a corner. The widened face that owns such a vertex or edge
+          // emits it; a candidate whose widened part is only the face (or the second edge) is
+          // emitted from that.
+          const auto responsible = [&](const collision::ProximityCandidate& c) {
+            if (c.kind == gpu::kContactVertexFace) {
+              if (widened_vertex(c.mesh_a, c.vertices[0])) return fp.from != c.face_b;
+              return face_widened[c.face_b] != 0u && fp.from == c.face_b;
+            }
+            if (widened_vertex(c.mesh_a, c.vertices[0]) || widened_vertex(c.mesh_a, c.vertices[1]))
+              return fp.from == fp.a;
+            return (widened_vertex(c.mesh_b, c.vertices[2]) ||
+                    widened_vertex(c.mesh_b, c.vertices[3])) &&
+                   fp.from == fp.b;
+          };
+          collision::emit_face_pair_candidates(
+              faces_of[fp.a], swept_[fp.a], primitives_[fp.a], fp.a, owners_[fp.a], faces_of[fp.b],
+              swept_[fp.b], primitives_[fp.b], fp.b, owners_[fp.b], push, responsible);
         },
-        1);
-    for (std::size_t c = 0; c < chunks; ++c) {
-      out.insert(out.end(), per_chunk[c].begin(), per_chunk[c].end());
-      distances.insert(distances.end(), per_chunk_distance[c].begin(), per_chunk_distance[c].end());
-    }
+        out, &distances);
   });
   return out;
 }
