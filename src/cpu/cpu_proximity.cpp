@@ -181,18 +181,18 @@ std::vector<std::array<std::uint32_t, 2>> CpuProximity::met_face_pairs(
       ++offset[m.bucket + 1u];
   for (std::size_t b = 1; b < offset.size(); ++b)
     offset[b] += offset[b - 1u];
-  std::vector<std::uint32_t> bucket_of_face(bucket_base.back());
+  std::vector<std::uint32_t> face_of_bucket(bucket_base.back());
   std::vector<std::array<std::uint32_t, 2>> sorted(offset.back());
   {
     std::vector<std::uint32_t> cursor(offset.begin(), offset.end() - 1);
     for (std::uint32_t slot = 0; slot < mesh_pairs.size(); ++slot) {
       const gpu::MeshInfo& mesh_a = trees_.meshes()[mesh_pairs_[mesh_pairs[slot]].a];
       for (std::uint32_t f = 0; f < mesh_a.face_count; ++f)
-        bucket_of_face[bucket_base[slot] + f] = mesh_a.face_offset + f;
+        face_of_bucket[bucket_base[slot] + f] = mesh_a.face_offset + f;
     }
     for (const std::vector<Met>& list : met)
       for (const Met& m : list)
-        sorted[cursor[m.bucket]++] = {bucket_of_face[m.bucket], m.face_b};
+        sorted[cursor[m.bucket]++] = {face_of_bucket[m.bucket], m.face_b};
   }
   parallel_for(
       offset.size() - 1u,
