@@ -5,7 +5,8 @@
 // half thickness plus a quarter thickness of play; its velocity over a third of a frame).
 // `bench` times whole frames, whose searches vary with the scene's course and share the
 // machine's noise; this repeats one search, so two builds can be compared on it. CPU, 1 and 2
-// threads (threads:N).
+// threads (threads:N); between the bodies only (self:0) or each body also against itself
+// (self:1, as with `"collision": {"self": true}`).
 
 #include <benchmark/benchmark.h>
 
@@ -60,7 +61,10 @@ void find_proximity(benchmark::State& state) {
   DetectorOptions options;
   options.backend = BackendKind::kCpu;
   options.threads = static_cast<int>(state.range(0));
-  Detector detector(frame.meshes, options);
+  std::vector<CollisionMesh> meshes = frame.meshes;
+  for (CollisionMesh& m : meshes)
+    m.self_collision = state.range(1) != 0;
+  Detector detector(meshes, options);
   for (std::size_t b = 0; b < frame.positions.size(); ++b)
     detector.set_positions(b, std::span<const glm::vec3>(frame.positions[b]));
   detector.prepare();
@@ -73,9 +77,8 @@ void find_proximity(benchmark::State& state) {
 }
 
 BENCHMARK(find_proximity)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
+    ->ArgNames({"threads", "self"})
+    ->ArgsProduct({{1, 2}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
