@@ -16,12 +16,7 @@ namespace {
 // Box [lo, hi] of the node whose slot is `slot` (record * 2 + child) into its parent's record.
 inline void write_slot(ChildBoxes* records, std::uint32_t slot, const glm::vec3& lo,
                        const glm::vec3& hi) {
-  ChildBoxes& r = records[slot >> 1];
-  const std::uint32_t k = slot & 1u;
-  for (int a = 0; a < 3; ++a) {
-    r.min[a][k] = lo[a];
-    r.max[a][k] = hi[a];
-  }
+  set_child_box(records[slot >> 1], slot & 1u, lo, hi);
 }
 
 }  // namespace
@@ -54,18 +49,33 @@ void BvhTrees::cut_trees() {
   piece_areas_.assign(pieces_.size(), 0.0);
 }
 
-void BvhTrees::make_child_boxes() {
-  const std::vector<gpu::BvhNode>& nodes = upkeep_.nodes();
-  if (faces_.size() >= kLeafChild) {
-    throw Error("CPU bvh: " + std::to_string(faces_.size()) +
+void make_child_records(const std::vector<gpu::BvhNode>& nodes, std::size_t face_count,
+                        std::vector<ChildBoxes>& records, std::vector<std::uint32_t>& record_of) {
+  if (face_count >= kLeafChild) {
+    throw Error("CPU bvh: " + std::to_string(face_count) +
                 " faces; the traversal's records hold fewer than 2^31");
   }
-  record_of_.assign(nodes.size(), gpu::kBvhInternal);
-  std::uint32_t records = 0;
+  record_of.assign(nodes.size(), gpu::kBvhInternal);
+  std::uint32_t count = 0;
   for (std::uint32_t i = 0; i < nodes.size(); ++i) {
-    if (nodes[i].face == gpu::kBvhInternal) record_of_[i] = records++;
+    if (nodes[i].face == gpu::kBvhInternal) record_of[i] = count++;
   }
-  child_boxes_.assign(records, ChildBoxes{});
+  records.assign(count, ChildBoxes{});
+  for (std::uint32_t i = 0; i < nodes.size(); ++i) {
+    const gpu::BvhNode& n = nodes[i];
+    if (n.face != gpu::kBvhInternal) continue;
+    const std::uint32_t children[2] = {n.left, n.right};
+    for (std::uint32_t k = 0; k < 2; ++k) {
+      const std::uint32_t c = children[k];
+      records[record_of[i]].child[k] =
+          nodes[c].face != gpu::kBvhInternal ? kLeafChild | nodes[c].face : record_of[c];
+    }
+  }
+}
+
+void BvhTrees::make_child_boxes() {
+  const std::vector<gpu::BvhNode>& nodes = upkeep_.nodes();
+  make_child_records(nodes, faces_.size(), child_boxes_, record_of_);
   for (std::uint32_t i = 0; i < nodes.size(); ++i) {
     if (nodes[i].face == gpu::kBvhInternal) refit_nodes_[i].z = record_of_[i];
   }
@@ -73,11 +83,9 @@ void BvhTrees::make_child_boxes() {
   for (std::uint32_t i = 0; i < nodes.size(); ++i) {
     const gpu::BvhNode& n = nodes[i];
     if (n.face != gpu::kBvhInternal) continue;
-    ChildBoxes& r = child_boxes_[record_of_[i]];
     const std::uint32_t children[2] = {n.left, n.right};
     for (std::uint32_t k = 0; k < 2; ++k) {
       const std::uint32_t c = children[k];
-      r.child[k] = nodes[c].face != gpu::kBvhInternal ? kLeafChild | nodes[c].face : record_of_[c];
       slots_[c] = 2 * record_of_[i] + k;
       write_slot(child_boxes_.data(), slots_[c], glm::vec3(boxes_[c].min),
                  glm::vec3(boxes_[c].max));

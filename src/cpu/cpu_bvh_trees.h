@@ -21,8 +21,11 @@
 // branches). A record is written only by the task refitting the child, or by the calling thread
 // for the nodes above the cut.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/collision/bvh_upkeep.h"
 #include "core/collision/collision_data.h"
@@ -44,6 +47,22 @@ static_assert(sizeof(ChildBoxes) == 64);
 
 // ChildBoxes::child of a leaf: this bit and the leaf's face (faces are fewer than 2^31).
 inline constexpr std::uint32_t kLeafChild = 0x80000000u;
+
+// The records of the internal nodes of `nodes`, numbered in node order (record_of: per node its
+// record, kBvhInternal for a leaf), each with its children (ChildBoxes::child) and boxes left
+// for the caller to write (set_child_box). Throws Error for trees over 2^31 faces or more
+// (face_count).
+void make_child_records(const std::vector<gpu::BvhNode>& nodes, std::size_t face_count,
+                        std::vector<ChildBoxes>& records, std::vector<std::uint32_t>& record_of);
+
+// Box [lo, hi] as child k (0 or 1) of record r.
+inline void set_child_box(ChildBoxes& r, std::uint32_t k, const glm::vec3& lo,
+                          const glm::vec3& hi) {
+  for (int a = 0; a < 3; ++a) {
+    r.min[a][k] = lo[a];
+    r.max[a][k] = hi[a];
+  }
+}
 
 class BvhTrees {
  public:

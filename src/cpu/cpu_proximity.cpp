@@ -98,12 +98,8 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
         const gpu::Box& r = boxes_[n.right];
         boxes_[i] = {glm::min(l.min, r.min), glm::max(l.max, r.max)};
         ChildBoxes& record = records_[record_of_[i]];
-        for (int axis = 0; axis < 3; ++axis) {
-          record.min[axis][0] = l.min[axis];
-          record.max[axis][0] = l.max[axis];
-          record.min[axis][1] = r.min[axis];
-          record.max[axis][1] = r.max[axis];
-        }
+        set_child_box(record, 0u, glm::vec3(l.min), glm::vec3(l.max));
+        set_child_box(record, 1u, glm::vec3(r.min), glm::vec3(r.max));
       }
     }
   }
@@ -111,22 +107,7 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
 }
 
 void CpuProximity::make_records() {
-  const std::vector<gpu::BvhNode>& nodes = trees_.nodes();
-  record_of_.assign(nodes.size(), gpu::kBvhInternal);
-  std::uint32_t count = 0;
-  for (std::size_t i = 0; i < nodes.size(); ++i)
-    if (nodes[i].face == gpu::kBvhInternal) record_of_[i] = count++;
-  records_.assign(count, ChildBoxes{});
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (nodes[i].face != gpu::kBvhInternal) continue;
-    ChildBoxes& record = records_[record_of_[i]];
-    const std::uint32_t children[2] = {nodes[i].left, nodes[i].right};
-    for (int k = 0; k < 2; ++k) {
-      const gpu::BvhNode& child = nodes[children[k]];
-      record.child[k] =
-          child.face != gpu::kBvhInternal ? kLeafChild | child.face : record_of_[children[k]];
-    }
-  }
+  make_child_records(trees_.nodes(), trees_.faces().size(), records_, record_of_);
   records_generation_ = trees_.generation();
 }
 
@@ -156,7 +137,7 @@ std::vector<std::array<std::uint32_t, 2>> CpuProximity::met_face_pairs(
       pieces.push_back({slot, p});
   }
   struct Met {
-    std::uint32_t bucket, face_b;
+    std::uint32_t bucket, face_a, face_b;
   };
   std::vector<std::vector<Met>> met(pieces.size());
   const TraversalTrees t{nodes, boxes_.data(), records_.data(), record_of_.data()};
@@ -169,7 +150,7 @@ std::vector<std::array<std::uint32_t, 2>> CpuProximity::met_face_pairs(
         const std::uint32_t base = bucket_base[piece.slot] - trees_.meshes()[pair.a].face_offset;
         traverse_node_pair(t, self, piece.nodes, [&](std::uint32_t a, std::uint32_t b) {
           if (self && b < a) std::swap(a, b);
-          met[i].push_back({base + a, b});
+          met[i].push_back({base + a, a, b});
         });
       },
       1);
@@ -181,19 +162,11 @@ std::vector<std::array<std::uint32_t, 2>> CpuProximity::met_face_pairs(
       ++offset[m.bucket + 1u];
   for (std::size_t b = 1; b < offset.size(); ++b)
     offset[b] += offset[b - 1u];
-  std::vector<std::uint32_t> face_of_bucket(bucket_base.back());
   std::vector<std::array<std::uint32_t, 2>> sorted(offset.back());
-  {
-    std::vector<std::uint32_t> cursor(offset.begin(), offset.end() - 1);
-    for (std::uint32_t slot = 0; slot < mesh_pairs.size(); ++slot) {
-      const gpu::MeshInfo& mesh_a = trees_.meshes()[mesh_pairs_[mesh_pairs[slot]].a];
-      for (std::uint32_t f = 0; f < mesh_a.face_count; ++f)
-        face_of_bucket[bucket_base[slot] + f] = mesh_a.face_offset + f;
-    }
-    for (const std::vector<Met>& list : met)
-      for (const Met& m : list)
-        sorted[cursor[m.bucket]++] = {face_of_bucket[m.bucket], m.face_b};
-  }
+  std::vector<std::uint32_t> cursor(offset.begin(), offset.end() - 1);
+  for (const std::vector<Met>& list : met)
+    for (const Met& m : list)
+      sorted[cursor[m.bucket]++] = {m.face_a, m.face_b};
   parallel_for(
       offset.size() - 1u,
       [&](std::size_t b) {
