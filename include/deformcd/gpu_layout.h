@@ -278,10 +278,15 @@ struct ContactPair {
   float step_limit;
   /// 1: a projection iterates beyond the iterations asked while this constraint is still
   /// violated (response::contact_violated); 0 for a constraint between bodies the frame's exact
-  /// pass found intersecting (taken apart over substeps), and for untangling and volume
-  /// constraints.
+  /// pass found intersecting (taken apart over substeps), and for untangling constraints.
   float converge;
-  float pad2;  ///< std430 padding
+  /// kContactVertexFace: m, how deep behind the face the vertex may be and still be held in
+  /// front of it (deeper is a tunnel: the untangling constraints take it out); at least the
+  /// thickness (0 or less: the thickness). The world sets a body's own thickness for its self
+  /// pairs whose thickness the rest-distance rule cut to half their rest distance, so that a
+  /// vertex pushed past such a thin guard within a substep is still brought back. 0 for other
+  /// kinds.
+  float hold_depth;
 };
 static_assert(sizeof(ContactPair) == 48);
 static_assert(offsetof(ContactPair, kind) == 16);

@@ -127,7 +127,7 @@ struct ContactPair {
   float side;           // vertex-face: 1 when the vertex started the window in front of the face
   float step_limit;     // volume: m, the most one projection moves a node
   float converge;       // 1: iterate while it is still violated (contact_violated), else 0
-  float pad2;
+  float hold_depth;     // vertex-face: m, how deep behind the face it still holds (>= thickness)
 };
 
 // 32 bytes. Per-body parameters of the mass-spring step.

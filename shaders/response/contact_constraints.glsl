@@ -93,9 +93,9 @@ bool contact_geometry(ContactPair pair, vec3 x[4], out vec3 n, out float b[4], o
   precise float height = exact_dot(x[0] - x[1], unit);
   if (pair.kind == CONTACT_VERTEX_FACE) {
     // Only where the vertex lies over the face, started the window in front of it, and is not
-    // deeper behind it than the thickness.
+    // deeper behind it than the hold depth (at least the thickness).
     if (uvw.x < 0.0 || uvw.y < 0.0 || uvw.z < 0.0) return false;
-    if (!(pair.side > 0.0) || height < -pair.thickness) return false;
+    if (!(pair.side > 0.0) || height < -max(pair.thickness, pair.hold_depth)) return false;
   } else {
     // Untangling (CONTACT_UNTANGLE): weights clamped into the face.
     precise vec3 clamped = vec3(distance_clamp(uvw.x, 0.0, 1.0), distance_clamp(uvw.y, 0.0, 1.0),
@@ -186,13 +186,17 @@ bool contact_active(ContactPair pair, vec4 position[4]) {
   return contact_geometry(pair, x, n, b, c) && c < 0.0;
 }
 
-// kResidualShare and contact_violated, line for line: whether an active contact flagged
-// `converge` is still deeper than half its thickness after a projection's iterations (more
-// iterations are due).
+// kResidualShare and contact_violated, line for line: whether an active constraint flagged
+// `converge` is still deeper than half its thickness (a volume constraint's tetrahedron below
+// half its floor) after a projection's iterations (more iterations are due).
 const float RESIDUAL_SHARE = 0.5;
 bool contact_violated(ContactPair pair, vec4 position[4]) {
   if (!(pair.converge > 0.0)) return false;
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
+  if (pair.kind == CONTACT_VOLUME) {
+    vec3 g[4];
+    return tetrahedron_volume(x, g) < RESIDUAL_SHARE * pair.thickness;
+  }
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
   float c = 0.0;

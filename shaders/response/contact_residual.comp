@@ -1,8 +1,8 @@
 #version 430
 // The contact response's residual pass, after a projection's iterations: one invocation per
-// contact constraint p flags whether it acts and is still violated (contact_violated in
-// src/core/response/contact_constraints.h), at u_node_count x 2 + 1 of the counts buffer: then
-// another iteration is due. Every writer writes the same 1, so the flag is the same whatever the
+// constraint p (contacts and volume constraints) flags whether it acts and is still violated
+// (contact_violated in src/core/response/contact_constraints.h), at u_node_count x 2 + 1 of the
+// counts buffer: then another iteration is due. Every writer writes the same 1, so the flag is the same whatever the
 // order (the CPU's OR of the same booleans).
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
@@ -23,12 +23,12 @@ layout(std430, binding = BINDING_NODE_CONTACT_COUNT) buffer NodeContactCounts {
   uint node_contact_count[];
 };
 
-uniform uint u_contact_count;  // the contacts: constraints [0, u_contact_count)
+uniform uint u_pair_count;
 uniform uint u_node_count;
 
 void main() {
   const uint p = gl_GlobalInvocationID.x;
-  if (p >= u_contact_count) return;  // the last work group reaches past the end
+  if (p >= u_pair_count) return;  // the last work group reaches past the end
   if (!(corrections[8u * p].w > 0.0)) return;  // does not act in this projection
   const ContactPair pair = pairs[p];
   vec4 x[4];

@@ -126,7 +126,7 @@ void main() {
   contact_pairs[i].side = probef(i, 8u);
   contact_pairs[i].step_limit = probef(i, 9u);
   contact_pairs[i].converge = probef(i, 10u);
-  contact_pairs[i].pad2 = probef(i, 11u);
+  contact_pairs[i].hold_depth = probef(i, 11u);
 
   if (i == 0u) {
     bindings[0] = BINDING_NODE_POSITION;

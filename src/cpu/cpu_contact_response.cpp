@@ -172,12 +172,12 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         });
       }
     };
-    // Whether an active contact is still violated (contact_violated): an OR, the same whatever
-    // the order.
+    // Whether an active constraint is still violated (contact_violated): an OR, the same
+    // whatever the order.
     const auto violated = [&] {
       std::atomic<bool> any{false};
       parallel_for(
-          split,
+          acting_.size(),
           [&](std::size_t a) {
             const gpu::ContactPair& pair = pairs[acting_[a]];
             const glm::vec4 x[4] = {

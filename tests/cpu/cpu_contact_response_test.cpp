@@ -189,6 +189,54 @@ TEST(VolumeConstraint, ATetrahedronFlattenedToALineMovesNoCornerMoreThanItsStepL
   EXPECT_LE(largest, 1.0001f * p.step_limit);
 }
 
+// A tetrahedron turned inside out (its apex two edges through the base) whose corners may move
+// only a fifth of an edge an iteration: two iterations asked cannot bring it back. Flagged
+// `converge` (as the world flags every volume constraint), the projection iterates on while it
+// is below half its floor (contact_violated), up to kMaxIterationFactor x the iterations asked,
+// and ends above that; unflagged, it stops after the two, still inverted.
+TEST(VolumeConstraint, AnInvertedTetrahedronIsIteratedBackAboveHalfItsFloor) {
+  constexpr float kEdge = 0.01f;
+  constexpr float kFloor = 0.3f * kEdge * kEdge * kEdge / 6.0f;
+  constexpr int kAsked = 2;
+  const std::vector<glm::vec4> x = {{0.0f, 0.0f, 0.0f, 1.0f},
+                                    {kEdge, 0.0f, 0.0f, 1.0f},
+                                    {0.0f, kEdge, 0.0f, 1.0f},
+                                    {0.0f, 0.0f, -2.0f * kEdge, 1.0f}};
+  const std::vector<glm::vec4> v(4, glm::vec4(0.0f));
+  for (const float converge : {1.0f, 0.0f}) {
+    SCOPED_TRACE("converge " + std::to_string(converge));
+    cpu::CpuSimulation simulation(1);
+    simulation.upload(test::free_nodes(x, v, {0, 0, 0, 0}, 1));
+    const SimulationState& state = simulation.state();  // the response corrects it in place
+    response::FrameConstraints c;
+    gpu::ContactPair p{};
+    for (std::uint32_t k = 0; k < 4u; ++k)
+      p.nodes[k] = k;
+    p.kind = gpu::kContactVolume;
+    p.thickness = kFloor;
+    p.gap = -INFINITY;
+    p.step_limit = 0.2f * kEdge;
+    p.converge = converge;
+    c.pairs = {p};
+    c.node_motion.assign(4, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
+    response.begin_frame(c);
+    response::ContactConstants k{};
+    k.h = 1e-3f;
+    k.elapsed = k.h;
+    (void)response.project(k, kAsked);
+    const float after = volume_of(state, p);
+    if (converge > 0.0f) {
+      EXPECT_GT(response.last_iterations(), kAsked);
+      EXPECT_LE(response.last_iterations(), response::kMaxIterationFactor * kAsked);
+      EXPECT_GE(after, response::kResidualShare * kFloor);
+    } else {
+      EXPECT_EQ(response.last_iterations(), kAsked);
+      EXPECT_LT(after, 0.0f) << "two limited steps should not bring it back";
+    }
+  }
+}
+
 // The projections of contacts and volume constraints together give the same bits on one and on
 // eight threads (each constraint writes its own slots; each node sums its list in order).
 TEST(VolumeConstraint, OneAndEightThreadsGiveTheSameBits) {

@@ -80,6 +80,9 @@ struct HandMadeContacts {
 inline HandMadeContacts hand_made_contacts() {
   constexpr float kThickness = 0.01f;
   constexpr std::uint32_t kVertexFaceFromBehind = 100u;  // a vf pair with side 0
+  // A vf pair whose thickness is a quarter of kThickness, holding to kThickness behind the face
+  // (ContactPair::hold_depth, as a self pair the rest-distance rule cut).
+  constexpr std::uint32_t kVertexFaceHeldDeep = 101u;
   HandMadeContacts out;
   std::vector<glm::vec4> x, v;
   std::vector<std::uint32_t> body;
@@ -103,9 +106,11 @@ inline HandMadeContacts hand_made_contacts() {
       for (int k = 0; k < 4; ++k)
         p.nodes[k] = first + local[k];
       // kVertexFaceFromBehind: a vertex-face constraint whose vertex started behind the face.
-      p.kind = kind == kVertexFaceFromBehind ? gpu::kContactVertexFace : kind;
-      p.side = kind == gpu::kContactVertexFace ? 1.0f : 0.0f;
-      p.thickness = kThickness;
+      const bool held_deep = kind == kVertexFaceHeldDeep;
+      p.kind = kind == kVertexFaceFromBehind || held_deep ? gpu::kContactVertexFace : kind;
+      p.side = kind == gpu::kContactVertexFace || held_deep ? 1.0f : 0.0f;
+      p.thickness = held_deep ? 0.25f * kThickness : kThickness;
+      if (held_deep) p.hold_depth = kThickness;
       out.constraints.pairs.push_back(p);
     }
     out.scenarios.push_back({name, first, static_cast<std::uint32_t>(nodes.size()), moves});
@@ -125,6 +130,8 @@ inline HandMadeContacts hand_made_contacts() {
       {{vf, v_on_f}}, true);
   add("vertex-face, below deeper than the thickness", {{0.0f, 0.0f, -0.03f}, f0, f1, f2}, free4, {},
       {{vf, v_on_f}}, false);
+  add("vertex-face, below deeper than its thickness, within its hold depth",
+      {{0.0f, 0.0f, -0.006f}, f0, f1, f2}, free4, {}, {{kVertexFaceHeldDeep, v_on_f}}, true);
   add("vertex-face, below within the thickness, started behind",
       {{0.0f, -0.02f, -0.006f}, f0, f1, f2}, free4, {}, {{kVertexFaceFromBehind, v_on_f}}, false);
   add("vertex-face, beside the face", {{0.3f, 0.0f, 0.002f}, f0, f1, f2}, free4, {}, {{vf, v_on_f}},
@@ -233,6 +240,7 @@ inline std::vector<gpu::ContactPair> volume_constraints(const SimulationState& w
     pair.thickness = floor * t.rest_volume;
     pair.gap = -INFINITY;
     pair.step_limit = step_limit;
+    pair.converge = 1.0f;  // as the world flags them
     out.push_back(pair);
   }
   return out;
@@ -272,6 +280,8 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
     pair.kind = p % 3u;
     // Most vertex-face constraints started in front of their faces, some behind.
     if (pair.kind == gpu::kContactVertexFace) pair.side = unit(rng) < 0.8f ? 1.0f : 0.0f;
+    // Every other one holds deeper than its thickness (a self pair the rest rule made thinner).
+    if (pair.kind == gpu::kContactVertexFace && p % 2u == 0u) pair.hold_depth = 0.03f;
     // Contacts iterate while violated (contact_violated), as the world sets them between bodies
     // that do not start the frame intersecting.
     if (pair.kind != gpu::kContactUntangle) pair.converge = 1.0f;
@@ -285,6 +295,7 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
     pair.thickness = 4e-6f * unit(rng);  // m^3: random corners span up to about 2e-5
     pair.gap = -INFINITY;
     pair.step_limit = 0.002f + 0.02f * unit(rng);
+    pair.converge = p % 2u == 0u ? 1.0f : 0.0f;  // some iterate while below half their floor
     out.constraints.pairs.push_back(pair);
   }
   // Paths as well as reaches: the watched centre moves along them.

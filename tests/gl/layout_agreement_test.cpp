@@ -196,7 +196,7 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
     EXPECT_EQ(cp.side, probef(i, 8));
     EXPECT_EQ(cp.step_limit, probef(i, 9));
     EXPECT_EQ(cp.converge, probef(i, 10));
-    EXPECT_EQ(cp.pad2, probef(i, 11));
+    EXPECT_EQ(cp.hold_depth, probef(i, 11));
   }
 }
 

@@ -101,9 +101,10 @@ inline bool contact_geometry(const gpu::ContactPair& pair, const glm::vec3 x[4],
     // against the other face's constraint every projection, and more projections pushed it
     // through one of them (on the impact scene with 5 perturbed starts, 8 projections left
     // 75 of 600 frames intersecting and 16 left 203; with this rule, none). Deeper than the
-    // thickness is a tunnel the untangling constraints resolve.
+    // hold depth (the thickness, or a self pair's uncut thickness: ContactPair::hold_depth) is
+    // a tunnel the untangling constraints resolve.
     if (uvw.x < 0.0f || uvw.y < 0.0f || uvw.z < 0.0f) return false;
-    if (!(pair.side > 0.0f) || height < -pair.thickness) return false;
+    if (!(pair.side > 0.0f) || height < -glm::max(pair.thickness, pair.hold_depth)) return false;
   } else {
     // Untangling (kContactUntangle): the vertex of an intersecting face, pushed out of the
     // other body through this face's plane; weights clamped into the face.
@@ -238,20 +239,28 @@ inline constexpr float kResidualShare = 0.5f;
 /// A projection runs at most this many times the iterations asked for.
 inline constexpr int kMaxIterationFactor = 4;
 
-/// Whether an active contact constraint is still violated by more than kResidualShare of its
-/// thickness after a projection's iterations (C < -share x thickness): the Jacobi solve has not
-/// converged there (a node in n constraints moves 1/n of what each asks), and another iteration
-/// is due. At three times the impact scene's speed with self-contact on, the bodies went
-/// through each other at their first contact after 8 iterations (and after 16) but not after 12,
-/// 24 or 32 (docs/notes/2026-12-05-self-contact-cost.md). Only constraints flagged `converge`
-/// count: the host leaves it 0 between bodies that the frame's exact pass found intersecting,
-/// which are taken apart over substeps (iterating on their deep constraints until they were out
-/// took half_overlap's bodies through each other), and for untangling and volume constraints
-/// (an untangling constraint moves at most max_untangle_step an iteration by design).
+/// Whether an active constraint is still violated by more than kResidualShare of its
+/// thickness after a projection's iterations (C < -share x thickness; a volume constraint's
+/// tetrahedron below share x its floor): the Jacobi solve has not converged there (a node in n
+/// constraints moves 1/n of what each asks), and another iteration is due. At three times the
+/// impact scene's speed with self-contact on, the bodies went through each other at their first
+/// contact after 8 iterations (and after 16) but not after 12, 24 or 32
+/// (docs/notes/2026-12-05-self-contact-cost.md). A sliver tetrahedron under two surface faces
+/// of the lion (a hundredth of its tetrahedra's mean volume) turned inside out within the
+/// iterations asked and took one face through the other: the impact's self-intersecting frames
+/// with self-contact and the floor on (docs/notes/2026-12-06-slivers-and-hold-depth.md). Only
+/// constraints flagged `converge` count: the host leaves it 0 between bodies that the frame's
+/// exact pass found intersecting, which are taken apart over substeps (iterating on their deep
+/// constraints until they were out took half_overlap's bodies through each other), and for
+/// untangling constraints (one moves at most max_untangle_step an iteration by design).
 inline bool contact_violated(const gpu::ContactPair& pair, const glm::vec4 position[4]) {
   if (!(pair.converge > 0.0f)) return false;
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
                           glm::vec3(position[3])};
+  if (pair.kind == gpu::kContactVolume) {
+    glm::vec3 g[4];
+    return sim::tetrahedron_volume(x, g) < kResidualShare * pair.thickness;
+  }
   glm::vec3 n(0.0f);
   float b[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   float c = 0.0f;

@@ -254,13 +254,13 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   // node pass watches the reaches again, on a cleared stray flag.
   iterations_done_ = iterations;
   const std::size_t stray_flag = 2u * std::size_t{node_count_};
-  while (first_volume_ > 0 && iterations_done_ < response::kMaxIterationFactor * iterations) {
+  while (pair_count_ > 0 && iterations_done_ < response::kMaxIterationFactor * iterations) {
     storage_barrier();  // the residual pass reads the last node pass's positions
     const std::uint32_t zero = 0u;
     buffers_.node_count->upload(std::span<const std::uint32_t>(&zero, 1), stray_flag + 1u);
-    residual_.set_uniform("u_contact_count", first_volume_);
+    residual_.set_uniform("u_pair_count", pair_count_);
     residual_.set_uniform("u_node_count", node_count_);
-    residual_.dispatch_covering(first_volume_);
+    residual_.dispatch_covering(pair_count_);
     // download() puts the barrier that makes the pass's write visible to it.
     if (buffers_.node_count->download(stray_flag + 1u, 1)[0] == 0u) break;
     buffers_.node_count->upload(std::span<const std::uint32_t>(&zero, 1), stray_flag);
