@@ -84,6 +84,35 @@ float volume_of(const SimulationState& s, const gpu::ContactPair& p) {
   return sim::tetrahedron_volume(x, g);
 }
 
+// The volume constraint of a world's first four nodes, kept at `floor` (m^3), its corners moved
+// at most `step_limit` an iteration.
+gpu::ContactPair first_tetrahedron_floor(float floor, float step_limit) {
+  gpu::ContactPair p{};
+  for (std::uint32_t k = 0; k < 4u; ++k)
+    p.nodes[k] = k;
+  p.kind = gpu::kContactVolume;
+  p.thickness = floor;
+  p.gap = -INFINITY;
+  p.step_limit = step_limit;
+  return p;
+}
+
+// One projection of `simulation`'s four nodes (at rest in the response's eyes: reach 1 m) with
+// `pair` alone, `iterations` asked, a substep of 1 ms, on one thread; the iterations it ran.
+int project_one_tetrahedron(cpu::CpuSimulation& simulation, const gpu::ContactPair& pair,
+                            int iterations) {
+  response::FrameConstraints c;
+  c.pairs = {pair};
+  c.node_motion.assign(4, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
+  response.begin_frame(c);
+  response::ContactConstants k{};
+  k.h = 1e-3f;
+  k.elapsed = k.h;
+  (void)response.project(k, iterations);
+  return response.last_iterations();
+}
+
 // One projection of the volume constraints alone on tetrahedra of a unit corner (rest volume
 // 1/6 x 0.01^3) whose apex is pushed toward, or through, the opposite face, each moving toward
 // it at 1 m/s: the inverted one and the collapsed one come back to (nearly) the floor, their
@@ -166,22 +195,8 @@ TEST(VolumeConstraint, ATetrahedronFlattenedToALineMovesNoCornerMoreThanItsStepL
   cpu::CpuSimulation simulation(1);
   simulation.upload(test::free_nodes(x, v, {0, 0, 0, 0}, 1));
   const SimulationState& state = simulation.state();  // the response corrects it in place
-  response::FrameConstraints c;
-  gpu::ContactPair p{};
-  for (std::uint32_t k = 0; k < 4u; ++k)
-    p.nodes[k] = k;
-  p.kind = gpu::kContactVolume;
-  p.thickness = 1e-7f;
-  p.gap = -INFINITY;
-  p.step_limit = 0.002f;
-  c.pairs = {p};
-  c.node_motion.assign(4, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-  cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
-  response.begin_frame(c);
-  response::ContactConstants k{};
-  k.h = 1e-3f;
-  k.elapsed = k.h;
-  (void)response.project(k, 1);
+  const gpu::ContactPair p = first_tetrahedron_floor(1e-7f, 0.002f);
+  (void)project_one_tetrahedron(simulation, p, 1);
   float largest = 0.0f;
   for (int i = 0; i < 4; ++i)
     largest = std::max(largest, glm::length(glm::vec3(state.positions[i] - x[i])));
@@ -208,30 +223,16 @@ TEST(VolumeConstraint, AnInvertedTetrahedronIsIteratedBackAboveHalfItsFloor) {
     cpu::CpuSimulation simulation(1);
     simulation.upload(test::free_nodes(x, v, {0, 0, 0, 0}, 1));
     const SimulationState& state = simulation.state();  // the response corrects it in place
-    response::FrameConstraints c;
-    gpu::ContactPair p{};
-    for (std::uint32_t k = 0; k < 4u; ++k)
-      p.nodes[k] = k;
-    p.kind = gpu::kContactVolume;
-    p.thickness = kFloor;
-    p.gap = -INFINITY;
-    p.step_limit = 0.2f * kEdge;
+    gpu::ContactPair p = first_tetrahedron_floor(kFloor, 0.2f * kEdge);
     p.converge = converge;
-    c.pairs = {p};
-    c.node_motion.assign(4, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
-    response.begin_frame(c);
-    response::ContactConstants k{};
-    k.h = 1e-3f;
-    k.elapsed = k.h;
-    (void)response.project(k, kAsked);
+    const int iterations = project_one_tetrahedron(simulation, p, kAsked);
     const float after = volume_of(state, p);
     if (converge > 0.0f) {
-      EXPECT_GT(response.last_iterations(), kAsked);
-      EXPECT_LE(response.last_iterations(), response::kMaxIterationFactor * kAsked);
+      EXPECT_GT(iterations, kAsked);
+      EXPECT_LE(iterations, response::kMaxIterationFactor * kAsked);
       EXPECT_GE(after, response::kResidualShare * kFloor);
     } else {
-      EXPECT_EQ(response.last_iterations(), kAsked);
+      EXPECT_EQ(iterations, kAsked);
       EXPECT_LT(after, 0.0f) << "two limited steps should not bring it back";
     }
   }
