@@ -2,8 +2,8 @@
 // The contact response's residual pass, after a projection's iterations: one invocation per
 // constraint p (contacts and volume constraints) flags whether it acts and is still violated
 // (contact_violated in src/core/response/contact_constraints.h), at u_node_count x 2 + 1 of the
-// counts buffer: then another iteration is due. Every writer writes the same 1, so the flag is the same whatever the
-// order (the CPU's OR of the same booleans).
+// counts buffer: then another iteration is due. Every writer writes the same 1, so the flag is
+// the same whatever the order (the CPU's OR of the same booleans).
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
 
@@ -23,7 +23,7 @@ layout(std430, binding = BINDING_NODE_CONTACT_COUNT) buffer NodeContactCounts {
   uint node_contact_count[];
 };
 
-uniform uint u_pair_count;
+uniform uint u_pair_count;  // the constraints: [0, u_pair_count)
 uniform uint u_node_count;
 
 void main() {

@@ -14,7 +14,7 @@
 // one per constraint, writing an active constraint's four corner slots (SSBO 30), and
 // response/contact_apply.comp, one per node, gathering its active corrections over the same
 // list in list order and writing only its own position and velocity. After the iterations asked
-// for, response/contact_residual.comp, one per contact, flags an active one still violated
+// for, response/contact_residual.comp, one per constraint, flags an active one still violated
 // (its flag read back): then one more iteration, to kMaxIterationFactor x those asked.
 // Gathers instead of scattering with atomics: GL 4.3 has no float atomics, and a fixed
 // summation order makes the result independent of the schedule and equal to the CPU's bit for
