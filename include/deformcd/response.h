@@ -63,11 +63,12 @@ struct ResponseSettings {
   float untangle_step = 0.25f;
   /// Each tetrahedron of a moving body is kept at or above this fraction of its rest volume
   /// (0 turns it off; below 1): a constraint of the projection, solved after the contacts in
-  /// each iteration, that takes back the motion collapsing it and pushes its corners out along
-  /// its volume's gradient. Inverted tetrahedra fold a body's surface through itself, where no
-  /// contact between surfaces can undo the fold: on the impact with self-contact, 0.3 takes the
-  /// most self-intersecting triangle pairs in a frame from 591 to 6 and the most inverted
-  /// tetrahedra from 3,841 to 18. Off by default: where a body rests under load its bottom
+  /// each iteration (and iterated on while a tetrahedron is below half its floor, as a contact
+  /// deeper than half its thickness is), that takes back the motion collapsing it and pushes
+  /// its corners out along its volume's gradient. Inverted tetrahedra fold a body's surface through
+  /// itself, where no contact between surfaces can undo the fold: on the impact with self-contact,
+  /// 0.3 takes the most self-intersecting triangle pairs in a frame from 591 to 6 and the most
+  /// inverted tetrahedra from 3,841 to 18. Off by default: where a body rests under load its bottom
   /// tetrahedra are crushed below any floor, and the floor and the contacts then hold them with
   /// velocities that never settle, so the stack scene never falls asleep
   /// (docs/simulation-and-response.md, "Volume constraints").
@@ -78,8 +79,9 @@ struct ResponseSettings {
   /// contact thicknesses (the smallest body's) in one substep; at most kMaxSubstepFactor x the
   /// scene's count. A fast approach then never crosses the thickness,
   /// inside which the projection holds it, in one substep. On the impact at three times its
-  /// speed, 0.3 with volume_floor 0.3 keeps the bodies apart where 16 fixed substeps let 926
-  /// triangle pairs intersect (docs/simulation-and-response.md, "Motion-bounded substeps").
+  /// speed with self-contact and volume_floor 0.3, 0.3 keeps the bodies apart where 16 fixed
+  /// substeps let them into each other (docs/simulation-and-response.md, "Motion-bounded
+  /// substeps").
   float substep_motion = 0.0f;
   /// Jacobi projections per substep (1 to 64): each re-solves the constraints that act in the
   /// substep on the positions the one before left, correcting what each has given so far (a
@@ -90,8 +92,8 @@ struct ResponseSettings {
   /// 1 projection lets surfaces intersect in 13 of 80 frames, 8 in none. More projections
   /// converge further: resting bodies jitter less (the benchmarks log in docs/notes/,
   /// "Accumulated corrections"), at a cost that grows with them. A projection runs more, up to
-  /// 4 x these, while an active contact is still deeper than half its thickness
-  /// (ResponseCounts::iterations counts them).
+  /// 4 x these, while an active contact is still deeper than half its thickness or a
+  /// tetrahedron below half its volume_floor (ResponseCounts::iterations counts them).
   int iterations = 8;
   /// Resting islands of bodies fall asleep (see SleepSettings). Unset: bodies never sleep.
   std::optional<SleepSettings> sleep;
