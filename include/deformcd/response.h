@@ -68,10 +68,9 @@ struct ResponseSettings {
   /// its corners out along its volume's gradient. Inverted tetrahedra fold a body's surface through
   /// itself, where no contact between surfaces can undo the fold: on the impact with self-contact,
   /// 0.3 takes the most self-intersecting triangle pairs in a frame from 591 to 6 and the most
-  /// inverted tetrahedra from 3,841 to 18. Off by default: where a body rests under load its bottom
-  /// tetrahedra are crushed below any floor, and the floor and the contacts then hold them with
-  /// velocities that never settle, so the stack scene never falls asleep
-  /// (docs/simulation-and-response.md, "Volume constraints").
+  /// inverted tetrahedra from 3,841 to 18. Off by default for its cost (the impact's frame about a
+  /// third dearer with it; the stack sleeps with it too, later; docs/simulation-and-response.md,
+  /// "Volume constraints").
   float volume_floor = 0.0f;
   /// Motion-bounded substeps (0 turns them off): when > 0, a frame takes more substeps than the
   /// scene's `substeps` where the pairs its first search finds could close on each other (each
