@@ -50,7 +50,8 @@ void BvhTrees::cut_trees() {
 }
 
 void make_child_records(const std::vector<gpu::BvhNode>& nodes, std::size_t face_count,
-                        std::vector<ChildBoxes>& records, std::vector<std::uint32_t>& record_of) {
+                        std::vector<ChildBoxes>& records, std::vector<std::uint32_t>& record_of,
+                        std::vector<std::uint32_t>* slot_of) {
   if (face_count >= kLeafChild) {
     throw Error("CPU bvh: " + std::to_string(face_count) +
                 " faces; the traversal's records hold fewer than 2^31");
@@ -61,6 +62,7 @@ void make_child_records(const std::vector<gpu::BvhNode>& nodes, std::size_t face
     if (nodes[i].face == gpu::kBvhInternal) record_of[i] = count++;
   }
   records.assign(count, ChildBoxes{});
+  if (slot_of != nullptr) slot_of->assign(nodes.size(), gpu::kBvhInternal);
   for (std::uint32_t i = 0; i < nodes.size(); ++i) {
     const gpu::BvhNode& n = nodes[i];
     if (n.face != gpu::kBvhInternal) continue;
@@ -69,26 +71,19 @@ void make_child_records(const std::vector<gpu::BvhNode>& nodes, std::size_t face
       const std::uint32_t c = children[k];
       records[record_of[i]].child[k] =
           nodes[c].face != gpu::kBvhInternal ? kLeafChild | nodes[c].face : record_of[c];
+      if (slot_of != nullptr) (*slot_of)[c] = 2 * record_of[i] + k;
     }
   }
 }
 
 void BvhTrees::make_child_boxes() {
   const std::vector<gpu::BvhNode>& nodes = upkeep_.nodes();
-  make_child_records(nodes, faces_.size(), child_boxes_, record_of_);
+  make_child_records(nodes, faces_.size(), child_boxes_, record_of_, &slots_);
   for (std::uint32_t i = 0; i < nodes.size(); ++i) {
     if (nodes[i].face == gpu::kBvhInternal) refit_nodes_[i].z = record_of_[i];
-  }
-  slots_.assign(nodes.size(), gpu::kBvhInternal);
-  for (std::uint32_t i = 0; i < nodes.size(); ++i) {
-    const gpu::BvhNode& n = nodes[i];
-    if (n.face != gpu::kBvhInternal) continue;
-    const std::uint32_t children[2] = {n.left, n.right};
-    for (std::uint32_t k = 0; k < 2; ++k) {
-      const std::uint32_t c = children[k];
-      slots_[c] = 2 * record_of_[i] + k;
-      write_slot(child_boxes_.data(), slots_[c], glm::vec3(boxes_[c].min),
-                 glm::vec3(boxes_[c].max));
+    if (slots_[i] != gpu::kBvhInternal) {
+      write_slot(child_boxes_.data(), slots_[i], glm::vec3(boxes_[i].min),
+                 glm::vec3(boxes_[i].max));
     }
   }
 }

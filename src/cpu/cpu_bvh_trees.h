@@ -50,10 +50,12 @@ inline constexpr std::uint32_t kLeafChild = 0x80000000u;
 
 // The records of the internal nodes of `nodes`, numbered in node order (record_of: per node its
 // record, kBvhInternal for a leaf), each with its children (ChildBoxes::child) and boxes left
-// for the caller to write (set_child_box). Throws Error for trees over 2^31 faces or more
-// (face_count).
+// for the caller to write (set_child_box). With `slot_of`, also per node the slot its box takes
+// in its parent's record (2 x record + child; kBvhInternal for a root). Throws Error for trees
+// over 2^31 faces or more (face_count).
 void make_child_records(const std::vector<gpu::BvhNode>& nodes, std::size_t face_count,
-                        std::vector<ChildBoxes>& records, std::vector<std::uint32_t>& record_of);
+                        std::vector<ChildBoxes>& records, std::vector<std::uint32_t>& record_of,
+                        std::vector<std::uint32_t>* slot_of = nullptr);
 
 // Box [lo, hi] as child k (0 or 1) of record r.
 inline void set_child_box(ChildBoxes& r, std::uint32_t k, const glm::vec3& lo,

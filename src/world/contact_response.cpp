@@ -689,7 +689,7 @@ ContactResponse::ProximityConstraint ContactResponse::proximity_constraint(
   // thickness behind the face: a guard of half a sliver's rest distance (0.31 mm on a dragon of
   // the pile, whose thickness is 3.4 mm) is crossed within one substep, and a vertex past it
   // was let go as if it had tunnelled (the pile with self-contact, the floor and
-  // motion-bounded substeps: 4 self-intersecting pairs at frame 27; none with this).
+  // motion-bounded substeps: 4 self-intersecting pairs at frame 27; none there with this).
   if (!edges) pair.hold_depth = pair.thickness;
   if (p.mesh_a == p.mesh_b) pair.thickness = self_thickness(pair);
   // Bodies that start the frame intersecting are taken apart over substeps (contact_violated).
