@@ -68,10 +68,9 @@ struct ResponseSettings {
   /// its corners out along its volume's gradient. Inverted tetrahedra fold a body's surface through
   /// itself, where no contact between surfaces can undo the fold: on the impact with self-contact,
   /// 0.3 takes the most self-intersecting triangle pairs in a frame from 591 to 6 and the most
-  /// inverted tetrahedra from 3,841 to 18. Off by default for its cost (the impact's frame about a
-  /// third dearer with it; the stack sleeps with it too, later; docs/simulation-and-response.md,
-  /// "Volume constraints").
-  float volume_floor = 0.0f;
+  /// inverted tetrahedra from 3,841 to 18 (docs/simulation-and-response.md, "Volume
+  /// constraints"). It costs what it does: a frame in contact about a third dearer.
+  float volume_floor = 0.3f;
   /// Motion-bounded substeps (0 turns them off): when > 0, a frame takes more substeps than the
   /// scene's `substeps` where the pairs its first search finds could close on each other (each
   /// pair's closing speed, the bound its nodes' straight paths give) by more than this many
@@ -81,7 +80,7 @@ struct ResponseSettings {
   /// speed with self-contact and volume_floor 0.3, 0.3 keeps the bodies apart where 16 fixed
   /// substeps let them into each other (docs/simulation-and-response.md, "Motion-bounded
   /// substeps").
-  float substep_motion = 0.0f;
+  float substep_motion = 0.3f;
   /// Jacobi projections per substep (1 to 64): each re-solves the constraints that act in the
   /// substep on the positions the one before left, correcting what each has given so far (a
   /// total that never goes below zero, so an over-correction is taken back). Mass splitting

@@ -87,7 +87,9 @@ struct SimulationSettings {
 struct CollisionSettings {
   /// The fastest method by default; the paper's ("octree", and its baseline "brute") by name.
   std::string broadphase = "bvh";
-  bool self = false;  ///< also test each body against itself
+  /// Also test each body against itself (and, with a response, keep its folds apart). Unset:
+  /// on exactly when the scene has a `response` (WorldOptions::self_collision).
+  std::optional<bool> self = std::nullopt;
 };
 
 /// A scene file as read by read_scene (docs/scenes.md lists its keys).
@@ -99,6 +101,12 @@ struct Scene {
   std::optional<ResponseSettings> response;
   std::vector<BodySpec> bodies;  ///< the `bodies` array, in order
 };
+
+/// Whether the scene's bodies collide with themselves: its `collision.self`, or, unset, whether
+/// it has a `response` (the rule of WorldOptions::self_collision).
+[[nodiscard]] inline bool self_collision(const Scene& scene) {
+  return scene.collision.self.value_or(scene.response.has_value());
+}
 
 /// Loads a model file, e.g. read_tetgen (TetGen prefixes only).
 using ModelLoader = std::function<TetMesh(const std::filesystem::path&)>;

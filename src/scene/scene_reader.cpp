@@ -108,7 +108,7 @@ CollisionSettings read_collision(JsonFields f) {
       list += (list.empty() ? "" : ", ") + name;
     f.fail("broadphase", "unknown broad phase '" + c.broadphase + "' (valid: " + list + ")");
   }
-  c.self = f.boolean("self").value_or(c.self);
+  c.self = f.boolean("self");
   f.reject_unknown();
   return c;
 }

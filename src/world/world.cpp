@@ -80,9 +80,10 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   // (check_stability), so the detector does not.
   DetectorOptions detector_options;
   detector_options.broadphase = broadphase_;
-  detector_ = std::unique_ptr<Detector>(new Detector(
-      Detector::Impl::create(surface_meshes(bodies, options.self_collision), detector_options,
-                             choice.kind, choice.context, executor_, false)));
+  const bool self_collision = options.self_collision.value_or(options.response.has_value());
+  detector_ = std::unique_ptr<Detector>(
+      new Detector(Detector::Impl::create(surface_meshes(bodies, self_collision), detector_options,
+                                          choice.kind, choice.context, executor_, false)));
   // The detector reads the nodes where the simulation keeps them, in place.
   const sim::NodeBuffers nodes = backend_->node_buffers();
   for (std::size_t b = 0; b < objects_.size(); ++b) {
@@ -100,7 +101,7 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
     response_ = std::make_unique<ContactResponse>(
         *options.response, bodies, state, settings, *backend_,
         create_response(choice.kind, choice.context, *backend_, executor_), executor_,
-        options.self_collision);
+        self_collision);
   }
 }
 

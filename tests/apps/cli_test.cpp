@@ -159,14 +159,15 @@ TEST_F(CliTest, RunWritesThePositionsOfTheLastOrOfEveryFrame) {
 
 // With a scene's `response`, bench reports the response's stages, its searches and widenings a
 // frame, its iterations a substep and the constraints each frame ended with: two cubes falling
-// side by side, never near, one search a frame, no widening, the 8 iterations asked for and no
-// constraint.
+// side by side, never near, one search a frame, no widening, each cube searched against itself
+// once (self-contact is on by default with a response; falling as a whole, its pairs are kept),
+// the 8 iterations asked for and no constraint (a cube's faces are never near each other).
 TEST_F(CliTest, BenchReportsTheResponsesSearchesAndWidenings) {
   const auto [r, json] = bench_two_cubes(R"({"frames": 3})", 3.0f);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(
-      r.output.find("x the simulation); searches 1.00, widenings 0.00 a frame; iterations 8.00 a "
-                    "substep"),
+      r.output.find("x the simulation); searches 1.00, widenings 0.00, bodies searched against "
+                    "themselves 0.67 a frame; iterations 8.00 a substep"),
       std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("no frame ended with constraints"), std::string::npos) << r.output;

@@ -81,7 +81,7 @@ struct SceneReplay {
         bodies(make_scene_bodies(scene, read_tetgen, frames)),
         state(assemble_simulation(bodies)),
         settings(step_settings(scene.settings)),
-        fixture(test::collision_fixture(bodies, scene.collision.self)),
+        fixture(test::collision_fixture(bodies, self_collision(scene))),
         cpu_sim(2),
         cpu_collision(2),
         gl_positions(state.positions.size() * sizeof(glm::vec4)),

@@ -53,7 +53,7 @@ TEST_F(SceneReaderTest, ReadsEveryKey) {
   EXPECT_EQ(s.settings.gravity, glm::dvec3(0, 0, -9.8));
   EXPECT_EQ(s.settings.frames, 120);
   EXPECT_EQ(s.collision.broadphase, "brute");
-  EXPECT_TRUE(s.collision.self);
+  EXPECT_EQ(s.collision.self, true);
   ASSERT_EQ(s.bodies.size(), 1u);
   const BodySpec& b = s.bodies[0];
   EXPECT_EQ(b.name, "a");
@@ -228,6 +228,26 @@ TEST_F(SceneReaderTest, ResponseIsOffWithoutItAndEveryDefaultWithAnEmptyObject) 
   EXPECT_EQ(s.response->relative_thickness, defaults.relative_thickness);
   EXPECT_EQ(s.response->friction_static, defaults.friction_static);
   EXPECT_EQ(s.response->restitution, defaults.restitution);
+}
+
+// Self-collision follows the response unless the scene says: a soft body without it folds
+// through itself where another presses it.
+TEST_F(SceneReaderTest, SelfCollisionIsOnWithAResponseUnlessTheSceneSays) {
+  const Scene bare = read_scene(write(R"({"bodies": [{"model": "models/cube"}]})"));
+  EXPECT_FALSE(bare.collision.self.has_value());
+  EXPECT_FALSE(self_collision(bare));
+  const Scene with = read_scene(write(with_response("{}")));
+  EXPECT_FALSE(with.collision.self.has_value());
+  EXPECT_TRUE(self_collision(with));
+  EXPECT_EQ(with.response->volume_floor, 0.3f);
+  EXPECT_EQ(with.response->substep_motion, 0.3f);
+  const Scene off = read_scene(write(R"({"collision": {"self": false}, "response": {},
+                                         "bodies": [{"model": "models/cube"}]})"));
+  EXPECT_EQ(off.collision.self, false);
+  EXPECT_FALSE(self_collision(off));
+  const Scene on =
+      read_scene(write(R"({"collision": {"self": true}, "bodies": [{"model": "models/cube"}]})"));
+  EXPECT_TRUE(self_collision(on));
 }
 
 TEST_F(SceneReaderTest, ResponseReadsEveryKey) {

@@ -177,7 +177,7 @@ Tally compare(const World& world, const Surface& s, const CgalSelfIntersections&
 
 World fold_world() {
   const Scene scene = read_scene(fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / "fold.json");
-  EXPECT_TRUE(scene.collision.self);
+  EXPECT_EQ(scene.collision.self, true);
   WorldOptions options;
   options.backend = BackendKind::kCpu;
   options.broadphase = BroadPhase::kNone;  // detection only at the frames checked

@@ -88,7 +88,7 @@ int shared_corners(const ContactFace& x, const ContactFace& y) {
 
 TEST(SelfCollision, EveryMethodEqualsTheAllPairsSelfTestOnTheFoldingPlate) {
   const Scene scene = shipped_scene("fold");
-  ASSERT_TRUE(scene.collision.self);
+  ASSERT_EQ(scene.collision.self, true);
   World world = scene_world(scene, scene.settings.frames, true);
   int frames_in_contact = 0;
   int vertex_sharing = 0;

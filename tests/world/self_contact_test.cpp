@@ -206,13 +206,13 @@ TEST(ProximityPairsFilter, SplitsTheWholeSearchExactly) {
                InputError);
 }
 
-// The impact with self-contact, before its bodies meet (frame 15): each body flies as a whole,
-// so each is searched against itself once, in the first frame, and its pairs kept since.
+// The impact with self-contact (a response's default: WorldOptions::self_collision unset),
+// before its bodies meet (frame 15): each body flies as a whole, so each is searched against
+// itself once, in the first frame, and its pairs kept since.
 TEST(SelfContactWorld, BodiesFlyingAsAWholeAreSearchedAgainstThemselvesOnce) {
   const Scene scene = read_scene(fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / "impact.json");
   WorldOptions options;
   options.backend = BackendKind::kCpu;
-  options.self_collision = true;
   options.response = scene.response;
   World world(make_scene_bodies(scene, read_tetgen, 12), step_settings(scene.settings), options);
   std::uint64_t searches = 0, constraints = 0;
@@ -226,6 +226,22 @@ TEST(SelfContactWorld, BodiesFlyingAsAWholeAreSearchedAgainstThemselvesOnce) {
   }
   EXPECT_EQ(searches, 12u) << "one window a frame (nothing strays)";
   EXPECT_GT(constraints, 0u) << "the kept pairs are constraints";
+}
+
+// Turned off, the same bodies have no pair with themselves: apart, no constraint at all.
+TEST(SelfContactWorld, SelfCollisionTurnedOffSearchesNoBodyAgainstItself) {
+  const Scene scene = read_scene(fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / "impact.json");
+  WorldOptions options;
+  options.backend = BackendKind::kCpu;
+  options.self_collision = false;
+  options.response = scene.response;
+  World world(make_scene_bodies(scene, read_tetgen, 3), step_settings(scene.settings), options);
+  for (int frame = 1; frame <= 3; ++frame) {
+    world.step();
+    const ResponseCounts c = world.response_counts();
+    EXPECT_EQ(c.self_searches, 0u) << "frame " << frame;
+    EXPECT_EQ(c.vertex_face + c.edge_edge, 0u) << "frame " << frame;
+  }
 }
 
 }  // namespace
