@@ -47,6 +47,7 @@ class _ResponseCounts(TypedDict):
     edge_edge: int
     untangle: int
     penetrating: int
+    between_bodies: int
     searches: int
     widenings: int
     self_searches: int

@@ -115,6 +115,7 @@ class PyWorld {
     d["edge_edge"] = c.edge_edge;
     d["untangle"] = c.untangle;
     d["penetrating"] = c.penetrating;
+    d["between_bodies"] = c.between_bodies;
     d["searches"] = c.searches;
     d["widenings"] = c.widenings;
     d["self_searches"] = c.self_searches;
@@ -233,7 +234,8 @@ backend : str
 broadphase : str
     The collision broad phase run after each step ("bvh", "octree-compact", "octree",
     "brute", or "none" for no collision detection); every one finds the same contacts.
-    The scene's own "collision.broadphase" is not used; its "collision.self" is.
+    The scene's own "collision.broadphase" is not used; its "collision.self" is (absent:
+    on when the scene has a "response").
 threads : int
     CPU threads; 0 uses every core. Results do not depend on it.
 measure_stage_times : bool
@@ -279,7 +281,8 @@ void bind_world(py::module_& m) {
       .def("response_counts", &PyWorld::response_counts,
            "The contact response's constraints at the end of the last step, a dict: vertex_face\n"
            "and edge_edge (proximity pairs), untangle (vertices of intersecting faces pushed\n"
-           "out), penetrating (vertices inside another body pushed out), searches, widenings,\n"
+           "out), penetrating (vertices inside another body pushed out), between_bodies (of\n"
+           "those four, the constraints between two different bodies), searches, widenings,\n"
            "self_searches (bodies searched against themselves), substeps (the frame's), asleep\n"
            "(bodies). All 0 without the scene's response.")
       .def("intersection_census", &PyWorld::intersection_census,

@@ -65,6 +65,7 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
       run.substeps.push_back(counts.substeps);
       run.iterations.push_back(counts.iterations);
       run.constraints.push_back(counts.contact_constraints());
+      run.constraints_between.push_back(counts.between_bodies);
     }
 
     world.set_broadphase(method);
@@ -109,10 +110,10 @@ double MethodRun::total_response_s() const {
   return std::accumulate(response_s.begin(), response_s.end(), 0.0);
 }
 
-double MethodRun::response_ratio(bool with_constraints) const {
+double MethodRun::response_ratio(bool in_contact) const {
   double response = 0.0, simulation = 0.0;
-  for (std::size_t f = 0; f < constraints.size(); ++f) {
-    if ((constraints[f] != 0u) != with_constraints) continue;
+  for (std::size_t f = 0; f < constraints_between.size(); ++f) {
+    if ((constraints_between[f] != 0u) != in_contact) continue;
     response += proximity_s[f] + response_s[f];
     simulation += simulation_s[f] - proximity_s[f] - response_s[f];
   }

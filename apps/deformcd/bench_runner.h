@@ -49,6 +49,10 @@ struct MethodRun {
   /// (ResponseCounts::contact_constraints(): proximity pairs, untangling, penetrating
   /// vertices). Empty without.
   std::vector<std::uint64_t> constraints;
+  /// Of those, the constraints between two different bodies (ResponseCounts::between_bodies):
+  /// the frames in contact are the frames with some, since with self-contact every frame has
+  /// constraints of each body with itself.
+  std::vector<std::uint64_t> constraints_between;
   /// Per frame 1..N with contact response: the intersection census and the tetrahedra turned
   /// inside out (bench_intersections.h).
   std::vector<IntersectionCensus> intersections;
@@ -61,9 +65,9 @@ struct MethodRun {
   [[nodiscard]] double total_proximity_s() const;
   [[nodiscard]] double total_response_s() const;
   /// The response's cost (proximity + response) over the simulation's alone (the simulation
-  /// stage less both), over the frames that ended with constraints (`with` true) or without.
-  /// NaN when no frame is of that kind.
-  [[nodiscard]] double response_ratio(bool with_constraints) const;
+  /// stage less both), over the frames that ended in contact, with constraints between two
+  /// bodies (`in_contact` true), or the others. NaN when no frame is of that kind.
+  [[nodiscard]] double response_ratio(bool in_contact) const;
   /// The paper's V: the run's total time, simulation and collision detection.
   [[nodiscard]] double total_s() const { return total_simulation_s() + total_collision_s(); }
   [[nodiscard]] std::uint64_t pairs() const;

@@ -115,6 +115,11 @@ struct ResponseCounts {
   /// m: the thickness of the pair that gave closest_distance (0 when the frame had none).
   float closest_thickness = 0.0f;
 
+  /// Of contact_constraints(), those between two different bodies (the rest are each body's
+  /// own, with self-contact: a body's near pairs with itself are constraints in every frame, in
+  /// contact with another body or not).
+  std::uint64_t between_bodies = 0;
+
   /// The contact constraints (not the volume constraints): proximity pairs, untangling and
   /// penetrating vertices.
   [[nodiscard]] std::uint64_t contact_constraints() const {

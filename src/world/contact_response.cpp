@@ -598,6 +598,7 @@ void ContactResponse::search() {
         if (immovable(mine.body) && immovable(other.body)) continue;
         c.pairs.push_back(pair);
         ++counts_.untangle;
+        if (mine.body != other.body) ++counts_.between_bodies;
       }
     }
   }
@@ -606,6 +607,7 @@ void ContactResponse::search() {
   // vertex deep inside it).
   c.pairs.insert(c.pairs.end(), penetrations_.begin(), penetrations_.end());
   counts_.penetrating = penetrations_.size();
+  counts_.between_bodies += penetrations_.size();  // a vertex of one body inside another
   append_volume_constraints(c);
   // The frame's first search sets its substeps from how fast its pairs can close
   // (substep_motion); the window keeps its length in seconds.
@@ -726,6 +728,7 @@ void ContactResponse::add_proximity_pairs(std::span<const ProximityPair> pairs, 
     if (!m.acts) continue;
     c.pairs.push_back(m.pair);
     ++(m.pair.kind == gpu::kContactEdgeEdge ? counts_.edge_edge : counts_.vertex_face);
+    if (pairs[i].mesh_a != pairs[i].mesh_b) ++counts_.between_bodies;
     // The closest relative to its thickness (a cross-multiplied comparison: thickness > 0).
     if (m.distance * counts_.closest_thickness < counts_.closest_distance * m.pair.thickness ||
         counts_.closest_thickness == 0.0f) {
@@ -814,8 +817,10 @@ void ContactResponse::widen() {
       return false;
     const bool gone = strayed[p.nodes[0]] != 0u || strayed[p.nodes[1]] != 0u ||
                       strayed[p.nodes[2]] != 0u || strayed[p.nodes[3]] != 0u;
-    if (gone) --(p.kind == gpu::kContactEdgeEdge ? counts_.edge_edge : counts_.vertex_face);
-    return gone;
+    if (!gone) return false;
+    --(p.kind == gpu::kContactEdgeEdge ? counts_.edge_edge : counts_.vertex_face);
+    if (body != node_body_[p.nodes[3]]) --counts_.between_bodies;
+    return true;
   });
   add_proximity_pairs(detector_->widen_proximity(strays, reach), false, constraints_);
   append_volume_constraints(constraints_);

@@ -170,10 +170,12 @@ TEST_F(CliTest, BenchReportsTheResponsesSearchesAndWidenings) {
                     "themselves 0.67 a frame; iterations 8.00 a substep"),
       std::string::npos)
       << r.output;
-  EXPECT_NE(r.output.find("no frame ended with constraints"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("no frame ended with constraints between bodies"), std::string::npos)
+      << r.output;
   EXPECT_NE(json.find("\"searches\":[1,1,1]"), std::string::npos) << json;
   EXPECT_NE(json.find("\"widenings\":[0,0,0]"), std::string::npos) << json;
   EXPECT_NE(json.find("\"constraints\":[0,0,0]"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"constraints_between\":[0,0,0]"), std::string::npos) << json;
 }
 
 // Cubes that start closer than the contact thickness end every frame with constraints, and bench
@@ -181,11 +183,13 @@ TEST_F(CliTest, BenchReportsTheResponsesSearchesAndWidenings) {
 TEST_F(CliTest, BenchSplitsTheResponsesCostByFramesWithConstraints) {
   const auto [r, json] = bench_two_cubes(R"({"frames": 3, "gravity": [0, 0, 0]})", 1.05f);
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("the 3 frames ending with constraints: proximity + response = "),
+  EXPECT_NE(r.output.find("the 3 frames ending with constraints between bodies: proximity + "
+                          "response = "),
             std::string::npos)
       << r.output;
   EXPECT_EQ(r.output.find("; the other"), std::string::npos) << r.output;
   EXPECT_EQ(json.find("\"constraints\":[0"), std::string::npos) << json;
+  EXPECT_EQ(json.find("\"constraints_between\":[0"), std::string::npos) << json;
   EXPECT_NE(json.find("\"constraints\":["), std::string::npos) << json;
 }
 

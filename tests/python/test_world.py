@@ -174,6 +174,7 @@ def test_stage_times_and_response_counts(tmp_path):
         w.step()
         c = w.response_counts()
         pairs.append(c["vertex_face"] + c["edge_edge"])
+        assert c["between_bodies"] <= pairs[-1] + c["untangle"] + c["penetrating"]
         self_searches += c["self_searches"]
         assert c["penetrating"] == 0  # the cubes never start inside each other
         # the scene's substeps, more where substep_motion (0.3 by default) asks, up to 8 x
@@ -182,6 +183,18 @@ def test_stage_times_and_response_counts(tmp_path):
         assert 8 * c["substeps"] <= c["iterations"] <= 32 * c["substeps"]
     # self-contact is on by default with a response: each cube searched against itself
     assert self_searches >= 2
+    # without it, every contact constraint is between the two cubes, widenings included
+    scene["collision"]["self"] = False
+    (tmp_path / "no_self.json").write_text(json.dumps(scene))
+    apart = deformcd.World.from_scene(tmp_path / "no_self.json", backend="cpu")
+    between = []
+    for _ in range(apart.frames):
+        apart.step()
+        c = apart.response_counts()
+        assert c["self_searches"] == 0
+        between.append(c["between_bodies"])
+        assert between[-1] == c["vertex_face"] + c["edge_edge"] + c["untangle"] + c["penetrating"]
+    assert max(between) > 0
     times = w.last_frame_times()
     assert times["simulation_s"] > 0 and times["collision_s"] > 0 and times["response_s"] > 0
     assert max(pairs) > 0 and w.counts()["contacts"] == 0  # the response kept them apart

@@ -220,6 +220,7 @@ TEST(SelfContactWorld, BodiesFlyingAsAWholeAreSearchedAgainstThemselvesOnce) {
     world.step();
     const ResponseCounts c = world.response_counts();
     EXPECT_EQ(c.self_searches, frame == 1 ? 2u : 0u) << "frame " << frame;
+    EXPECT_EQ(c.between_bodies, 0u) << "frame " << frame << ": the bodies are apart";
     searches += c.searches;
     constraints += c.vertex_face + c.edge_edge;
     EXPECT_TRUE(world.contacts().empty()) << "frame " << frame;
