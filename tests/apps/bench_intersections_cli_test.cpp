@@ -22,6 +22,13 @@ std::string scene_file(const char* name) {
   return (fs::path(DEFORMCD_SOURCE_DIR) / "scenes" / (std::string(name) + ".json")).string();
 }
 
+// `deformcd bench SCENE --backend cpu --methods bvh` with its JSON report written to `json`.
+CliRun bench(const std::string& scene, int threads, int frames, const fs::path& json) {
+  return run_cli("bench " + scene + " --backend cpu --methods bvh --threads " +
+                 std::to_string(threads) + " --frames " + std::to_string(frames) + " --json " +
+                 json.string());
+}
+
 nlohmann::json bvh_per_frame(const fs::path& json) {
   std::ifstream in(json);
   const nlohmann::json j = nlohmann::json::parse(in);
@@ -33,9 +40,7 @@ nlohmann::json bvh_per_frame(const fs::path& json) {
 TEST(BenchIntersectionsCli, ResponseSceneReportsTheCensusEveryFrame) {
   deformcd::test::TempDir dir;
   const fs::path json = dir.path() / "bench.json";
-  const CliRun r =
-      run_cli("bench " + scene_file("half_overlap") +
-              " --backend cpu --methods bvh --threads 1 --frames 2 --json " + json.string());
+  const CliRun r = bench(scene_file("half_overlap"), 1, 2, json);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("intersections (bodies with themselves included): 2 of 2 frames"),
             std::string::npos)
@@ -73,9 +78,7 @@ TEST(BenchIntersectionsCli, CrushedBodiesShowTheirInvertedTetrahedra) {
   const fs::path lean = dir.path() / "stack_lean.json";
   std::ofstream(lean) << scene.dump(2);
   const fs::path json = dir.path() / "bench.json";
-  const CliRun r =
-      run_cli("bench " + lean.string() +
-              " --backend cpu --methods bvh --threads 2 --frames 12 --json " + json.string());
+  const CliRun r = bench(lean.string(), 2, 12, json);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find(" tetrahedra inverted"), std::string::npos) << r.output;
   const nlohmann::json inverted = bvh_per_frame(json).at("inverted_tetrahedra");
@@ -90,9 +93,7 @@ TEST(BenchIntersectionsCli, CrushedBodiesShowTheirInvertedTetrahedra) {
 TEST(BenchIntersectionsCli, WithTheDefaultsTheStackNeitherInvertsNorFolds) {
   deformcd::test::TempDir dir;
   const fs::path json = dir.path() / "bench.json";
-  const CliRun r =
-      run_cli("bench " + scene_file("stack") +
-              " --backend cpu --methods bvh --threads 2 --frames 12 --json " + json.string());
+  const CliRun r = bench(scene_file("stack"), 2, 12, json);
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json per_frame = bvh_per_frame(json);
   for (std::size_t f = 0; f < 12; ++f) {
@@ -105,8 +106,7 @@ TEST(BenchIntersectionsCli, WithTheDefaultsTheStackNeitherInvertsNorFolds) {
 TEST(BenchIntersectionsCli, SceneWithoutResponseHasNoCensus) {
   deformcd::test::TempDir dir;
   const fs::path json = dir.path() / "bench.json";
-  const CliRun r = run_cli("bench " + scene_file("phase2") +
-                           " --backend cpu --methods bvh --frames 2 --json " + json.string());
+  const CliRun r = bench(scene_file("phase2"), 1, 2, json);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output.find("intersections (bodies"), std::string::npos) << r.output;
   EXPECT_FALSE(bvh_per_frame(json).contains("inside_vertices"));
