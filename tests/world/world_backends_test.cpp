@@ -139,7 +139,7 @@ TEST_P(ResponseBackendAgreement, GlEqualsCpu) {
 // Under AddressSanitizer (about 20x slower on the CPU side) the impact is left out: what it adds
 // here is agreement, not host memory paths the other two scenes do not take.
 constexpr ResponseRun kResponseRuns[] = {
-    {"overlap", "overlap", 60, false},
+    {"overlap", "overlap", 40, false},
     {"fold_response", "fold_response", 200, false},
 #ifndef DEFORMCD_UNDER_ASAN
     {"impact", "impact", 24, false},
