@@ -268,10 +268,11 @@ TEST_F(CollisionCli, ASceneOfTheShippedSurfacesRunsThroughContact) {
 }
 
 // On a response scene the bodies meet and rebound without intersecting: the summary says what
-// the response did (frames with constraints, the most at once, the closest the surfaces came
-// against the thickness kept), and no line reads as if nothing happened ("0 frames in contact",
-// "0 proximity constraints"). The impact scene's bodies first come within their thickness at
-// frame 15 (of 200); 24 frames take it into contact.
+// the response did (frames with constraints between the bodies, the most at once, the frames with
+// a body's own, the closest the surfaces came against the thickness kept), and no line reads as
+// if nothing happened ("0 frames in contact", "0 proximity constraints"). The impact scene's
+// bodies first come within their thickness at frame 15 (of 200); 24 frames take it into contact,
+// and each body's own pairs (self-contact, on by default) are constraints in every frame.
 TEST_F(CollisionCli, RunOnAResponseSceneSaysWhatTheResponseDid) {
   const CliRun r = run_cli("run " + scene("impact") + " --backend cpu --frames 24");
   ASSERT_EQ(r.status, 0) << r.output;
@@ -279,16 +280,20 @@ TEST_F(CollisionCli, RunOnAResponseSceneSaysWhatTheResponseDid) {
                           "kept the surfaces apart)"),
             std::string::npos)
       << r.output;
-  const std::size_t response = r.output.find("response   contact constraints in ");
+  const std::string start = "response   constraints between bodies in ";
+  const std::size_t response = r.output.find(start);
   ASSERT_NE(response, std::string::npos) << r.output;
-  // "in N of 24 frames (F-L), at most M at once (frame K)", N > 0.
-  std::istringstream line(r.output.substr(response + 34));
+  // "in N of 24 frames (F-L), at most M at once (frame K)", 0 < N < 24: apart before frame 15.
+  std::istringstream line(r.output.substr(response + start.size()));
   int frames_with_constraints = 0;
   std::string of;
   int frames = 0;
   line >> frames_with_constraints >> of >> frames;
   EXPECT_GT(frames_with_constraints, 0) << r.output;
+  EXPECT_LE(frames_with_constraints, 24 - 13) << r.output;
   EXPECT_EQ(frames, 24) << r.output;
+  EXPECT_NE(r.output.find("; a body's own (self-contact) in 24 frames"), std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find(" x the thickness kept ("), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("in contact"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find(" 0 proximity constraints"), std::string::npos) << r.output;

@@ -79,7 +79,7 @@ TEST_F(RenderCli, OnAResponseSceneSaysWhatTheResponseDid) {
   EXPECT_NE(image_line.find(" intersecting face pair"), std::string::npos) << image_line;
   EXPECT_NE(image_line.find(" contact constraints"), std::string::npos) << image_line;
   EXPECT_EQ(image_line.find(" contacts"), std::string::npos) << image_line;
-  EXPECT_NE(r.output.find("response: contact constraints in 2 of 2 frames (1-2), at most "),
+  EXPECT_NE(r.output.find("response: constraints between bodies in 2 of 2 frames (1-2), at most "),
             std::string::npos)
       << r.output;
 }
