@@ -21,8 +21,8 @@ struct ResponseTally {
   int first_active = -1;  ///< the first and last of them
   int last_active = -1;
   std::uint64_t most_constraints = 0;  ///< the most between bodies a frame ended with
+  int most_at = -1;                    ///< the frame with that many
   int frames_with_own = 0;  ///< frames that ended with a constraint of a body with itself
-  int most_at = -1;         ///< the frame with that many
   /// The closest pair relative to its thickness over the frames (ResponseCounts).
   float closest_distance = std::numeric_limits<float>::infinity();
   float closest_thickness = 0.0f;

@@ -18,6 +18,14 @@ namespace deformcd {
 /// The most a frame's substeps may grow over the scene's by ResponseSettings::substep_motion.
 inline constexpr int kMaxSubstepFactor = 8;
 
+/// Whether bodies collide with themselves, given the setting (WorldOptions::self_collision, a
+/// scene's `collision.self`) and whether there is a contact response: unset, on exactly with a
+/// response, since a response without it lets a soft body fold through itself where another
+/// presses it.
+[[nodiscard]] inline bool self_collision_on(std::optional<bool> self, bool responds) {
+  return self.value_or(responds);
+}
+
 /// The most Jacobi projections per substep ResponseSettings::iterations may ask for.
 inline constexpr int kMaxResponseIterations = 64;
 
@@ -69,7 +77,7 @@ struct ResponseSettings {
   /// itself, where no contact between surfaces can undo the fold: on the impact with self-contact,
   /// 0.3 takes the most self-intersecting triangle pairs in a frame from 591 to 6 and the most
   /// inverted tetrahedra from 3,841 to 18 (docs/simulation-and-response.md, "Volume
-  /// constraints"). It costs what it does: a frame in contact about a third dearer.
+  /// constraints"). Alone it makes the impact's frames in contact about a third dearer.
   float volume_floor = 0.3f;
   /// Motion-bounded substeps (0 turns them off): when > 0, a frame takes more substeps than the
   /// scene's `substeps` where the pairs its first search finds could close on each other (each

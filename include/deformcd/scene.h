@@ -105,7 +105,7 @@ struct Scene {
 /// Whether the scene's bodies collide with themselves: its `collision.self`, or, unset, whether
 /// it has a `response` (the rule of WorldOptions::self_collision).
 [[nodiscard]] inline bool self_collision(const Scene& scene) {
-  return scene.collision.self.value_or(scene.response.has_value());
+  return self_collision_on(scene.collision.self, scene.response.has_value());
 }
 
 /// Loads a model file, e.g. read_tetgen (TetGen prefixes only).

@@ -80,7 +80,8 @@ World::World(const std::vector<BodyInit>& bodies, const StepSettings& settings,
   // (check_stability), so the detector does not.
   DetectorOptions detector_options;
   detector_options.broadphase = broadphase_;
-  const bool self_collision = options.self_collision.value_or(options.response.has_value());
+  const bool self_collision =
+      self_collision_on(options.self_collision, options.response.has_value());
   detector_ = std::unique_ptr<Detector>(
       new Detector(Detector::Impl::create(surface_meshes(bodies, self_collision), detector_options,
                                           choice.kind, choice.context, executor_, false)));
