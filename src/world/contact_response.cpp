@@ -29,18 +29,6 @@ void check_value(const char* name, float value, float high = INFINITY) {
   }
 }
 
-// The share of its rest distance that a self pair closer than the thickness at rest keeps as its
-// thickness (ContactResponse::self_thickness). A vertex-face pair remembers the side its vertex
-// started on and holds it to the body's thickness behind the face (hold_depth), so half is room
-// enough; more made the pile's landing bodies press vertices into the base (0.65 and 0.8). An edge
-// pair has neither: its distance is along the closest points' difference, which turns over as the
-// edges pass through each other, so it must act early. With half, the contacts pressing the lion's
-// vertex 2471 under the next face crushed the edge pairs around it (2.9 mm apart at rest, a 1.5 mm
-// guard) through each other (4 of the 5,200 frames of 26 perturbed impact starts; 1 with 0.8,
-// none with 0.9: docs/notes/2026-12-06-self-rest-share.md).
-constexpr float kVertexFaceRestShare = 0.5f;
-constexpr float kEdgeEdgeRestShare = 0.9f;
-
 }  // namespace
 
 // The primitive pairs of the faces the last exact pass found intersecting: each vertex of one
@@ -358,10 +346,8 @@ float ContactResponse::pair_thickness(std::uint32_t a, std::uint32_t b) const {
 float ContactResponse::self_thickness(const gpu::ContactPair& pair) const {
   // Primitives of one body that are closer than the thickness where the body rests (on real
   // meshes, a few hundred pairs one edge apart: 192-1,674 on the shipped models at 0.2 x the
-  // mean edge, none on the plate) would push each other apart for ever; they keep a share of
-  // their rest distance instead (half for a vertex and a face, 0.9 for two edges), which acts
-  // once the body has pressed them that much closer and holds them from passing through each
-  // other.
+  // mean edge, none on the plate) would push each other apart for ever; they keep half their rest
+  // distance instead, which still keeps them from passing through each other.
   const glm::vec3 x[4] = {rest_[pair.nodes[0]], rest_[pair.nodes[1]], rest_[pair.nodes[2]],
                           rest_[pair.nodes[3]]};
   // Most pairs are farther apart at rest than twice the thickness: the distance between the two
@@ -383,9 +369,7 @@ float ContactResponse::self_thickness(const gpu::ContactPair& pair) const {
   const glm::dvec3 gap = glm::max(glm::max(lo_b - hi_a, lo_a - hi_b), glm::dvec3(0.0));
   const double apart = 2.0 * static_cast<double>(pair.thickness) * (1.0 + 1e-6);
   if (glm::dot(gap, gap) >= apart * apart) return pair.thickness;
-  const float share =
-      pair.kind == gpu::kContactEdgeEdge ? kEdgeEdgeRestShare : kVertexFaceRestShare;
-  return std::min(pair.thickness, share * collision::primitive_distance(pair.kind, x));
+  return std::min(pair.thickness, 0.5f * collision::primitive_distance(pair.kind, x));
 }
 
 void ContactResponse::begin_frame(Detector& detector, std::vector<Contact> intersections) {
