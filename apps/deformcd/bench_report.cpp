@@ -197,6 +197,13 @@ void print_response(std::ostream& out, const SceneBench& b) {
           << "response = " << r.response_ratio(true) << " x the simulation";
       if (apart != 0) out << "; the other " << apart << ": " << r.response_ratio(false) << " x";
     }
+    // A pile or a stack should end asleep (ResponseSettings::sleep): how many, and since when.
+    if (!r.asleep.empty() && r.asleep.back() > 0) {
+      const auto since = std::find_if(r.asleep.rbegin(), r.asleep.rend(),
+                                      [&](auto a) { return a != r.asleep.back(); });
+      out << "; " << r.asleep.back() << " bodies asleep at the end, since frame "
+          << r.asleep.size() - static_cast<std::size_t>(since - r.asleep.rbegin()) + 1;
+    }
     out << '\n' << std::defaultfloat;
     print_intersection_summary(out, r.intersections, r.inverted_tetrahedra);
   }
@@ -254,6 +261,7 @@ std::string bench_json(const std::vector<SceneBench>& results, const BenchRecord
         per_frame["iterations"] = r.iterations;
         per_frame["self_searches"] = r.self_searches;
         per_frame["substeps"] = r.substeps;
+        per_frame["asleep"] = r.asleep;
         per_frame["constraints"] = r.constraints;
         per_frame["constraints_between"] = r.constraints_between;
       }

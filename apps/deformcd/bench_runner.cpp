@@ -64,6 +64,7 @@ MethodRun measure(const std::vector<BodyInit>& bodies, const StepSettings& setti
       run.self_searches.push_back(counts.self_searches);
       run.substeps.push_back(counts.substeps);
       run.iterations.push_back(counts.iterations);
+      run.asleep.push_back(counts.asleep);
       run.constraints.push_back(counts.contact_constraints());
       run.constraints_between.push_back(counts.between_bodies);
     }

@@ -45,6 +45,7 @@ struct MethodRun {
   std::vector<std::uint64_t> self_searches;
   std::vector<std::uint64_t> substeps;    // per frame, the response's (ResponseCounts::substeps)
   std::vector<std::uint64_t> iterations;  // per frame, ResponseCounts::iterations
+  std::vector<std::uint64_t> asleep;      // per frame, the bodies asleep after it
   /// Per frame 1..N with contact response: the contact constraints the frame ended with
   /// (ResponseCounts::contact_constraints(): proximity pairs, untangling, penetrating
   /// vertices). Empty without.

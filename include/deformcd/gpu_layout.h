@@ -271,7 +271,10 @@ struct ContactPair {
   /// kContactVertexFace: 1 when the vertex was in front of the face (on its outward side) where
   /// the window starts, else 0. Only a vertex that started in front is held off the face; one
   /// that started behind it is on the far side of a thin part, or inside the body (where the
-  /// untangling constraints take it out). 0 for other kinds.
+  /// untangling constraints take it out). kContactEdgeEdge: which side of the second edge the
+  /// first's line passes on where the window starts (response::edge_line_side: 1 or -1; 0
+  /// where the edges are nearly parallel), so that edges that go through each other within the
+  /// window are taken back. 0 for other kinds.
   float side;
   /// kContactVolume: m, the most one projection moves a node (the tetrahedron's mean rest edge
   /// length: a tetrahedron collapsed to a line has gradients near zero). 0 for other kinds.
@@ -282,10 +285,11 @@ struct ContactPair {
   float converge;
   /// kContactVertexFace: m, how deep behind the face the vertex may be and still be held in
   /// front of it (deeper is a tunnel: the untangling constraints take it out); at least the
-  /// thickness (0 or less: the thickness). The world sets a body's own thickness for its self
-  /// pairs whose thickness the rest-distance rule cut to half their rest distance, so that a
-  /// vertex pushed past such a thin guard within a substep is still brought back. 0 for other
-  /// kinds.
+  /// thickness (0 or less: the thickness). kContactEdgeEdge: how far through each other edges
+  /// with a side may have gone and still be taken back. The world sets a body's own thickness
+  /// for its self pairs whose thickness the rest-distance rule cut to half their rest
+  /// distance, so that a vertex (an edge) pushed past such a thin guard within a substep is
+  /// still brought back. 0 for other kinds.
   float hold_depth;
 };
 static_assert(sizeof(ContactPair) == 48);

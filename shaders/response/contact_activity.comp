@@ -21,6 +21,9 @@ layout(std430, binding = BINDING_CONTACT_CORRECTION) writeonly buffer ContactCor
 layout(std430, binding = BINDING_PROJECTION_START) readonly buffer ProjectionStarts {
   vec4 projection_starts[];
 };
+layout(std430, binding = BINDING_FRAME_START) readonly buffer FrameStarts {
+  vec4 frame_start[];
+};
 
 uniform uint u_pair_count;
 uniform float u_elapsed;
@@ -35,7 +38,11 @@ void main() {
   if (acting) {
     vec4 x[4];
     for (uint i = 0u; i < 4u; ++i) x[i] = positions[pair.nodes[i]];
-    acting = contact_active(pair, x);
+    vec3 window_start[4];
+    const bool reads = reads_window_start(pair);
+    for (uint i = 0u; i < 4u; ++i)
+      window_start[i] = reads ? frame_start[pair.nodes[i]].xyz : vec3(0.0);
+    acting = contact_active(pair, x, window_start);
   }
   corrections[8u * p] = vec4(0.0, 0.0, 0.0, acting ? 1.0 : 0.0);
 }

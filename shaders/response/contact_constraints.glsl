@@ -57,10 +57,72 @@ bool plane_barycentric(vec3 p, vec3 a, vec3 b, vec3 c, out vec3 uvw) {
   return true;
 }
 
+// edge_line_side, line for line: which side of edge (x[2], x[3])'s line edge (x[0], x[1])'s
+// line passes on (the sign of (x[0] - x[2]) . (da x db)), 0 where the edges are within about 6
+// degrees of parallel. (edge_edge_start_side is the host's alone.)
+float edge_line_side(vec3 x[4]) {
+  precise vec3 da = x[1] - x[0], db = x[3] - x[2];
+  precise vec3 normal = exact_cross(da, db);
+  precise float normal2 = exact_dot(normal, normal);
+  precise float parallel = 1e-2 * exact_dot(da, da) * exact_dot(db, db);
+  if (!(normal2 > parallel)) return 0.0;
+  precise float along = exact_dot(x[0] - x[2], normal);
+  return along > 0.0 ? 1.0 : -1.0;
+}
+
+// edge_edge_side, line for line: edge_line_side where the closest points (s, t) are inside both
+// edges, else 0.
+float edge_edge_side(vec3 x[4], float s, float t) {
+  if (!(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)) return 0.0;
+  return edge_line_side(x);
+}
+
+// reads_window_start, line for line: whether contact_geometry reads the window's start (edge
+// pairs with a side); the passes load it for those alone.
+bool reads_window_start(ContactPair pair) {
+  return pair.kind == CONTACT_EDGE_EDGE && pair.side != 0.0;
+}
+
+// edge_offset_along_the_way, line for line: the corners a share `tau` of the way from the
+// window's start to now, into p; their lines' offset along da x db there.
+float edge_offset_along_the_way(vec3 start[4], vec3 x[4], float tau, out vec3 p[4]) {
+  for (int k = 0; k < 4; ++k) {
+    precise vec3 moved = start[k] + tau * (x[k] - start[k]);
+    p[k] = moved;
+  }
+  precise float offset = exact_dot(p[0] - p[2], exact_cross(p[1] - p[0], p[3] - p[2]));
+  return offset;
+}
+
+const int THROUGH_BISECTIONS = 24;  // response::kThroughBisections
+
+// edges_went_through, line for line: whether, where the edges' lines meet on the straight way
+// from the window's start (offset sign `side`) to now (found by bisection), the meeting point
+// is inside both edges and they are not parallel there.
+bool edges_went_through(vec3 start[4], vec3 x[4], float side) {
+  vec3 p[4];
+  precise float before = 0.0, after = 1.0;
+  for (int i = 0; i < THROUGH_BISECTIONS; ++i) {
+    precise float middle = 0.5 * (before + after);
+    precise float signed_offset = edge_offset_along_the_way(start, x, middle, p) * side;
+    if (signed_offset > 0.0) {
+      before = middle;
+    } else {
+      after = middle;
+    }
+  }
+  edge_offset_along_the_way(start, x, after, p);
+  float s = 0.0, t = 0.0;
+  if (!segment_closest_parameters(p[0], p[1], p[2], p[3], s, t)) return false;
+  return edge_edge_side(p, s, t) != 0.0;
+}
+
 // contact_geometry: normal n, weights b (sum 0) and C, the distance along n minus the thickness
-// (the constraint wants C >= 0), on the current positions. False when the constraint does not
-// apply now (vertex beside the face, beyond its band, degenerate).
-bool contact_geometry(ContactPair pair, vec3 x[4], out vec3 n, out float b[4], out float c) {
+// (the constraint wants C >= 0), on the current positions (the window's start: `start`, read
+// only where reads_window_start says). False when the constraint does not apply now (vertex
+// beside the face, beyond its band, degenerate).
+bool contact_geometry(ContactPair pair, vec3 x[4], vec3 start[4], out vec3 n, out float b[4],
+                      out float c) {
   n = vec3(0.0);
   b = float[4](0.0, 0.0, 0.0, 0.0);
   c = 0.0;
@@ -73,6 +135,14 @@ bool contact_geometry(ContactPair pair, vec3 x[4], out vec3 n, out float b[4], o
     if (!(distance > crossing)) return false;  // crossing: no direction
     precise vec3 unit = d / distance;
     n = unit;
+    // Edges that went through each other since the window started: their distance counts as
+    // negative, to the hold depth.
+    if (pair.side != 0.0 && edge_edge_side(x, s, t) == -pair.side &&
+        edges_went_through(start, x, pair.side)) {
+      if (distance > distance_max(pair.thickness, pair.hold_depth)) return false;
+      n = -n;
+      distance = -distance;
+    }
     precise float one_minus_s = 1.0 - s;
     precise float one_minus_t = 1.0 - t;
     b[0] = one_minus_s;
@@ -156,6 +226,8 @@ bool contact_clear(ContactPair pair, vec3 x[4]) {
     precise float parallel = 1e-2 * exact_dot(da, da) * exact_dot(db, db);
     if (!(normal2 > parallel)) return false;
     precise float along = exact_dot(r, normal);
+    precise float against = along * pair.side;
+    if (against < 0.0) return false;  // maybe through each other: contact_geometry decides
     precise float limit =
         1.001 * pair.thickness + 1e-4 * abs_sum(r) + 1e-6 * (abs_sum(x[0]) + abs_sum(x[2]));
     precise float along2 = along * along;
@@ -173,7 +245,7 @@ bool contact_clear(ContactPair pair, vec3 x[4]) {
 
 // contact_active: whether the constraint acts now (its distance along n below its thickness; a
 // volume constraint's tetrahedron below its floor).
-bool contact_active(ContactPair pair, vec4 position[4]) {
+bool contact_active(ContactPair pair, vec4 position[4], vec3 start[4]) {
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
   if (pair.kind == CONTACT_VOLUME) {
     vec3 g[4];
@@ -183,14 +255,14 @@ bool contact_active(ContactPair pair, vec4 position[4]) {
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
   float c = 0.0;
-  return contact_geometry(pair, x, n, b, c) && c < 0.0;
+  return contact_geometry(pair, x, start, n, b, c) && c < 0.0;
 }
 
 // kResidualShare and contact_violated, line for line: whether an active constraint flagged
 // `converge` is still deeper than half its thickness (a volume constraint's tetrahedron below
 // half its floor) after a projection's iterations (more iterations are due).
 const float RESIDUAL_SHARE = 0.5;
-bool contact_violated(ContactPair pair, vec4 position[4]) {
+bool contact_violated(ContactPair pair, vec4 position[4], vec3 start[4]) {
   if (!(pair.converge > 0.0)) return false;
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
   if (pair.kind == CONTACT_VOLUME) {
@@ -200,7 +272,7 @@ bool contact_violated(ContactPair pair, vec4 position[4]) {
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
   float c = 0.0;
-  return contact_geometry(pair, x, n, b, c) && c < -RESIDUAL_SHARE * pair.thickness;
+  return contact_geometry(pair, x, start, n, b, c) && c < -RESIDUAL_SHARE * pair.thickness;
 }
 
 // solve_volume, line for line: a volume constraint's corrections (the tetrahedron's collapse
@@ -252,12 +324,14 @@ void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], uint cou
 // iteration's slip (given[1].w); each iteration corrects the totals, the normal ones clamped at
 // zero, the friction to its cone of the accumulated normal change; a sticking contact's hold
 // (given[2].xyz) takes back the tangential drift position corrections gave its point since the
-// projection's start (`start`), within the static cone of the push. `history` (slid_before):
+// projection's start (`start`), within the static cone of the push; `window_start`: where the
+// nodes started the window (contact_geometry's `start`). `history` (slid_before):
 // none, some or all of its free nodes slid in the last substep (all: it slid through it); the
 // last iteration's slide flag goes to the w of each corner's velocity correction.
 void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
-                   vec4 start[4], ContactConstants k, bool first_iteration, bool last_iteration,
-                   uint history, inout vec4 given[3], out vec4 correction[8]) {
+                   vec4 start[4], vec3 window_start[4], ContactConstants k, bool first_iteration,
+                   bool last_iteration, uint history, inout vec4 given[3],
+                   out vec4 correction[8]) {
   for (int i = 0; i < 8; ++i) correction[i] = vec4(0.0);
   if (first_iteration) {
     given[0] = vec4(0.0);
@@ -272,7 +346,7 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
   float c = 0.0;
-  if (!contact_geometry(pair, x, n, b, c)) return;
+  if (!contact_geometry(pair, x, window_start, n, b, c)) return;
   precise float weight = 0.0;
   precise vec3 relative_velocity = vec3(0.0);
   precise vec3 drift = vec3(0.0);  // how far position corrections carried the contact point

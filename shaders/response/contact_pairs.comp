@@ -40,6 +40,9 @@ layout(std430, binding = BINDING_NODE_SLID) readonly buffer NodeSlid {
 layout(std430, binding = BINDING_PROJECTION_START) readonly buffer ProjectionStarts {
   vec4 projection_starts[];
 };
+layout(std430, binding = BINDING_FRAME_START) readonly buffer FrameStarts {
+  vec4 frame_start[];
+};
 
 uniform uint u_pair_begin;
 uniform uint u_pair_end;
@@ -64,6 +67,10 @@ void main() {
     v[i] = velocities[pair.nodes[i]];
     start[i] = projection_starts[pair.nodes[i]];
   }
+  vec3 window_start[4];
+  const bool reads = reads_window_start(pair);
+  for (uint i = 0u; i < 4u; ++i)
+    window_start[i] = reads ? frame_start[pair.nodes[i]].xyz : vec3(0.0);
   uint count[4], slid[4];
   for (uint i = 0u; i < 4u; ++i) {
     count[i] = node_contact_count[2u * pair.nodes[i] + u_group];
@@ -71,7 +78,7 @@ void main() {
   }
   vec4 correction[8];
   vec4 given[3] = vec4[3](impulses[3u * p], impulses[3u * p + 1u], impulses[3u * p + 2u]);
-  solve_contact(pair, x, v, count, start,
+  solve_contact(pair, x, v, count, start, window_start,
                 ContactConstants(u_h, u_friction_static, u_friction_dynamic, u_restitution,
                                  u_max_untangle_step, 0.0),
                 u_first_iteration, u_last_iteration, slid_before(x, slid, u_substep), given,

@@ -18,6 +18,9 @@ layout(std430, binding = BINDING_CONTACT_PAIR) readonly buffer ContactPairs {
 layout(std430, binding = BINDING_CONTACT_CORRECTION) readonly buffer ContactCorrections {
   vec4 corrections[];
 };
+layout(std430, binding = BINDING_FRAME_START) readonly buffer FrameStarts {
+  vec4 frame_start[];
+};
 // The counts, the stray flag, then (at 2 x u_node_count + 1) this pass's flag.
 layout(std430, binding = BINDING_NODE_CONTACT_COUNT) buffer NodeContactCounts {
   uint node_contact_count[];
@@ -33,5 +36,9 @@ void main() {
   const ContactPair pair = pairs[p];
   vec4 x[4];
   for (uint i = 0u; i < 4u; ++i) x[i] = positions[pair.nodes[i]];
-  if (contact_violated(pair, x)) node_contact_count[2u * u_node_count + 1u] = 1u;
+  vec3 window_start[4];
+  const bool reads = reads_window_start(pair);
+  for (uint i = 0u; i < 4u; ++i)
+    window_start[i] = reads ? frame_start[pair.nodes[i]].xyz : vec3(0.0);
+  if (contact_violated(pair, x, window_start)) node_contact_count[2u * u_node_count + 1u] = 1u;
 }

@@ -64,6 +64,13 @@ void CpuContactResponse::watch_reachable_nodes() {
     if (!std::isinf(frame_start_[i].w)) watched_.push_back(i);
 }
 
+void CpuContactResponse::load_window_start(const gpu::ContactPair& pair,
+                                           glm::vec3 window_start[4]) const {
+  const bool reads = response::reads_window_start(pair);
+  for (std::uint32_t k = 0; k < 4u; ++k)
+    window_start[k] = reads ? glm::vec3(frame_start_[pair.nodes[k]]) : glm::vec3(0.0f);
+}
+
 bool CpuContactResponse::project(const response::ContactConstants& k, int iterations) {
   if (constraints_ == nullptr) throw Error("CpuContactResponse::project before begin_frame()");
   ++substep_;
@@ -91,7 +98,9 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
             const glm::vec4 x[4] = {
                 nodes_.host_positions[pair.nodes[0]], nodes_.host_positions[pair.nodes[1]],
                 nodes_.host_positions[pair.nodes[2]], nodes_.host_positions[pair.nodes[3]]};
-            active = response::contact_active(pair, x);
+            glm::vec3 window_start[4];
+            load_window_start(pair, window_start);
+            active = response::contact_active(pair, x, window_start);
           }
           active_[p] = active ? 1u : 0u;
         },
@@ -149,9 +158,11 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
                 count[i] = counts_[2u * pair.nodes[i] + group];
                 slid[i] = slid_[pair.nodes[i]];
               }
-              response::solve_contact(pair, x, v, count, start, k, first_iteration, last,
-                                      response::slid_before(x, slid, substep_), &impulses_[3u * p],
-                                      &corrections_[8u * p]);
+              glm::vec3 window_start[4];
+              load_window_start(pair, window_start);
+              response::solve_contact(pair, x, v, count, start, window_start, k, first_iteration,
+                                      last, response::slid_before(x, slid, substep_),
+                                      &impulses_[3u * p], &corrections_[8u * p]);
             },
             256);
         // The node pass, over the nodes with an active constraint of the group (the others'
@@ -183,7 +194,10 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
             const glm::vec4 x[4] = {
                 nodes_.host_positions[pair.nodes[0]], nodes_.host_positions[pair.nodes[1]],
                 nodes_.host_positions[pair.nodes[2]], nodes_.host_positions[pair.nodes[3]]};
-            if (response::contact_violated(pair, x)) any.store(true, std::memory_order_relaxed);
+            glm::vec3 window_start[4];
+            load_window_start(pair, window_start);
+            if (response::contact_violated(pair, x, window_start))
+              any.store(true, std::memory_order_relaxed);
           },
           256);
       return any.load();

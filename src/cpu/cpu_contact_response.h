@@ -36,6 +36,9 @@ class CpuContactResponse final : public response::ResponseBackend {
   void take(const response::FrameConstraints& constraints);
   // Lists the nodes with a finite reach (watched_) from frame_start_.
   void watch_reachable_nodes();
+  // Where `pair`'s nodes started the window (frame_start_), for the constraint functions' window
+  // start: loaded only where contact_geometry reads it (response::reads_window_start), else 0.
+  void load_window_start(const gpu::ContactPair& pair, glm::vec3 window_start[4]) const;
 
   sim::SimulationBackend& simulation_;
   int iterations_done_ = 0;  // by the last project()

@@ -48,9 +48,10 @@ TEST(BenchIntersectionsCli, ResponseSceneReportsTheCensusEveryFrame) {
       << r.output;
   const nlohmann::json per_frame = bvh_per_frame(json);
   for (const char* key : {"intersecting_pairs_between", "intersecting_pairs_self",
-                          "inside_vertices", "inverted_tetrahedra"}) {
+                          "inside_vertices", "inverted_tetrahedra", "asleep"}) {
     ASSERT_EQ(per_frame.at(key).size(), 2u) << key;
   }
+  EXPECT_EQ(per_frame["asleep"][1].get<std::uint64_t>(), 0u) << "bodies asleep while apart";
   for (int f = 0; f < 2; ++f) {
     EXPECT_GT(per_frame["intersecting_pairs_between"][f].get<std::uint64_t>(), 0u);
     EXPECT_GT(per_frame["inside_vertices"][f].get<std::uint64_t>(), 0u);

@@ -16,6 +16,7 @@
 #include "cpu/cpu_simulation.h"
 #include "deformcd/error.h"
 #include "gl/contact_test_worlds.h"
+#include "gl/sim_test_worlds.h"
 
 namespace deformcd {
 namespace {
@@ -74,6 +75,38 @@ TEST(CpuContactResponse, ALightNodeIsNotThrownOffWhereItsEdgesHeavyEndIsStopped)
   // Moved back by the approach cancelled (1 m/s x h, about 1 mm), to the thickness or above.
   EXPECT_GT(state.positions[0].z, 0.009f);
   EXPECT_GT(state.positions[1].z, 0.009f);
+}
+
+// Edges that one substep takes through each other (EdgesInOneSubstep, one projection after the
+// substep): within the hold depth, the constraint takes edge a back above b (with the closest
+// points' difference as the normal, it pushed a on down, holding the edges crossed); deeper
+// than the hold depth it leaves them (a tunnel, the untangling constraints' case); an edge whose
+// direction turned through the other's, still 4 mm above it, is pushed up as any edge within
+// its thickness, not down through the other (its side turned, its closest points' difference
+// did not).
+TEST(CpuContactResponse, EdgesThatWentThroughEachOtherInASubstepAreTakenBack) {
+  const test::RandomContacts set = test::edges_in_one_substep();
+  cpu::CpuSimulation simulation(1);
+  simulation.upload(set.world);
+  const SimulationState& state = simulation.state();
+  cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
+  response.begin_frame(set.constraints);
+  simulation.substep(test::substep_constants(test::kEdgesSubstep));
+  // Where the substep left edge a's middle, above b's (z = 0).
+  const auto a_height = [&](test::EdgesInOneSubstep kind) {
+    const std::uint32_t first = 4u * static_cast<std::uint32_t>(kind);
+    return 0.5f * (state.positions[first].z + state.positions[first + 1u].z);
+  };
+  EXPECT_NEAR(a_height(test::EdgesInOneSubstep::kThrough), -0.002f, 1e-6f);
+  EXPECT_NEAR(a_height(test::EdgesInOneSubstep::kThroughDeep), -0.026f, 1e-6f);
+  EXPECT_NEAR(a_height(test::EdgesInOneSubstep::kTurnedParallel), 0.004f, 1e-6f);
+  response::ContactConstants k{};
+  k.h = test::kEdgesSubstep;
+  k.elapsed = k.h;
+  (void)response.project(k, 8);
+  EXPECT_GT(a_height(test::EdgesInOneSubstep::kThrough), 0.0f) << "still through b";
+  EXPECT_NEAR(a_height(test::EdgesInOneSubstep::kThroughDeep), -0.026f, 1e-6f) << "moved";
+  EXPECT_GT(a_height(test::EdgesInOneSubstep::kTurnedParallel), 0.004f) << "pushed toward b";
 }
 
 // A tetrahedron's signed volume on the state's positions.
@@ -335,7 +368,7 @@ TEST(ContactConstraints, ClearNeverHidesAnActingConstraint) {
     glm::vec3 normal(0.0f);
     float weights[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     float c = 0.0f;
-    const bool acts = response::contact_geometry(pair, x, normal, weights, c) && c < 0.0f;
+    const bool acts = response::contact_geometry(pair, x, x, normal, weights, c) && c < 0.0f;
     const bool clear = response::contact_clear(pair, x);
     ASSERT_FALSE(acts && clear) << "constraint " << i << " (kind " << kind << ", gap " << gap
                                 << ") acts (C = " << c << ") but was cleared";
@@ -394,7 +427,10 @@ TEST(ContactConstraints, AStickingContactHoldsItsPointAgainstPushesWithinItsStat
     start[0].x -= drift;
     glm::vec4 given[3], correction[8];
     // First iteration, not the last (where a slip may start sliding).
-    response::solve_contact(pair, x, v, count, start, k, true, false, history, given, correction);
+    const glm::vec3 window_start[4] = {glm::vec3(x[0]), glm::vec3(x[1]), glm::vec3(x[2]),
+                                       glm::vec3(x[3])};
+    response::solve_contact(pair, x, v, count, start, window_start, k, true, false, history, given,
+                            correction);
     EXPECT_NEAR(correction[0].z, 0.005f, 1e-6f) << "pushed out of the thickness";
     return correction[0].x;
   };

@@ -12,9 +12,11 @@
 #include <string>
 #include <vector>
 
+#include <glm/trigonometric.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "core/response/contact_constraints.h"
 #include "core/response/frame_constraints.h"
 #include "deformcd/gpu_layout.h"
 #include "deformcd/simulation_state.h"
@@ -224,6 +226,66 @@ struct RandomContacts {
   response::FrameConstraints constraints;
 };
 
+/// Two edges, one edge-edge constraint (thickness 0.01 m), that one substep of kEdgesSubstep
+/// (free nodes: x += v h) takes from passing each other on one side to the next state `kind`
+/// names; the scenario's nodes are 4 k to 4 k + 3 (k the scenario's index: edge a, then b).
+enum class EdgesInOneSubstep : std::uint32_t {
+  kThrough,         ///< edge a from 4 mm above b to 2 mm below it: within the hold depth
+  kThroughDeep,     ///< a to 26 mm below b: deeper than the hold depth (a tunnel)
+  kTurnedParallel,  ///< a stays 4 mm above b, its direction turned through b's (+20 to -20 deg)
+};
+inline constexpr float kEdgesSubstep = 1e-3f;
+
+/// The three scenarios of EdgesInOneSubstep, 1 m apart, in one world: b along y in z = 0 and
+/// at rest, a 4 mm above it, its side where the window starts set as the world sets it
+/// (response::edge_edge_start_side), its velocities what carries it to the named state.
+inline RandomContacts edges_in_one_substep() {
+  constexpr float kThickness = 0.01f;
+  std::vector<glm::vec4> x, v;
+  std::vector<std::uint32_t> body;
+  response::FrameConstraints c;
+  const auto along = [](float degrees) {
+    const float r = glm::radians(degrees);
+    return glm::vec3(std::cos(r), std::sin(r), 0.0f);
+  };
+  for (std::uint32_t k = 0; k < 3u; ++k) {
+    const glm::vec3 origin(static_cast<float>(k), 0.0f, 0.0f);
+    const auto kind = static_cast<EdgesInOneSubstep>(k);
+    const glm::vec3 a_dir = along(kind == EdgesInOneSubstep::kTurnedParallel ? 110.0f : 45.0f);
+    const glm::vec3 lift(0.0f, 0.0f, 0.004f);
+    const glm::vec3 a0 = origin + lift - 0.1f * a_dir, a1 = origin + lift + 0.1f * a_dir;
+    glm::vec3 move0(0.0f), move1(0.0f);  // each end's move in the substep
+    if (kind == EdgesInOneSubstep::kThrough) move0 = move1 = glm::vec3(0.0f, 0.0f, -0.006f);
+    if (kind == EdgesInOneSubstep::kThroughDeep) move0 = move1 = glm::vec3(0.0f, 0.0f, -0.03f);
+    if (kind == EdgesInOneSubstep::kTurnedParallel) {
+      // From 110 to 70 degrees, through b's direction (90), the ends on the circle's chord.
+      move0 = -0.1f * (along(70.0f) - a_dir);
+      move1 = 0.1f * (along(70.0f) - a_dir);
+    }
+    const glm::vec3 b0 = origin + glm::vec3(0.0f, -0.1f, 0.0f);
+    const glm::vec3 b1 = origin + glm::vec3(0.0f, 0.1f, 0.0f);
+    const glm::vec3 corners[4] = {a0, a1, b0, b1};
+    const glm::vec3 moves[4] = {move0, move1, glm::vec3(0.0f), glm::vec3(0.0f)};
+    for (int i = 0; i < 4; ++i) {
+      x.emplace_back(corners[i], 1.0f);
+      v.emplace_back(moves[i] / kEdgesSubstep, 0.0f);
+      body.push_back(0u);
+    }
+    gpu::ContactPair pair{};
+    for (std::uint32_t i = 0; i < 4u; ++i)
+      pair.nodes[i] = 4u * k + i;
+    pair.kind = gpu::kContactEdgeEdge;
+    pair.thickness = kThickness;
+    pair.hold_depth = kThickness;
+    pair.gap = -INFINITY;  // awake
+    pair.converge = 1.0f;
+    pair.side = response::edge_edge_start_side(corners);
+    c.pairs.push_back(pair);
+  }
+  c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // reach 1 m: no stray
+  return {free_nodes(std::move(x), std::move(v), std::move(body), 1), std::move(c)};
+}
+
 /// The volume constraints (gpu::kContactVolume) of every tetrahedron of `world`, each kept at
 /// `floor` x its volume in `world`'s positions, its corners moved at most `step_limit` an
 /// iteration.
@@ -280,8 +342,17 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
     pair.kind = p % 3u;
     // Most vertex-face constraints started in front of their faces, some behind.
     if (pair.kind == gpu::kContactVertexFace) pair.side = unit(rng) < 0.8f ? 1.0f : 0.0f;
+    // Edge pairs know the side they start on (as the world sets it), so that those the
+    // projections take through each other are taken back (contact_geometry).
+    if (pair.kind == gpu::kContactEdgeEdge) {
+      const glm::vec3 corners[4] = {glm::vec3(out.world.positions[pair.nodes[0]]),
+                                    glm::vec3(out.world.positions[pair.nodes[1]]),
+                                    glm::vec3(out.world.positions[pair.nodes[2]]),
+                                    glm::vec3(out.world.positions[pair.nodes[3]])};
+      pair.side = response::edge_edge_start_side(corners);
+    }
     // Every other one holds deeper than its thickness (a self pair the rest rule made thinner).
-    if (pair.kind == gpu::kContactVertexFace && p % 2u == 0u) pair.hold_depth = 0.03f;
+    if (pair.kind != gpu::kContactUntangle && p % 2u == 0u) pair.hold_depth = 0.03f;
     // Contacts iterate while violated (contact_violated), as the world sets them between bodies
     // that do not start the frame intersecting.
     if (pair.kind != gpu::kContactUntangle) pair.converge = 1.0f;

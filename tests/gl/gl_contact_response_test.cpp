@@ -193,6 +193,25 @@ TEST_F(GlContactResponseTest, RandomDenseConstraintSetsEqualTheCpuBitForBit) {
   RecordProperty("extended_projections", extended);
 }
 
+// Edges that one substep takes through each other, or turns through parallel
+// (EdgesInOneSubstep): the GL response reads the window's start as the CPU does, and takes
+// them back alike, bit for bit.
+TEST_F(GlContactResponseTest, EdgesThroughEachOtherInASubstepEqualTheCpuBitForBit) {
+  const test::RandomContacts set = test::edges_in_one_substep();
+  SideBySide both(context(), set.world);
+  both.begin_frame(set.constraints);
+  const sim::SubstepConstants substep = test::substep_constants(test::kEdgesSubstep);
+  both.simulation.substep(substep);
+  both.cpu_simulation.substep(substep);
+  ContactConstants k = kPlain;
+  k.h = test::kEdgesSubstep;
+  both.project(k, kIterations);
+  both.expect_equal("after the substep");
+  // The CPU's own test (cpu_contact_response_test.cpp) checks where the edges end.
+  EXPECT_GT(both.cpu_state().positions[0].z + both.cpu_state().positions[1].z, 0.0f)
+      << "edge a still through b";
+}
+
 // The response between the substeps of a running simulation (two overlapping grids, stepped by
 // the GL mass-spring backend): before each projection the CPU takes GL's state, so that only
 // the response is compared, and it agrees bit for bit every time.

@@ -67,18 +67,104 @@ inline float vertex_face_side(const glm::vec3 x[4]) {
   return glm::dot(x[0] - x[1], glm::cross(x[2] - x[1], x[3] - x[1])) > 0.0f ? 1.0f : 0.0f;
 }
 
-/// The geometry of one constraint on the current positions: normal n, weights b (sum 0), and
-/// C, the distance along n minus the thickness (the constraint wants C >= 0). False when the
+/// Which side of edge (x[2], x[3])'s line edge (x[0], x[1])'s line passes on: the sign of
+/// (x[0] - x[2]) . (da x db), 1 or -1, where the edges are more than about 6 degrees from
+/// parallel; else 0 (no side). The sign turns when the edges go through each other, and also
+/// when they pass around an end or their directions turn through parallel (edges_went_through
+/// tells these apart).
+inline float edge_line_side(const glm::vec3 x[4]) {
+  const glm::vec3 da = x[1] - x[0], db = x[3] - x[2];
+  const glm::vec3 normal = glm::cross(da, db);
+  if (!(glm::dot(normal, normal) > 1e-2f * glm::dot(da, da) * glm::dot(db, db))) return 0.0f;
+  return glm::dot(x[0] - x[2], normal) > 0.0f ? 1.0f : -1.0f;
+}
+
+/// edge_line_side where the edges' closest points (at edge parameters s and t) are inside both
+/// edges, else 0: the side their segments pass each other on.
+inline float edge_edge_side(const glm::vec3 x[4], float s, float t) {
+  if (!(s > 0.0f && s < 1.0f && t > 0.0f && t < 1.0f)) return 0.0f;
+  return edge_line_side(x);
+}
+
+/// A new edge-edge constraint's side (ContactPair::side): edge_edge_side where its window
+/// starts (0 where the closest points are an end then). The world's search calls it on the
+/// host (for both backends), so no shader mirrors it.
+inline float edge_edge_start_side(const glm::vec3 x[4]) {
+  float s = 0.0f, t = 0.0f;
+  if (!collision::segment_closest_parameters<float>(x[0], x[1], x[2], x[3], s, t)) return 0.0f;
+  return edge_edge_side(x, s, t);
+}
+
+/// Whether contact_geometry reads where the constraint's nodes started the window (its `start`):
+/// only edge-edge constraints with a side do, so the passes load those positions for them alone.
+inline bool reads_window_start(const gpu::ContactPair& pair) {
+  return pair.kind == gpu::kContactEdgeEdge && pair.side != 0.0f;
+}
+
+/// The four corners of an edge pair a share `tau` of the way from where the window started
+/// (`start`) to where they are now (x), into p; returns their lines' offset along da x db there
+/// (the sign edge_edge_side takes).
+inline float edge_offset_along_the_way(const glm::vec3 start[4], const glm::vec3 x[4], float tau,
+                                       glm::vec3 p[4]) {
+  for (int k = 0; k < 4; ++k)
+    p[k] = start[k] + tau * (x[k] - start[k]);
+  return glm::dot(p[0] - p[2], glm::cross(p[1] - p[0], p[3] - p[2]));
+}
+
+/// The bisection steps of edges_went_through: the moment to 2^-24 of the substeps' way.
+inline constexpr int kThroughBisections = 24;
+
+/// Whether edges on one side of each other where the window started (`start`, offset sign
+/// `side`) and on the other now (x) went through each other: along the straight way between,
+/// where their lines meet (the offset, a cubic in the way, turns sign: found by bisection), the
+/// meeting point is inside both edges and they are not parallel there. Edges that passed
+/// around an end, or whose directions turned through parallel (two edges of bodies rolling
+/// over each other), change sides too, but their segments never met: pushed back along their
+/// starting side they would be pushed through each other.
+inline bool edges_went_through(const glm::vec3 start[4], const glm::vec3 x[4], float side) {
+  glm::vec3 p[4];
+  float before = 0.0f, after = 1.0f;
+  for (int i = 0; i < kThroughBisections; ++i) {
+    const float middle = 0.5f * (before + after);
+    if (edge_offset_along_the_way(start, x, middle, p) * side > 0.0f) {
+      before = middle;
+    } else {
+      after = middle;
+    }
+  }
+  (void)edge_offset_along_the_way(start, x, after, p);
+  float s = 0.0f, t = 0.0f;
+  if (!collision::segment_closest_parameters<float>(p[0], p[1], p[2], p[3], s, t)) return false;
+  return edge_edge_side(p, s, t) != 0.0f;
+}
+
+/// The geometry of one constraint on the current positions x (where the window started:
+/// `start`, read only where reads_window_start says): normal n, weights b (sum 0), and C, the
+/// distance along n minus the thickness (the constraint wants C >= 0). False when the
 /// constraint does not apply now (vertex beside the face, beyond its band, degenerate).
-inline bool contact_geometry(const gpu::ContactPair& pair, const glm::vec3 x[4], glm::vec3& n,
-                             float b[4], float& c) {
+inline bool contact_geometry(const gpu::ContactPair& pair, const glm::vec3 x[4],
+                             const glm::vec3 start[4], glm::vec3& n, float b[4], float& c) {
   if (pair.kind == gpu::kContactEdgeEdge) {
     float s = 0.0f, t = 0.0f;
     if (!collision::segment_closest_parameters<float>(x[0], x[1], x[2], x[3], s, t)) return false;
     const glm::vec3 d = (x[0] + s * (x[1] - x[0])) - (x[2] + t * (x[3] - x[2]));
-    const float distance = std::sqrt(glm::dot(d, d));
+    float distance = std::sqrt(glm::dot(d, d));
     if (!(distance > 1e-7f * pair.thickness)) return false;  // crossing: no direction
     n = d / distance;
+    // Edges that passed each other on one side where the window started (pair.side) and now
+    // went through each other within a substep: the closest points' difference has turned
+    // over, and along it the constraint would hold them crossed. Their distance counts as
+    // negative, which takes them back to their starting side, to the hold depth (at least the
+    // thickness; deeper is a tunnel the untangling constraints resolve).
+    // Why: the lion of the impact folded where the edges of a vertex's fan passed through an
+    // edge of the body's own surface that its contacts held at a thin thickness (1.5 mm), once
+    // they came within one substep's motion of it (docs/notes/2026-12-06-edge-sides.md).
+    if (pair.side != 0.0f && edge_edge_side(x, s, t) == -pair.side &&
+        edges_went_through(start, x, pair.side)) {
+      if (distance > glm::max(pair.thickness, pair.hold_depth)) return false;
+      n = -n;
+      distance = -distance;
+    }
     b[0] = 1.0f - s;
     b[1] = s;
     b[2] = -(1.0f - t);
@@ -206,6 +292,9 @@ inline bool contact_clear(const gpu::ContactPair& pair, const glm::vec3 x[4]) {
     const float normal2 = glm::dot(normal, normal);
     if (!(normal2 > 1e-2f * glm::dot(da, da) * glm::dot(db, db))) return false;
     const float along = glm::dot(r, normal);
+    // On the other side of their starting one (pair.side) the edges may have gone through each
+    // other: contact_geometry decides.
+    if (along * pair.side < 0.0f) return false;
     const float limit =
         1.001f * pair.thickness + 1e-4f * abs_sum(r) + 1e-6f * (abs_sum(x[0]) + abs_sum(x[2]));
     return along * along > limit * limit * normal2;
@@ -219,7 +308,8 @@ inline bool contact_clear(const gpu::ContactPair& pair, const glm::vec3 x[4]) {
 
 /// The activity pass: whether the constraint acts now (its distance along n is below its
 /// thickness; a volume constraint's tetrahedron below its floor), from the current positions.
-inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 position[4]) {
+inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 position[4],
+                           const glm::vec3 start[4]) {
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
                           glm::vec3(position[3])};
   if (pair.kind == gpu::kContactVolume) {
@@ -230,7 +320,7 @@ inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 positio
   glm::vec3 n(0.0f);
   float b[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   float c = 0.0f;
-  return contact_geometry(pair, x, n, b, c) && c < 0.0f;
+  return contact_geometry(pair, x, start, n, b, c) && c < 0.0f;
 }
 
 /// How deep below its thickness a contact may still be after a projection's iterations before
@@ -253,7 +343,8 @@ inline constexpr int kMaxIterationFactor = 4;
 /// exact pass found intersecting, which are taken apart over substeps (iterating on their deep
 /// constraints until they were out took half_overlap's bodies through each other), and for
 /// untangling constraints (one moves at most max_untangle_step an iteration by design).
-inline bool contact_violated(const gpu::ContactPair& pair, const glm::vec4 position[4]) {
+inline bool contact_violated(const gpu::ContactPair& pair, const glm::vec4 position[4],
+                             const glm::vec3 start[4]) {
   if (!(pair.converge > 0.0f)) return false;
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
                           glm::vec3(position[3])};
@@ -264,7 +355,7 @@ inline bool contact_violated(const gpu::ContactPair& pair, const glm::vec4 posit
   glm::vec3 n(0.0f);
   float b[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   float c = 0.0f;
-  return contact_geometry(pair, x, n, b, c) && c < -kResidualShare * pair.thickness;
+  return contact_geometry(pair, x, start, n, b, c) && c < -kResidualShare * pair.thickness;
 }
 
 /// The solve pass of a volume constraint (kContactVolume), called by solve_contact: the
@@ -337,7 +428,8 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
 /// slid through it (`was_sliding`) where all did. In the last iteration the w of each corner's
 /// velocity correction is 1 where it slides on (the node pass records it for the next
 /// substep), else 0. `start`: the nodes' projection starts (projection_start), from which a
-/// sticking contact's hold measures how far pushes carried its point.
+/// sticking contact's hold measures how far pushes carried its point; `window_start`: where
+/// they started the window (contact_geometry's `start`).
 ///
 /// `given` (three ContactImpulse slots, 3 p to 3 p + 2, per constraint) carries what the
 /// constraint has given over the substep's iterations so far: given[0] x the normal speed, y the
@@ -353,9 +445,9 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
 /// scene's resting jitter.
 inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position[4],
                           const glm::vec4 velocity[4], const std::uint32_t count[4],
-                          const glm::vec4 start[4], const ContactConstants& k, bool first_iteration,
-                          bool last_iteration, std::uint32_t history, glm::vec4 given[3],
-                          glm::vec4 correction[8]) {
+                          const glm::vec4 start[4], const glm::vec3 window_start[4],
+                          const ContactConstants& k, bool first_iteration, bool last_iteration,
+                          std::uint32_t history, glm::vec4 given[3], glm::vec4 correction[8]) {
   for (int i = 0; i < 8; ++i)
     correction[i] = glm::vec4(0.0f);
   if (first_iteration) given[0] = given[1] = given[2] = glm::vec4(0.0f);
@@ -368,7 +460,7 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   glm::vec3 n(0.0f);
   float b[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   float c = 0.0f;
-  if (!contact_geometry(pair, x, n, b, c)) return;
+  if (!contact_geometry(pair, x, window_start, n, b, c)) return;
   float weight = 0.0f;
   glm::vec3 relative_velocity(0.0f);
   glm::vec3 drift(0.0f);  // how far position corrections carried the contact point
