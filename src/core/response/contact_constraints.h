@@ -111,7 +111,8 @@ inline float edge_offset_along_the_way(const glm::vec3 start[4], const glm::vec3
   return glm::dot(p[0] - p[2], glm::cross(p[1] - p[0], p[3] - p[2]));
 }
 
-/// The bisection steps of edges_went_through: the moment to 2^-24 of the substeps' way.
+/// The bisection steps of edges_went_through: the moment found to 2^-24 of the way from the
+/// window's start.
 inline constexpr int kThroughBisections = 24;
 
 /// Whether edges on one side of each other where the window started (`start`, offset sign
@@ -151,8 +152,8 @@ inline bool contact_geometry(const gpu::ContactPair& pair, const glm::vec3 x[4],
     float distance = std::sqrt(glm::dot(d, d));
     if (!(distance > 1e-7f * pair.thickness)) return false;  // crossing: no direction
     n = d / distance;
-    // Edges that passed each other on one side where the window started (pair.side) and now
-    // went through each other within a substep: the closest points' difference has turned
+    // Edges that passed each other on one side where the window started (pair.side) and have
+    // gone through each other since: the closest points' difference has turned
     // over, and along it the constraint would hold them crossed. Their distance counts as
     // negative, which takes them back to their starting side, to the hold depth (at least the
     // thickness; deeper is a tunnel the untangling constraints resolve).
