@@ -272,9 +272,9 @@ struct ContactPair {
   /// the window starts, else 0. Only a vertex that started in front is held off the face; one
   /// that started behind it is on the far side of a thin part, or inside the body (where the
   /// untangling constraints take it out). kContactEdgeEdge: which side of the second edge the
-  /// first's line passes on where the window starts (response::edge_line_side: 1 or -1; 0
-  /// where the edges are nearly parallel), so that edges that go through each other within the
-  /// window are taken back. 0 for other kinds.
+  /// first passes on where the window starts (response::edge_edge_start_side: 1 or -1; 0 where
+  /// the closest points are an edge's end or the edges nearly parallel), so that edges that go
+  /// through each other within the window are taken back. 0 for other kinds.
   float side;
   /// kContactVolume: m, the most one projection moves a node (the tetrahedron's mean rest edge
   /// length: a tetrahedron collapsed to a line has gradients near zero). 0 for other kinds.

@@ -720,8 +720,8 @@ ContactResponse::ProximityConstraint ContactResponse::proximity_constraint(
       glm::vec3(node_motion[pair.nodes[2]]), glm::vec3(node_motion[pair.nodes[3]])};
   pair.closing_speed = collision::closing_speed(pair.kind, velocity);
   if (edges) {
-    // The side the edges pass each other on, so that edges that go through each other within a
-    // substep are taken back (response::contact_geometry).
+    // The side the edges pass each other on, so that edges that go through each other within
+    // the window are taken back (response::contact_geometry).
     pair.side = response::edge_edge_start_side(corners);
   } else {
     pair.side = response::vertex_face_side(corners);
