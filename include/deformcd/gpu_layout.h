@@ -280,9 +280,8 @@ struct ContactPair {
   /// length: a tetrahedron collapsed to a line has gradients near zero). 0 for other kinds.
   float step_limit;
   /// 1: a projection iterates beyond the iterations asked while this constraint is still
-  /// violated (response::residual_margin, iterate_on); 0 for a constraint between bodies the
-  /// frame's exact pass found intersecting (taken apart over substeps), and for untangling
-  /// constraints.
+  /// violated (response::contact_violated); 0 for a constraint between bodies the frame's exact
+  /// pass found intersecting (taken apart over substeps), and for untangling constraints.
   float converge;
   /// kContactVertexFace: m, how deep behind the face the vertex may be and still be held in
   /// front of it (deeper is a tunnel: the untangling constraints take it out); at least the

@@ -126,7 +126,7 @@ struct ContactPair {
   float closing_speed;  // m/s: how fast the nodes' straight paths can close the distance
   float side;           // vertex-face: 1 when the vertex started the window in front of the face
   float step_limit;     // volume: m, the most one projection moves a node
-  float converge;       // 1: iterate on while it is still violated (residual_margin), else 0
+  float converge;       // 1: iterate while it is still violated (contact_violated), else 0
   float hold_depth;     // vertex-face: m, how deep behind the face it still holds (>= thickness)
 };
 

@@ -258,29 +258,21 @@ bool contact_active(ContactPair pair, vec4 position[4], vec3 start[4]) {
   return contact_geometry(pair, x, start, n, b, c) && c < 0.0;
 }
 
-// kResidualShare, residual_margin and residual_key, line for line: how far an active
-// constraint flagged `converge` is from needing more iterations after a projection's (a
-// contact's C / thickness + the share, a volume constraint's volume / floor - the share; below
-// zero, more are due), and that margin as a key whose order is the negative margins' (the
-// largest key for every other), for atomicMin.
+// kResidualShare and contact_violated, line for line: whether an active constraint flagged
+// `converge` is still deeper than half its thickness (a volume constraint's tetrahedron below
+// half its floor) after a projection's iterations (more iterations are due).
 const float RESIDUAL_SHARE = 0.5;
-const float NO_MARGIN_NEEDED = uintBitsToFloat(0x7f800000u);  // +infinity
-float residual_margin(ContactPair pair, vec4 position[4], vec3 start[4]) {
-  if (!(pair.converge > 0.0)) return NO_MARGIN_NEEDED;
+bool contact_violated(ContactPair pair, vec4 position[4], vec3 start[4]) {
+  if (!(pair.converge > 0.0)) return false;
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
   if (pair.kind == CONTACT_VOLUME) {
     vec3 g[4];
-    return tetrahedron_volume(x, g) / pair.thickness - RESIDUAL_SHARE;
+    return tetrahedron_volume(x, g) < RESIDUAL_SHARE * pair.thickness;
   }
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
   float c = 0.0;
-  if (!contact_geometry(pair, x, start, n, b, c)) return NO_MARGIN_NEEDED;
-  return c / pair.thickness + RESIDUAL_SHARE;
-}
-
-uint residual_key(float margin) {
-  return margin < 0.0 ? ~floatBitsToUint(margin) : 0xffffffffu;
+  return contact_geometry(pair, x, start, n, b, c) && c < -RESIDUAL_SHARE * pair.thickness;
 }
 
 // solve_volume, line for line: a volume constraint's corrections (the tetrahedron's collapse

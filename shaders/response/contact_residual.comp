@@ -1,12 +1,9 @@
 #version 430
-// The contact response's residual pass, after a projection's iterations (those asked, then each
-// one more): one invocation
-// per constraint p (contacts and volume constraints) that acts takes its margin
-// (residual_margin in src/core/response/contact_constraints.h) into the least of its kind, as
-// keys (residual_key) at u_node_count x 2 + 1 (contacts) and + 2 (volume constraints) of the
-// counts buffer, which the host set to the largest key: atomicMin gives the same key whatever
-// the order (the CPU's minimum of the same keys). The host decides from them whether another
-// iteration is due (response::iterate_on).
+// The contact response's residual pass, after a projection's iterations: one invocation per
+// constraint p (contacts and volume constraints) flags whether it acts and is still violated
+// (contact_violated in src/core/response/contact_constraints.h), at u_node_count x 2 + 1 of the
+// counts buffer: then another iteration is due. Every writer writes the same 1, so the flag is
+// the same whatever the order (the CPU's OR of the same booleans).
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
 
@@ -24,7 +21,7 @@ layout(std430, binding = BINDING_CONTACT_CORRECTION) readonly buffer ContactCorr
 layout(std430, binding = BINDING_FRAME_START) readonly buffer FrameStarts {
   vec4 frame_start[];
 };
-// The counts, the stray flag, then (at 2 x u_node_count + 1 and + 2) this pass's two keys.
+// The counts, the stray flag, then (at 2 x u_node_count + 1) this pass's flag.
 layout(std430, binding = BINDING_NODE_CONTACT_COUNT) buffer NodeContactCounts {
   uint node_contact_count[];
 };
@@ -43,8 +40,5 @@ void main() {
   const bool reads = reads_window_start(pair);
   for (uint i = 0u; i < 4u; ++i)
     window_start[i] = reads ? frame_start[pair.nodes[i]].xyz : vec3(0.0);
-  const uint key = residual_key(residual_margin(pair, x, window_start));
-  if (key == 0xffffffffu) return;  // the keys start there: no write needed
-  const uint slot = 2u * u_node_count + (pair.kind == CONTACT_VOLUME ? 2u : 1u);
-  atomicMin(node_contact_count[slot], key);
+  if (contact_violated(pair, x, window_start)) node_contact_count[2u * u_node_count + 1u] = 1u;
 }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdint>
 #include <utility>
 
 #include "cpu/parallel_for.h"
@@ -184,10 +183,10 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         });
       }
     };
-    // The least margins of the active constraints (residual_margin), contacts' and volume
-    // constraints' apart: minima of keys, the same whatever the order (GL's atomicMin).
-    residual_keys_.resize(acting_.size());
-    const auto margins = [&] {
+    // Whether an active constraint is still violated (contact_violated): an OR, the same
+    // whatever the order.
+    const auto violated = [&] {
+      std::atomic<bool> any{false};
       parallel_for(
           acting_.size(),
           [&](std::size_t a) {
@@ -197,28 +196,17 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
                 nodes_.host_positions[pair.nodes[2]], nodes_.host_positions[pair.nodes[3]]};
             glm::vec3 window_start[4];
             load_window_start(pair, window_start);
-            residual_keys_[a] =
-                response::residual_key(response::residual_margin(pair, x, window_start));
+            if (response::contact_violated(pair, x, window_start))
+              any.store(true, std::memory_order_relaxed);
           },
           256);
-      std::uint32_t least[2] = {0xffffffffu, 0xffffffffu};  // contacts, volume constraints
-      for (std::size_t a = 0; a < acting_.size(); ++a) {
-        std::uint32_t& l = least[pairs[acting_[a]].kind == gpu::kContactVolume ? 1u : 0u];
-        l = std::min(l, residual_keys_[a]);
-      }
-      return response::ResidualMargins{response::residual_key_margin(least[0]),
-                                       response::residual_key_margin(least[1])};
+      return any.load();
     };
     for (int iteration = 0; iteration < iterations; ++iteration)
       iterate(iteration == 0, iteration + 1 == iterations);
-    // More while the solve has not converged (response::iterate_on), to kMaxIterationFactor x
-    // the iterations asked.
+    // More while the solve has not converged, to kMaxIterationFactor x the iterations asked.
     iterations_done_ = iterations;
-    float previous_volume = NAN;
-    while (iterations_done_ < response::kMaxIterationFactor * iterations) {
-      const response::ResidualMargins now = margins();
-      if (!response::iterate_on(now, previous_volume)) break;
-      previous_volume = now.volume;
+    while (iterations_done_ < response::kMaxIterationFactor * iterations && violated()) {
       iterate(false, true);
       ++iterations_done_;
     }

@@ -50,15 +50,14 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::vector<glm::vec4> impulses_;     // three per constraint: what it gave this substep
   // Per node n: its active contacts (2 n) and volume constraints (2 n + 1) this substep.
   std::vector<std::uint32_t> counts_;
-  std::size_t first_volume_ = 0;              // the first volume constraint (all after it are)
-  std::vector<std::uint32_t> active_;         // per constraint: 1 when it acts this substep
-  std::vector<std::uint32_t> acting_;         // the active constraints, ascending
-  std::vector<std::uint32_t> residual_keys_;  // per acting_ entry: response::residual_key
-  std::vector<std::uint32_t> touched_;        // the nodes of active constraints, as first named
-  std::uint32_t substep_ = 0;                 // project() calls so far
-  std::vector<std::uint32_t> slid_;           // per node: the last substep a contact of it slid in
-  std::vector<std::uint32_t> watched_;        // the nodes with a finite reach, ascending
-  std::vector<glm::vec4> start_;              // per node: response::projection_start, this substep
+  std::size_t first_volume_ = 0;        // the first volume constraint (all after it are)
+  std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep
+  std::vector<std::uint32_t> acting_;   // the active constraints, ascending
+  std::vector<std::uint32_t> touched_;  // the nodes of active constraints, as first named
+  std::uint32_t substep_ = 0;           // project() calls so far
+  std::vector<std::uint32_t> slid_;     // per node: the last substep a contact of it slid in
+  std::vector<std::uint32_t> watched_;  // the nodes with a finite reach, ascending
+  std::vector<glm::vec4> start_;        // per node: response::projection_start, this substep
   // Per touched node n, its active slots: active_slots_[slot_begin_[n] ..), the contacts'
   // (counts_[2 n]) then the volume constraints' (counts_[2 n + 1]).
   std::vector<std::uint32_t> slot_begin_;

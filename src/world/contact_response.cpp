@@ -660,7 +660,7 @@ void ContactResponse::add_volume_constraints(const Body& body, std::uint32_t ind
     v.pair.thickness = settings_.volume_floor * body.tet_rest_volume[t];
     v.pair.gap = -INFINITY;  // always awake: the activity pass looks at its volume
     v.pair.step_limit = body.tet_rest_edge[t];
-    v.pair.converge = 1.0f;  // iterate on below half the floor (residual_margin)
+    v.pair.converge = 1.0f;  // iterate while below half the floor (contact_violated)
     volume_floors_.push_back(v);
   }
 }
@@ -712,7 +712,7 @@ ContactResponse::ProximityConstraint ContactResponse::proximity_constraint(
   // frame 27; none there with this).
   pair.hold_depth = pair.thickness;
   if (p.mesh_a == p.mesh_b) pair.thickness = self_thickness(pair);
-  // Bodies that start the frame intersecting are taken apart over substeps (residual_margin).
+  // Bodies that start the frame intersecting are taken apart over substeps (contact_violated).
   pair.converge = intersecting_[p.mesh_a * objects_.size() + p.mesh_b] != 0u ? 0.0f : 1.0f;
   pair.gap = p.distance - pair.thickness;
   const glm::vec3 velocity[4] = {

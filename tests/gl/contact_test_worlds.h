@@ -353,7 +353,7 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
     }
     // Every other one holds deeper than its thickness (a self pair the rest rule made thinner).
     if (pair.kind != gpu::kContactUntangle && p % 2u == 0u) pair.hold_depth = 0.03f;
-    // Contacts iterate on while violated (residual_margin), as the world sets them between bodies
+    // Contacts iterate while violated (contact_violated), as the world sets them between bodies
     // that do not start the frame intersecting.
     if (pair.kind != gpu::kContactUntangle) pair.converge = 1.0f;
     pair.thickness = 0.005f + 0.03f * unit(rng);

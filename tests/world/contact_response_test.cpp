@@ -389,7 +389,7 @@ TEST(ContactResponse, ThePileLandsWithoutFoldingThroughItself) {
 // the crushed front (a node in n constraints moves 1/n of what each asks): after the 8 Jacobi
 // iterations asked for, contacts there were still deep, and the bodies went through each other
 // at their first contact (49 pairs, frames 10-18) until the projections iterated on while one is
-// deeper than half its thickness (response::iterate_on): some frames run more iterations
+// deeper than half its thickness (response::contact_violated): some frames run more iterations
 // than asked. Without self-contact the floor alone now keeps them apart at 16 substeps too
 // (its tetrahedra iterated back above half their floor; 92 inverted in a frame against 10), so
 // the contrast is made with self-contact on. Under the sanitizers (self-contact costs about

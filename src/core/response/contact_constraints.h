@@ -18,7 +18,6 @@
 // that a correction its neighbours made too much of is taken back (solve_contact).
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -326,83 +325,38 @@ inline bool contact_active(const gpu::ContactPair& pair, const glm::vec4 positio
 }
 
 /// How deep below its thickness a contact may still be after a projection's iterations before
-/// more are due (residual_margin), as a share of the thickness.
+/// more are due (contact_violated), as a share of the thickness.
 inline constexpr float kResidualShare = 0.5f;
 /// A projection runs at most this many times the iterations asked for.
 inline constexpr int kMaxIterationFactor = 4;
-/// How much of its floor the least volume margin must gain an iteration for the volume
-/// constraints alone to keep the iterations going (iterate_on).
-inline constexpr float kVolumeProgress = 0.01f;
-/// A tetrahedron below this share of its floor (or inverted) is iterated on whatever it gains
-/// (iterate_on).
-inline constexpr float kCrushedShare = 0.1f;
 
-/// How far an active constraint is from needing more iterations after a projection's: a
-/// contact's C / thickness + kResidualShare, a volume constraint's volume / floor -
-/// kResidualShare; below zero, the Jacobi solve has not converged there (a node in n constraints
-/// moves 1/n of what each asks). +infinity for a constraint not flagged `converge` (the host
-/// leaves it 0 between bodies that the frame's exact pass found intersecting, which are taken
-/// apart over substeps: iterating on their deep constraints until they were out took
-/// half_overlap's bodies through each other; and for untangling constraints, one of which
-/// moves at most max_untangle_step an iteration by design) and for a contact whose geometry is
-/// undefined.
-///
-/// Why iterate past those asked: at three times the impact scene's speed with self-contact on,
-/// the bodies went through each other at their first contact after 8 iterations (and after 16)
-/// but not after 12, 24 or 32 (docs/notes/2026-12-05-self-contact-cost.md). A sliver
-/// tetrahedron under two surface faces of the lion turned inside out within the iterations
-/// asked and took one face through the other (docs/notes/2026-12-06-slivers-and-hold-depth.md).
-inline float residual_margin(const gpu::ContactPair& pair, const glm::vec4 position[4],
+/// Whether an active constraint is still violated by more than kResidualShare of its
+/// thickness after a projection's iterations (C < -share x thickness; a volume constraint's
+/// tetrahedron below share x its floor): the Jacobi solve has not converged there (a node in n
+/// constraints moves 1/n of what each asks), and another iteration is due. At three times the
+/// impact scene's speed with self-contact on, the bodies went through each other at their first
+/// contact after 8 iterations (and after 16) but not after 12, 24 or 32
+/// (docs/notes/2026-12-05-self-contact-cost.md). A sliver tetrahedron under two surface faces
+/// of the lion (a hundredth of its tetrahedra's mean volume) turned inside out within the
+/// iterations asked and took one face through the other: the impact's self-intersecting frames
+/// with self-contact and the floor on (docs/notes/2026-12-06-slivers-and-hold-depth.md). Only
+/// constraints flagged `converge` count: the host leaves it 0 between bodies that the frame's
+/// exact pass found intersecting, which are taken apart over substeps (iterating on their deep
+/// constraints until they were out took half_overlap's bodies through each other), and for
+/// untangling constraints (one moves at most max_untangle_step an iteration by design).
+inline bool contact_violated(const gpu::ContactPair& pair, const glm::vec4 position[4],
                              const glm::vec3 start[4]) {
-  if (!(pair.converge > 0.0f)) return INFINITY;
+  if (!(pair.converge > 0.0f)) return false;
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
                           glm::vec3(position[3])};
   if (pair.kind == gpu::kContactVolume) {
     glm::vec3 g[4];
-    return sim::tetrahedron_volume(x, g) / pair.thickness - kResidualShare;
+    return sim::tetrahedron_volume(x, g) < kResidualShare * pair.thickness;
   }
   glm::vec3 n(0.0f);
   float b[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   float c = 0.0f;
-  if (!contact_geometry(pair, x, start, n, b, c)) return INFINITY;
-  return c / pair.thickness + kResidualShare;
-}
-
-/// A margin as an unsigned key whose order is the margins' among the negative ones (the bits of
-/// a negative float, complemented); every margin not below zero (NaN too) is the largest key.
-/// The least margin of many is the least key, which GL's atomicMin and the CPU's minimum find
-/// alike, in any order.
-inline std::uint32_t residual_key(float margin) {
-  return margin < 0.0f ? ~std::bit_cast<std::uint32_t>(margin) : 0xffffffffu;
-}
-
-/// The margin a key stands for: the negative margin it was made from, or +infinity.
-inline float residual_key_margin(std::uint32_t key) {
-  return key == 0xffffffffu ? INFINITY : std::bit_cast<float>(~key);
-}
-
-/// The least margins of a projection's active constraints, the contacts' and the volume
-/// constraints' apart, after an iteration (the residual pass).
-struct ResidualMargins {
-  float contact = INFINITY;
-  float volume = INFINITY;
-};
-
-/// Whether a projection runs one more iteration, given the least margins now and, after an
-/// extra iteration, the volume constraints' least margin before it (`previous_volume`, NaN
-/// after the iterations asked): while a contact is violated, yes; while a tetrahedron is below
-/// kCrushedShare of its floor or inverted, yes; while only volume constraints above that are
-/// violated, as long as the last iteration raised their least margin by kVolumeProgress (the
-/// first extra iteration always runs). A tetrahedron whose corners contacts press flat against
-/// each other gains a few thousandths of its floor an iteration: the contacts take back what it
-/// gives, and iterating it to the cap bought nothing but time; but one left inverted stays
-/// inverted under its contacts, its surface folded through itself (half_overlap: 4-8 self pairs
-/// in every frame from frame 40 without the exception; docs/notes/2026-12-06-iterating-on.md).
-inline bool iterate_on(const ResidualMargins& now, float previous_volume) {
-  if (now.contact < 0.0f) return true;
-  if (!(now.volume < 0.0f)) return false;
-  if (now.volume < kCrushedShare - kResidualShare) return true;
-  return std::isnan(previous_volume) || now.volume >= previous_volume + kVolumeProgress;
+  return contact_geometry(pair, x, start, n, b, c) && c < -kResidualShare * pair.thickness;
 }
 
 /// The solve pass of a volume constraint (kContactVolume), called by solve_contact: the

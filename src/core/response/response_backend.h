@@ -28,9 +28,8 @@ class ResponseBackend {
   /// The projection after a substep, on the current positions and velocities: the deviation,
   /// activity and count passes once, then `iterations` (>= 1) Jacobi projections of the active
   /// constraints, each a solve and a node pass (see contact_constraints.h), and more, to
-  /// kMaxIterationFactor x `iterations` in all, while the active constraints' least margins
-  /// ask for them (residual_margin, iterate_on; the friction's last-iteration rule in each of
-  /// those). Returns whether a
+  /// kMaxIterationFactor x `iterations` in all, while an active contact is still violated
+  /// (contact_violated; the friction's last-iteration rule in each of those). Returns whether a
   /// free node ends it beyond its reach (apply_correction): the window's constraints no longer
   /// cover every pair, and a new search must begin one.
   [[nodiscard]] virtual bool project(const ContactConstants& constants, int iterations) = 0;

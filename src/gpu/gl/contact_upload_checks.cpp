@@ -55,7 +55,7 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
       {"Contact Correction", gpu::kContactCorrection, 8u * pairs, sizeof(glm::vec4)},
       {"Node Contact Offset", gpu::kNodeContactOffset, nodes + 1u, sizeof(std::uint32_t)},
       {"Node Contact List", gpu::kNodeContactList, 4u * pairs, sizeof(std::uint32_t)},
-      {"Node Contact Count", gpu::kNodeContactCount, 2u * nodes + 3u, sizeof(std::uint32_t)},
+      {"Node Contact Count", gpu::kNodeContactCount, 2u * nodes + 1u, sizeof(std::uint32_t)},
       {"Frame Start", gpu::kFrameStart, nodes, sizeof(glm::vec4)},
       {"Node Motion", gpu::kNodeMotion, nodes, sizeof(glm::vec4)},
       {"Projection Start", gpu::kProjectionStart, nodes, sizeof(glm::vec4)},

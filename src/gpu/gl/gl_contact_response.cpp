@@ -3,7 +3,6 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
-#include <cmath>
 #include <span>
 #include <string>
 #include <utility>
@@ -102,7 +101,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   auto new_corrections = grow(buffers_.corrections, 8u * pairs, gpu::kContactCorrection);
   auto new_offset = grow(buffers_.node_offset, nodes + 1u, gpu::kNodeContactOffset);
   auto new_list = grow(buffers_.node_list, lists.list.size(), gpu::kNodeContactList);
-  auto new_count = grow(buffers_.node_count, 2u * nodes + 3u, gpu::kNodeContactCount);
+  auto new_count = grow(buffers_.node_count, 2u * nodes + 2u, gpu::kNodeContactCount);
   auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
   auto new_motion = grow(buffers_.node_motion, nodes, gpu::kNodeMotion);
   auto new_projection_start = grow(buffers_.projection_start, nodes, gpu::kProjectionStart);
@@ -250,26 +249,20 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   };
   for (int iteration = 0; iteration < iterations; ++iteration)
     iterate(iteration == 0, iteration + 1 == iterations);
-  // More while the solve has not converged (response::iterate_on on the residual pass's least
-  // margins, read back), to kMaxIterationFactor x the iterations asked; each such iteration is
-  // the last so far, so its node pass watches the reaches again, on a cleared stray flag.
+  // More while the solve has not converged (the residual pass's flag, read back), to
+  // kMaxIterationFactor x the iterations asked; each such iteration is the last so far, so its
+  // node pass watches the reaches again, on a cleared stray flag.
   iterations_done_ = iterations;
   const std::size_t stray_flag = 2u * std::size_t{node_count_};
-  float previous_volume = NAN;
   while (pair_count_ > 0 && iterations_done_ < response::kMaxIterationFactor * iterations) {
     storage_barrier();  // the residual pass reads the last node pass's positions
-    const std::uint32_t largest[2] = {0xffffffffu, 0xffffffffu};
-    buffers_.node_count->upload(std::span<const std::uint32_t>(largest, 2), stray_flag + 1u);
+    const std::uint32_t zero = 0u;
+    buffers_.node_count->upload(std::span<const std::uint32_t>(&zero, 1), stray_flag + 1u);
     residual_.set_uniform("u_pair_count", pair_count_);
     residual_.set_uniform("u_node_count", node_count_);
     residual_.dispatch_covering(pair_count_);
-    // download() puts the barrier that makes the pass's writes visible to it.
-    const std::vector<std::uint32_t> keys = buffers_.node_count->download(stray_flag + 1u, 2);
-    const response::ResidualMargins margins{response::residual_key_margin(keys[0]),
-                                            response::residual_key_margin(keys[1])};
-    if (!response::iterate_on(margins, previous_volume)) break;
-    previous_volume = margins.volume;
-    const std::uint32_t zero = 0u;
+    // download() puts the barrier that makes the pass's write visible to it.
+    if (buffers_.node_count->download(stray_flag + 1u, 1)[0] == 0u) break;
     buffers_.node_count->upload(std::span<const std::uint32_t>(&zero, 1), stray_flag);
     iterate(false, true);
     ++iterations_done_;

@@ -14,17 +14,15 @@
 // one per constraint, writing an active constraint's four corner slots (SSBO 30), and
 // response/contact_apply.comp, one per node, gathering its active corrections over the same
 // list in list order and writing only its own position and velocity. After the iterations asked
-// for, and after each one more, response/contact_residual.comp, one per constraint, takes the
-// active ones' least margins (two keys, atomicMin, read back): the host decides on one more
-// iteration (response::iterate_on), to kMaxIterationFactor x those asked.
+// for, response/contact_residual.comp, one per constraint, flags an active one still violated
+// (its flag read back): then one more iteration, to kMaxIterationFactor x those asked.
 // Gathers instead of scattering with atomics: GL 4.3 has no float atomics, and a fixed
 // summation order makes the result independent of the schedule and equal to the CPU's bit for
 // bit (shaders/response/contact_constraints.glsl mirrors src/core/response/contact_constraints.h).
 //
 // A frame's constraints are uploaded once, in begin_frame; a projection issues its dispatches
-// and reads back the residual pass's two keys after the iterations asked and after each one
-// more, and at the end one uint (whether a node strayed beyond its reach, so that a new search
-// is due).
+// and reads back one uint (whether a node strayed beyond its reach, so that a new search is
+// due).
 
 #include <cstdint>
 #include <optional>
@@ -56,7 +54,7 @@ struct ContactBuffers {
   std::optional<Ssbo<glm::vec4>> corrections;       // SSBO 30: 8 per constraint
   std::optional<Ssbo<std::uint32_t>> node_offset;   // SSBO 31: nodes + 1
   std::optional<Ssbo<std::uint32_t>> node_list;     // SSBO 32
-  std::optional<Ssbo<std::uint32_t>> node_count;    // SSBO 33: 2 a node, stray flag, 2 keys
+  std::optional<Ssbo<std::uint32_t>> node_count;    // SSBO 33: per node, + 1: the stray flag
   std::optional<Ssbo<glm::vec4>> frame_start;       // SSBO 34: per node
   std::optional<Ssbo<glm::vec4>> node_motion;       // SSBO 35: per node
   std::optional<Ssbo<glm::vec4>> projection_start;  // SSBO 36: per node
