@@ -243,13 +243,14 @@ bool contact_clear(ContactPair pair, vec3 x[4]) {
   return height > 0.0 && height2 > bound;
 }
 
-// contact_active: whether the constraint acts now (its distance along n below its thickness; a
-// volume constraint's tetrahedron below its floor).
+// kVolumeWatch and contact_active: whether the constraint acts now (its distance along n below
+// its thickness; a volume constraint's tetrahedron below VOLUME_WATCH x its floor).
+const float VOLUME_WATCH = 2.0;
 bool contact_active(ContactPair pair, vec4 position[4], vec3 start[4]) {
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
   if (pair.kind == CONTACT_VOLUME) {
     vec3 g[4];
-    return tetrahedron_volume(x, g) < pair.thickness;
+    return tetrahedron_volume(x, g) < VOLUME_WATCH * pair.thickness;
   }
   if (contact_clear(pair, x)) return false;
   vec3 n = vec3(0.0);
@@ -276,7 +277,8 @@ bool contact_violated(ContactPair pair, vec4 position[4], vec3 start[4]) {
 }
 
 // solve_volume, line for line: a volume constraint's corrections (the tetrahedron's collapse
-// rate cancelled, the volume below its floor restored by position alone, along the gradient,
+// rate cancelled beyond the rate that brings it to its floor in one substep, the volume below
+// its floor restored by position alone, along the gradient,
 // mass split, no node moved more than step_limit in one iteration).
 void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
                   ContactConstants k, inout vec4 given[3], inout vec4 correction[8]) {
@@ -293,7 +295,8 @@ void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], uint cou
     lever = distance_max(lever, position[i].w * sqrt(g2));
   }
   if (!(weight > 0.0)) return;  // every node fixed, or a tetrahedron collapsed to a point
-  precise float speed = distance_max(given[0].x - rate, 0.0) - given[0].x;
+  precise float room = distance_max(volume - pair.thickness, 0.0) / k.h;
+  precise float speed = distance_max(given[0].x - rate - room, 0.0) - given[0].x;
   precise float push =
       distance_max(given[0].y - ((volume - pair.thickness) + speed * k.h), 0.0) - given[0].y;
   precise float move = lever * abs(speed * k.h + push) / weight;

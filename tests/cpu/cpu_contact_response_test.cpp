@@ -271,6 +271,48 @@ TEST(VolumeConstraint, AnInvertedTetrahedronIsIteratedBackAboveHalfItsFloor) {
   }
 }
 
+// A tetrahedron above its floor (apex at 0.4 of an edge: 0.4 of its rest volume, the floor 0.3
+// of it) whose apex a contact within the projection pushes a whole edge down, through the base: a
+// fixed face 0.2 edges above the apex, facing down, holds it a thickness of 1 edge below. The
+// activity pass fixes the active set before the contact moves anything; the volume constraint
+// is in it (watched from kVolumeWatch x its floor) and keeps the tetrahedron at its floor
+// instead of letting the contact turn it inside out (as it did when only a tetrahedron already
+// below its floor was active).
+TEST(VolumeConstraint, ATetrahedronAContactPushesThroughItselfWithinAProjectionKeepsItsFloor) {
+  constexpr float kEdge = 0.01f;
+  constexpr float kFloor = 0.3f * kEdge * kEdge * kEdge / 6.0f;
+  const std::vector<glm::vec4> x = {
+      {0.0f, 0.0f, 0.0f, 1.0f},  // 0-3: the tetrahedron, its apex (3) over the base
+      {kEdge, 0.0f, 0.0f, 1.0f},
+      {0.0f, kEdge, 0.0f, 1.0f},
+      {0.2f * kEdge, 0.2f * kEdge, 0.4f * kEdge, 1.0f},
+      {-kEdge, -kEdge, 0.6f * kEdge, 0.0f},  // 4-6: the fixed face, normal -z
+      {-kEdge, 2.0f * kEdge, 0.6f * kEdge, 0.0f},
+      {2.0f * kEdge, -kEdge, 0.6f * kEdge, 0.0f},
+  };
+  const std::vector<glm::vec4> v(x.size(), glm::vec4(0.0f));
+  cpu::CpuSimulation simulation(1);
+  simulation.upload(test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1));
+  const SimulationState& state = simulation.state();  // the response corrects it in place
+  response::FrameConstraints c;
+  gpu::ContactPair contact = constraint(gpu::kContactVertexFace, {3, 4, 5, 6});
+  contact.thickness = kEdge;
+  contact.gap = -INFINITY;  // awake
+  const gpu::ContactPair floor = first_tetrahedron_floor(kFloor, kEdge);
+  c.pairs = {contact, floor};
+  c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // no stray
+  ASSERT_GT(volume_of(state, floor), 1.2f * kFloor) << "starts above its floor";
+  ASSERT_LT(volume_of(state, floor), response::kVolumeWatch * kFloor) << "and watched";
+  cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
+  response.begin_frame(c);
+  response::ContactConstants k{};
+  k.h = 1e-3f;
+  k.elapsed = k.h;
+  (void)response.project(k, 8);
+  EXPECT_LT(state.positions[3].z, 0.2f * kEdge) << "the contact should push the apex down";
+  EXPECT_GT(volume_of(state, floor), 0.9f * kFloor) << "turned inside out by the contact";
+}
+
 // The projections of contacts and volume constraints together give the same bits on one and on
 // eight threads (each constraint writes its own slots; each node sums its list in order).
 TEST(VolumeConstraint, OneAndEightThreadsGiveTheSameBits) {

@@ -106,7 +106,10 @@ double contour_length(const std::vector<Contact>& contacts) {
 
 // Two bodies that start about 20 % overlapped come apart: no intersecting face pair after at
 // most 60 frames, and none after that; the exact intersection contour's total length never
-// grows once it has started to shrink.
+// grows back, once it has started to shrink, by more than a thousandth of where it started (a
+// frame where it holds still: since the volume constraints are watched from twice their floor,
+// response::kVolumeWatch, it goes 449.80, 329.16, 329.22 mm and is gone at frame 3; before,
+// 449.80, 343.05, 272.08, 169.01, 46.22 and gone at frame 5).
 TEST(ContactResponse, OverlappedBodiesComeApart) {
   SceneWorld s = open_scene("overlap", 90);
   s.world->detect_collisions();
@@ -126,7 +129,7 @@ TEST(ContactResponse, OverlappedBodiesComeApart) {
   }
   EXPECT_GE(clear_from, 1) << "the bodies should end apart";
   EXPECT_LE(clear_from, 60) << "apart by frame 60 and for good";
-  EXPECT_EQ(regrowth, 0.0) << "the contour grew back after shrinking; start " << start;
+  EXPECT_LE(regrowth, 1e-3 * start) << "the contour grew back after shrinking; start " << start;
   RecordProperty("contour_start_m", std::to_string(start));
   RecordProperty("apart_from_frame", clear_from);
   RecordProperty("largest_regrowth_m", std::to_string(regrowth));
@@ -380,9 +383,9 @@ TEST(ContactResponse, ThePileLandsWithoutFoldingThroughItself) {
   expect_no_intersection_over(*s.world, kFrames);
 }
 
-// The impact at three times its speed, with self-contact and the volume floor: 16 fixed
-// substeps let the bodies pass into each other (measured: 6-14 triangle pairs between them and
-// 1-2 vertices inside, frames 11-16); with motion-bounded substeps (substep_motion 0.3) the
+// The impact at four times its speed, with self-contact and the volume floor: 16 fixed
+// substeps let the bodies pass into each other (measured: up to 92 triangle pairs between them
+// and 43 vertices inside, frames 7-21); with motion-bounded substeps (substep_motion 0.3) the
 // frames in contact take more (the counts say how many) and no pair between the bodies
 // intersects, no vertex is inside the other body, through frame 24 (the bodies meet at frame
 // 6). Before they meet the frames keep the scene's 16. Its self constraints crowd the nodes at
@@ -392,21 +395,28 @@ TEST(ContactResponse, ThePileLandsWithoutFoldingThroughItself) {
 // deeper than half its thickness (response::contact_violated): some frames run more iterations
 // than asked. Without self-contact the floor alone now keeps them apart at 16 substeps too
 // (its tetrahedra iterated back above half their floor; 92 inverted in a frame against 10), so
-// the contrast is made with self-contact on. Under the sanitizers (self-contact costs about
-// 0.5 s a frame in release) the bounded run alone, without self-contact, over the first contact.
-TEST(ContactResponse, MotionBoundedSubstepsKeepTheImpactAtThreeTimesItsSpeedApart) {
+// the contrast is made with self-contact on. At three times the speed (the scene, in
+// the census of docs/benchmarks.md) 16 fixed substeps hold too since the volume constraints are
+// watched from twice their floor (response::kVolumeWatch: no pair between the bodies in 24
+// frames), hence four (the frames in contact then run 70-128 substeps, up to the cap, and most
+// of them 32 iterations, kMaxIterationFactor x the 8 asked). Under the sanitizers (self-contact
+// costs about 0.5 s a frame in release) the bounded run alone at three times the speed,
+// without self-contact, over the first contact.
+TEST(ContactResponse, MotionBoundedSubstepsKeepTheImpactAtFourTimesItsSpeedApart) {
 #ifdef DEFORMCD_UNDER_ASAN
   constexpr int kFrames = 10;
   constexpr bool kSelfContact = false;
+  constexpr double kSpeed = 3.0;
 #else
   constexpr int kFrames = 24;
   constexpr bool kSelfContact = true;
+  constexpr double kSpeed = 4.0;
 #endif
   const auto run = [&](float motion, std::vector<std::uint64_t>& substeps,
                        std::uint64_t& extended) {
     SceneWorld s = open_scene("impact", kFrames, 0, 0.0f, [&](Scene& scene) {
       for (BodySpec& b : scene.bodies)
-        b.velocity *= 3.0;
+        b.velocity *= kSpeed;
       scene.collision.self = kSelfContact;
       scene.response->volume_floor = 0.3f;
       scene.response->substep_motion = motion;
