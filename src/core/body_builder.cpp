@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -10,12 +11,37 @@
 
 namespace deformcd {
 
+namespace {
+
+// BodyOptions::node_mass_floor: every mass raised to at least `share` x the mean, then all
+// scaled back to the total, summed in index order.
+void floor_node_masses(std::vector<double>& mass, double share) {
+  if (!(share > 0.0) || mass.empty()) return;
+  double total = 0.0;
+  for (const double m : mass)
+    total += m;
+  const double least = share * total / static_cast<double>(mass.size());
+  double raised = 0.0;
+  for (double& m : mass) {
+    m = std::max(m, least);
+    raised += m;
+  }
+  const double scale = total / raised;
+  for (double& m : mass)
+    m *= scale;
+}
+
+}  // namespace
+
 Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::string& source) {
   if (!(options.density > 0.0) || !std::isfinite(options.density)) {
     throw InputError(source, "density must be positive and finite");
   }
   if (!(options.stiffness > 0.0) || !std::isfinite(options.stiffness)) {
     throw InputError(source, "stiffness must be positive and finite");
+  }
+  if (!(options.node_mass_floor >= 0.0 && options.node_mass_floor <= 1.0)) {
+    throw InputError(source, "node_mass_floor must be between 0 and 1");
   }
   Body body;
   body.tetrahedra = mesh.tetrahedra;
@@ -60,7 +86,6 @@ Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::stri
     for (std::uint32_t n : t)
       mass[n] += 0.25 * v * options.density;
   }
-  body.node_mass.reserve(mass.size());
   for (std::size_t i = 0; i < mass.size(); ++i) {
     if (mass[i] <= 0.0) {
       std::ostringstream msg;
@@ -68,8 +93,11 @@ Body build_body(const TetMesh& mesh, const BodyOptions& options, const std::stri
           << "have mass (remove unused nodes)";
       throw InputError(source, msg.str());
     }
-    body.node_mass.push_back(static_cast<float>(mass[i]));
   }
+  floor_node_masses(mass, options.node_mass_floor);
+  body.node_mass.reserve(mass.size());
+  for (const double m : mass)
+    body.node_mass.push_back(static_cast<float>(m));
 
   const std::vector<TetEdge> edges = tetrahedron_edges(mesh.tetrahedra, options.merge_shared_edges);
   for (const TetEdge& e : edges) {

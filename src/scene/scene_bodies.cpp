@@ -42,6 +42,7 @@ BodyInit make_body(const TetMesh& model, const BodySpec& spec, const Scene& scen
   BodyOptions options;
   if (spec.material.density) options.density = *spec.material.density;
   options.stiffness = spec.material.stiffness;
+  options.node_mass_floor = spec.material.node_mass_floor;
   BodyInit init;
   init.name = spec.name;
   init.body = build_body(mesh, options, where);

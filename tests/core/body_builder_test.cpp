@@ -45,6 +45,33 @@ TEST(BuildBody, LumpedMassSumsToDensityTimesVolume) {
       std::all_of(body.node_mass.begin(), body.node_mass.end(), [](float m) { return m > 0; }));
 }
 
+// The unit cube's five tetrahedra give its corners two masses (a corner of the central
+// tetrahedron carries a third of the cube's volume more): with the floor at the mean, every
+// node's mass is at least the old mean, scaled back to the total; 0 keeps the pure lumping;
+// outside [0, 1] is refused.
+TEST(BuildBody, NodeMassesAreFlooredAtAShareOfTheMeanAndKeepTheTotal) {
+  BodyOptions lumped;
+  lumped.density = 250.0;
+  lumped.node_mass_floor = 0.0;
+  const Body plain = build_body(test::unit_cube(), lumped);
+  const auto [light, heavy] = std::minmax_element(plain.node_mass.begin(), plain.node_mass.end());
+  ASSERT_LT(*light * 1.5f, *heavy) << "the cube's masses should differ";
+  BodyOptions floored = lumped;
+  floored.node_mass_floor = 1.0;
+  const Body body = build_body(test::unit_cube(), floored);
+  const double total = std::accumulate(body.node_mass.begin(), body.node_mass.end(), 0.0);
+  EXPECT_NEAR(total, 250.0, 1e-4);
+  const auto [least, most] = std::minmax_element(body.node_mass.begin(), body.node_mass.end());
+  EXPECT_GT(*least, *light) << "the light nodes should be raised";
+  EXPECT_LT(*most, *heavy) << "and the others scaled down";
+  EXPECT_LT(*most / *least, *heavy / *light);
+  for (const double share : {-0.1, 1.5, std::nan("")}) {
+    BodyOptions bad = lumped;
+    bad.node_mass_floor = share;
+    EXPECT_THROW((void)build_body(test::unit_cube(), bad), InputError) << share;
+  }
+}
+
 TEST(BuildBody, NormalsAreUnitAndOutward) {
   const Body body = build_body(test::unit_cube());
   for (std::size_t i = 0; i < body.faces.size(); ++i) {
