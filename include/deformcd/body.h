@@ -18,7 +18,7 @@ namespace deformcd {
 /// How a body is built from a tetrahedral mesh.
 struct BodyOptions {
   /// Mass density (kg/m^3): node masses are lumped, a quarter of each adjacent tetrahedron's
-  /// mass (then floored: node_mass_floor).
+  /// mass (raised where node_mass_floor is set above 0).
   double density = 1000.0;
   /// Young's-modulus-like stiffness (Pa). Each spring on an edge of tetrahedron t gets
   /// k = stiffness x volume(t) / rest_length^2 (summed over the tetrahedra when edges are
