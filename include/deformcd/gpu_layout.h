@@ -70,6 +70,10 @@ enum Binding : std::uint32_t {
   /// contacts slid (response::solve_contact's slide flag, summed by the node pass); free nodes
   /// only
   kNodeSlid = 38,
+  /// uint per node: the last projection (a count, from 1) in which an active contact that
+  /// guards volume constraints named it (response::guards_volumes); its volume constraints act
+  /// in that projection whatever their volume (response::volume_watched)
+  kNodeGuard = 39,
 };
 
 /// BvhNode::face of an internal node.
@@ -274,7 +278,10 @@ struct ContactPair {
   /// untangling constraints take it out). kContactEdgeEdge: which side of the second edge the
   /// first passes on where the window starts (response::edge_edge_start_side: 1 or -1; 0 where
   /// the closest points are an edge's end or the edges nearly parallel), so that edges that go
-  /// through each other within the window are taken back. 0 for other kinds.
+  /// through each other within the window are taken back. kContactVolume: 1 when the
+  /// tetrahedron is thin, its least rest height (3 x its volume over its largest face's area)
+  /// below its body's thickness, so that a guarding contact's push may turn it inside out: only
+  /// then do guards watch its floor (response::volume_watched). 0 for other kinds.
   float side;
   /// kContactVolume: m, the most one projection moves a node (the tetrahedron's mean rest edge
   /// length: a tetrahedron collapsed to a line has gradients near zero). 0 for other kinds.

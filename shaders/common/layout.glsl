@@ -47,6 +47,7 @@
 #define BINDING_PROJECTION_START 36     // vec4 per node: x - h v (xyz), path deviation (w)
 #define BINDING_CONTACT_IMPULSE 37      // vec4 per constraint: given this substep (solve_contact)
 #define BINDING_NODE_SLID 38            // uint per node: the last substep a contact of it slid in
+#define BINDING_NODE_GUARD 39           // uint per node: the last projection a guard named it
 
 // Leaf boxes per body: a 3-level octree, 4 x 4 x 4 leaves (gpu::kLeafBoxesPerBody).
 #define LEAF_BOXES_PER_BODY 64u

@@ -1,9 +1,12 @@
 #version 430
-// The contact response's activity pass: one invocation per constraint p says whether it acts
-// now (contact_awake, then contact_active, in src/core/response/contact_constraints.h: only an
-// awake constraint looks at its geometry), in the w of its first correction slot (8 p), which
-// the count pass reads before the solve pass overwrites it. No two invocations write the same
-// slot.
+// The contact response's activity pass: one invocation per constraint p of [u_pair_begin,
+// u_pair_end) says whether it acts now, in the w of its first correction slot (8 p), which the
+// count pass reads before the solve pass overwrites it. Two dispatches a projection
+// (src/core/response/contact_constraints.h): the contacts (contact_awake, then contact_active:
+// only an awake constraint looks at its geometry), each active one that guards volume
+// constraints (guards_volumes) stamping its nodes with the projection (u_projection: every
+// writer of a node writes the same value); then the volume constraints (volume_watched), which
+// read the stamps. No two invocations write the same slot.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
 
@@ -11,6 +14,9 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = BINDING_NODE_POSITION) readonly buffer NodePositions {
   vec4 positions[];
+};
+layout(std430, binding = BINDING_NODE_VELOCITY) readonly buffer NodeVelocities {
+  vec4 velocities[];
 };
 layout(std430, binding = BINDING_CONTACT_PAIR) readonly buffer ContactPairs {
   ContactPair pairs[];
@@ -24,25 +30,46 @@ layout(std430, binding = BINDING_PROJECTION_START) readonly buffer ProjectionSta
 layout(std430, binding = BINDING_FRAME_START) readonly buffer FrameStarts {
   vec4 frame_start[];
 };
+layout(std430, binding = BINDING_NODE_GUARD) buffer NodeGuards {
+  uint node_guard[];
+};
 
-uniform uint u_pair_count;
+uniform uint u_pair_begin;
+uniform uint u_pair_end;
 uniform float u_elapsed;
+uniform float u_h;
+uniform uint u_projection;
 
 void main() {
-  const uint p = gl_GlobalInvocationID.x;
-  if (p >= u_pair_count) return;  // the last work group reaches past the end
+  const uint p = u_pair_begin + gl_GlobalInvocationID.x;
+  if (p >= u_pair_end) return;  // the last work group reaches past the end
   const ContactPair pair = pairs[p];
-  float deviation[4];
-  for (uint i = 0u; i < 4u; ++i) deviation[i] = projection_starts[pair.nodes[i]].w;
-  bool acting = contact_awake(pair, deviation, u_elapsed);
-  if (acting) {
-    vec4 x[4];
-    for (uint i = 0u; i < 4u; ++i) x[i] = positions[pair.nodes[i]];
-    vec3 window_start[4];
-    const bool reads = reads_window_start(pair);
-    for (uint i = 0u; i < 4u; ++i)
-      window_start[i] = reads ? frame_start[pair.nodes[i]].xyz : vec3(0.0);
-    acting = contact_active(pair, x, window_start);
+  vec4 x[4];
+  bool acting;
+  if (pair.kind == CONTACT_VOLUME) {
+    vec4 v[4];
+    bool guarded = false;
+    for (uint i = 0u; i < 4u; ++i) {
+      x[i] = positions[pair.nodes[i]];
+      v[i] = velocities[pair.nodes[i]];
+      guarded = guarded || node_guard[pair.nodes[i]] == u_projection;
+    }
+    acting = volume_watched(pair, x, v, u_h, guarded);
+  } else {
+    float deviation[4];
+    for (uint i = 0u; i < 4u; ++i) deviation[i] = projection_starts[pair.nodes[i]].w;
+    acting = contact_awake(pair, deviation, u_elapsed);
+    if (acting) {
+      for (uint i = 0u; i < 4u; ++i) x[i] = positions[pair.nodes[i]];
+      vec3 window_start[4];
+      const bool reads = reads_window_start(pair);
+      for (uint i = 0u; i < 4u; ++i)
+        window_start[i] = reads ? frame_start[pair.nodes[i]].xyz : vec3(0.0);
+      acting = contact_active(pair, x, window_start);
+    }
+    if (acting && guards_volumes(pair)) {
+      for (uint i = 0u; i < 4u; ++i) node_guard[pair.nodes[i]] = u_projection;
+    }
   }
   corrections[8u * p] = vec4(0.0, 0.0, 0.0, acting ? 1.0 : 0.0);
 }

@@ -243,20 +243,40 @@ bool contact_clear(ContactPair pair, vec3 x[4]) {
   return height > 0.0 && height2 > bound;
 }
 
-// kVolumeWatch and contact_active: whether the constraint acts now (its distance along n below
-// its thickness; a volume constraint's tetrahedron below VOLUME_WATCH x its floor).
-const float VOLUME_WATCH = 2.0;
+// contact_active, line for line: whether a contact acts now (its distance along n below its
+// thickness).
 bool contact_active(ContactPair pair, vec4 position[4], vec3 start[4]) {
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
-  if (pair.kind == CONTACT_VOLUME) {
-    vec3 g[4];
-    return tetrahedron_volume(x, g) < VOLUME_WATCH * pair.thickness;
-  }
   if (contact_clear(pair, x)) return false;
   vec3 n = vec3(0.0);
   float b[4] = float[4](0.0, 0.0, 0.0, 0.0);
   float c = 0.0;
   return contact_geometry(pair, x, start, n, b, c) && c < 0.0;
+}
+
+// guards_volumes, line for line: a self pair whose thickness the rest-distance rule cut.
+bool guards_volumes(ContactPair pair) {
+  return (pair.kind == CONTACT_VERTEX_FACE || pair.kind == CONTACT_EDGE_EDGE) &&
+         pair.thickness < pair.hold_depth;
+}
+
+// kVolumeWatch and volume_watched, line for line: whether a volume constraint acts now (below
+// VOLUME_WATCH x its floor; a thin one also when a corner is guarded, or when it would be below
+// the watch after a substep of its collapse).
+const float VOLUME_WATCH = 2.0;
+bool volume_watched(ContactPair pair, vec4 position[4], vec4 velocity[4], float h, bool guarded) {
+  const bool thin = pair.side > 0.0;
+  if (thin && guarded) return true;
+  const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
+  vec3 g[4];
+  precise float volume = tetrahedron_volume(x, g);
+  precise float rate = 0.0;
+  if (thin) {
+    for (int i = 0; i < 4; ++i) rate += exact_dot(g[i], velocity[i].xyz);
+  }
+  precise float reached = volume + h * distance_min(rate, 0.0);
+  precise float watch = VOLUME_WATCH * pair.thickness;
+  return reached < watch;
 }
 
 // kResidualShare and contact_violated, line for line: whether an active constraint flagged

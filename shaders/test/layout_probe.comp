@@ -168,24 +168,25 @@ void main() {
     bindings[36] = BINDING_PROJECTION_START;
     bindings[37] = BINDING_CONTACT_IMPULSE;
     bindings[38] = BINDING_NODE_SLID;
+    bindings[39] = BINDING_NODE_GUARD;
     // Not gpu::Binding: the shared constants, then the GL backend's private work buffers.
-    bindings[39] = LEAF_BOXES_PER_BODY;
-    bindings[40] = BVH_INTERNAL;
-    bindings[41] = BVH_MAX_DEPTH;
-    bindings[42] = BINDING_DISPATCH_ARGS;
-    bindings[43] = BINDING_BOX_PAIR_LIST;
-    bindings[44] = BINDING_BVH_LEVELS;
-    bindings[45] = BINDING_TOUCHING_PAIRS;
-    bindings[46] = DISPATCH_ARGS_EXPAND;
-    bindings[47] = DISPATCH_ARGS_TOUCHING;
-    bindings[48] = DISPATCH_ARGS_NARROW;
-    bindings[49] = DISPATCH_ARGS_TRAVERSE;
-    bindings[50] = BINDING_BVH_LEAVES;
-    bindings[51] = BINDING_MESH_INFO;
-    bindings[52] = BINDING_NON_FINITE;
-    bindings[53] = CONTACT_VERTEX_FACE;
-    bindings[54] = CONTACT_EDGE_EDGE;
-    bindings[55] = CONTACT_UNTANGLE;
-    bindings[56] = CONTACT_VOLUME;
+    bindings[40] = LEAF_BOXES_PER_BODY;
+    bindings[41] = BVH_INTERNAL;
+    bindings[42] = BVH_MAX_DEPTH;
+    bindings[43] = BINDING_DISPATCH_ARGS;
+    bindings[44] = BINDING_BOX_PAIR_LIST;
+    bindings[45] = BINDING_BVH_LEVELS;
+    bindings[46] = BINDING_TOUCHING_PAIRS;
+    bindings[47] = DISPATCH_ARGS_EXPAND;
+    bindings[48] = DISPATCH_ARGS_TOUCHING;
+    bindings[49] = DISPATCH_ARGS_NARROW;
+    bindings[50] = DISPATCH_ARGS_TRAVERSE;
+    bindings[51] = BINDING_BVH_LEAVES;
+    bindings[52] = BINDING_MESH_INFO;
+    bindings[53] = BINDING_NON_FINITE;
+    bindings[54] = CONTACT_VERTEX_FACE;
+    bindings[55] = CONTACT_EDGE_EDGE;
+    bindings[56] = CONTACT_UNTANGLE;
+    bindings[57] = CONTACT_VOLUME;
   }
 }

@@ -35,6 +35,8 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   // The slide stamps outlive a window (a contact's slide goes on across searches): set only for
   // new nodes, to a substep no projection has.
   if (slid_.size() != nodes) slid_.assign(nodes, response::kNeverSlid);
+  // The guard stamps: 0, which no projection has (they count from 1), for new nodes.
+  if (guard_.size() != nodes) guard_.assign(nodes, 0u);
   start_.assign(nodes, glm::vec4(0.0f));
   counts_.assign(2u * nodes, 0u);
   slot_begin_.resize(nodes);
@@ -88,7 +90,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
                                      frame_start_[i], constraints_->node_motion[i], k.elapsed);
     });
     parallel_for(
-        pairs.size(),
+        first_volume_,
         [&](std::size_t p) {
           const gpu::ContactPair& pair = pairs[p];
           const float deviation[4] = {start_[pair.nodes[0]].w, start_[pair.nodes[1]].w,
@@ -103,6 +105,28 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
             active = response::contact_active(pair, x, window_start);
           }
           active_[p] = active ? 1u : 0u;
+          // The nodes of an active contact that guards volume constraints are stamped with this
+          // projection: every writer of a node writes the same value.
+          if (active && response::guards_volumes(pair)) {
+            for (const std::uint32_t n : pair.nodes)
+              std::atomic_ref<std::uint32_t>(guard_[n]).store(substep_, std::memory_order_relaxed);
+          }
+        },
+        1024);
+    // The volume constraints, which read the stamps.
+    parallel_for(
+        pairs.size() - first_volume_,
+        [&](std::size_t a) {
+          const std::size_t p = first_volume_ + a;
+          const gpu::ContactPair& pair = pairs[p];
+          glm::vec4 x[4], v[4];
+          bool guarded = false;
+          for (std::uint32_t i = 0; i < 4u; ++i) {
+            x[i] = nodes_.host_positions[pair.nodes[i]];
+            v[i] = nodes_.host_velocities[pair.nodes[i]];
+            guarded = guarded || guard_[pair.nodes[i]] == substep_;
+          }
+          active_[p] = response::volume_watched(pair, x, v, k.h, guarded) ? 1u : 0u;
         },
         1024);
     // The count pass, summed from the compacted list: the integer counts do not depend on the

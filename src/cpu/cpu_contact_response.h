@@ -55,6 +55,7 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::vector<std::uint32_t> acting_;   // the active constraints, ascending
   std::vector<std::uint32_t> touched_;  // the nodes of active constraints, as first named
   std::uint32_t substep_ = 0;           // project() calls so far
+  std::vector<std::uint32_t> guard_;    // per node: the last projection a guarding contact named it
   std::vector<std::uint32_t> slid_;     // per node: the last substep a contact of it slid in
   std::vector<std::uint32_t> watched_;  // the nodes with a finite reach, ascending
   std::vector<glm::vec4> start_;        // per node: response::projection_start, this substep

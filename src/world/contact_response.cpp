@@ -125,6 +125,25 @@ void check_response_settings(const ResponseSettings& s) {
   }
 }
 
+namespace {
+
+// Tetrahedron t's least height at rest: 3 x its rest volume over its largest face's area.
+float least_rest_height(const Body& body, std::size_t t) {
+  const Tetrahedron& n = body.tetrahedra[t];
+  const glm::vec3 x[4] = {glm::vec3(body.positions[n[0]]), glm::vec3(body.positions[n[1]]),
+                          glm::vec3(body.positions[n[2]]), glm::vec3(body.positions[n[3]])};
+  float largest = 0.0f;
+  for (int skip = 0; skip < 4; ++skip) {
+    const glm::vec3& a = x[(skip + 1) % 4];
+    const glm::vec3& b = x[(skip + 2) % 4];
+    const glm::vec3& c = x[(skip + 3) % 4];
+    largest = std::max(largest, 0.5f * glm::length(glm::cross(b - a, c - a)));
+  }
+  return largest > 0.0f ? 3.0f * body.tet_rest_volume[t] / largest : 0.0f;
+}
+
+}  // namespace
+
 float mean_surface_edge(const Body& body) {
   std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
   double sum = 0.0;
@@ -154,12 +173,12 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
   float smallest_edge = INFINITY;
   for (std::uint32_t body = 0; body < bodies.size(); ++body) {
     const BodyInit& b = bodies[body];
-    add_volume_constraints(b.body, body, state.objects[body].node_offset);
     names_.push_back(b.name);
     const float edge = mean_surface_edge(b.body);
     mean_edge_.push_back(edge);
     smallest_edge = std::min(smallest_edge, edge);
     thickness_.push_back(settings.thickness.value_or(settings.relative_thickness * edge));
+    add_volume_constraints(b.body, body, state.objects[body].node_offset, thickness_.back());
     carry_.push_back(b.carry_velocity);
     for (const glm::vec4& x : b.body.positions)
       rest_.emplace_back(x);
@@ -649,7 +668,7 @@ void ContactResponse::append_volume_constraints(response::FrameConstraints& c) c
 }
 
 void ContactResponse::add_volume_constraints(const Body& body, std::uint32_t index,
-                                             std::uint32_t node_offset) {
+                                             std::uint32_t node_offset, float thickness) {
   if (!(settings_.volume_floor > 0.0f)) return;
   for (std::size_t t = 0; t < body.tetrahedra.size(); ++t) {
     VolumeFloor v;
@@ -658,6 +677,8 @@ void ContactResponse::add_volume_constraints(const Body& body, std::uint32_t ind
       v.pair.nodes[k] = node_offset + body.tetrahedra[t][k];
     v.pair.kind = gpu::kContactVolume;
     v.pair.thickness = settings_.volume_floor * body.tet_rest_volume[t];
+    // Thin: a push of the body's thickness may take a corner through the opposite face.
+    v.pair.side = least_rest_height(body, t) < thickness ? 1.0f : 0.0f;
     v.pair.gap = -INFINITY;  // always awake: the activity pass looks at its volume
     v.pair.step_limit = body.tet_rest_edge[t];
     v.pair.converge = 1.0f;  // iterate while below half the floor (contact_violated)

@@ -117,8 +117,10 @@ class ContactResponse {
   /// length h (SelfContact::holds), on the positions and velocities now.
   [[nodiscard]] bool self_pairs_hold(float h);
   /// Lists a volume constraint for each tetrahedron of `body` (body `index`, its first node
-  /// node_offset), unless volume_floor is 0.
-  void add_volume_constraints(const Body& body, std::uint32_t index, std::uint32_t node_offset);
+  /// node_offset, its `thickness`: the thin ones are those less high at rest), unless
+  /// volume_floor is 0.
+  void add_volume_constraints(const Body& body, std::uint32_t index, std::uint32_t node_offset,
+                              float thickness);
   /// Appends the volume constraints of the bodies that can move to c (after every other).
   void append_volume_constraints(response::FrameConstraints& c) const;
   /// What a proximity pair becomes (proximity_constraint).

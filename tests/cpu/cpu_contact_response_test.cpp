@@ -313,6 +313,114 @@ TEST(VolumeConstraint, ATetrahedronAContactPushesThroughItselfWithinAProjectionK
   EXPECT_GT(volume_of(state, floor), 0.9f * kFloor) << "turned inside out by the contact";
 }
 
+// The same push on a tetrahedron above the watch (apex at 0.8 of an edge: 2.7x its floor, whose
+// watch is 2x): a fixed face 0.2 edges above the apex holds it 1.4 edges below, through the
+// base. Where the contact is a self pair the rest-distance rule cut (its hold depth deeper than
+// its thickness: response::guards_volumes) and the tetrahedron is marked thin (lower at rest
+// than its body's thickness), its volume constraint acts in that projection and keeps its
+// floor. An ordinary contact, or a tetrahedron not marked thin, leaves the constraint idle, and
+// the push turns the tetrahedron inside out, as it did the armadillo's cap sliver.
+TEST(VolumeConstraint, AGuardingContactWatchesTheFloorOfItsCornersThinTetrahedra) {
+  constexpr float kEdge = 0.01f;
+  constexpr float kFloor = 0.3f * kEdge * kEdge * kEdge / 6.0f;
+  const std::vector<glm::vec4> x = {
+      {0.0f, 0.0f, 0.0f, 1.0f},  // 0-3: the tetrahedron, its apex (3) over the base
+      {kEdge, 0.0f, 0.0f, 1.0f},
+      {0.0f, kEdge, 0.0f, 1.0f},
+      {0.2f * kEdge, 0.2f * kEdge, 0.8f * kEdge, 1.0f},
+      {-kEdge, -kEdge, kEdge, 0.0f},  // 4-6: the fixed face, normal -z
+      {-kEdge, 2.0f * kEdge, kEdge, 0.0f},
+      {2.0f * kEdge, -kEdge, kEdge, 0.0f},
+  };
+  const std::vector<glm::vec4> v(x.size(), glm::vec4(0.0f));
+  struct Case {
+    bool guard;
+    bool thin;
+  };
+  for (const Case test : {Case{true, true}, Case{false, true}, Case{true, false}}) {
+    SCOPED_TRACE(std::string(test.guard ? "guarding" : "ordinary") + " contact, " +
+                 (test.thin ? "thin" : "thick") + " tetrahedron");
+    cpu::CpuSimulation simulation(1);
+    simulation.upload(test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1));
+    const SimulationState& state = simulation.state();  // the response corrects it in place
+    response::FrameConstraints c;
+    gpu::ContactPair contact = constraint(gpu::kContactVertexFace, {3, 4, 5, 6});
+    contact.thickness = 1.4f * kEdge;
+    contact.hold_depth = test.guard ? 2.0f * contact.thickness : 0.0f;
+    contact.gap = -INFINITY;  // awake
+    ASSERT_EQ(response::guards_volumes(contact), test.guard);
+    gpu::ContactPair floor = first_tetrahedron_floor(kFloor, kEdge);
+    floor.side = test.thin ? 1.0f : 0.0f;
+    c.pairs = {contact, floor};
+    c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // no stray
+    ASSERT_GT(volume_of(state, floor), response::kVolumeWatch * kFloor) << "starts unwatched";
+    cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
+    response.begin_frame(c);
+    response::ContactConstants k{};
+    k.h = 1e-3f;
+    k.elapsed = k.h;
+    (void)response.project(k, 8);
+    EXPECT_LT(state.positions[3].z, 0.5f * kEdge) << "the contact should push the apex down";
+    if (test.guard && test.thin) {
+      EXPECT_GT(volume_of(state, floor), 0.9f * kFloor) << "turned inside out by the contact";
+    } else {
+      EXPECT_LT(volume_of(state, floor), 0.0f) << "unwatched, the push should invert it";
+    }
+  }
+}
+
+// A thin tetrahedron above the watch (apex at 0.8 of an edge: 2.7x its floor) whose apex falls
+// onto the base at 10 m/s would be inside out after the next substep (1 ms: 1 cm): its volume
+// constraint watches it (response::volume_watched: below the watch after a substep of its
+// collapse) and leaves the collapse that reaches the floor within the substep, no more. One
+// falling at 1 m/s stays above the watch over the substep, and no node moves; nor does one not
+// marked thin (the motion bound keeps nodes from crossing a thick one within a substep).
+TEST(VolumeConstraint, AThinTetrahedronCollapsingPastItsWatchWithinASubstepIsWatched) {
+  constexpr float kEdge = 0.01f;
+  constexpr float kFloor = 0.3f * kEdge * kEdge * kEdge / 6.0f;
+  constexpr float kH = 1e-3f;
+  const std::vector<glm::vec4> x = {{0.0f, 0.0f, 0.0f, 1.0f},
+                                    {kEdge, 0.0f, 0.0f, 1.0f},
+                                    {0.0f, kEdge, 0.0f, 1.0f},
+                                    {0.2f * kEdge, 0.2f * kEdge, 0.8f * kEdge, 1.0f}};
+  struct Case {
+    float fall;  // m/s
+    bool thin;
+  };
+  for (const Case test : {Case{10.0f, true}, Case{1.0f, true}, Case{10.0f, false}}) {
+    SCOPED_TRACE("falling at " + std::to_string(test.fall) + " m/s, " +
+                 (test.thin ? "thin" : "thick"));
+    std::vector<glm::vec4> v(4, glm::vec4(0.0f));
+    v[3].z = -test.fall;
+    cpu::CpuSimulation simulation(1);
+    simulation.upload(test::free_nodes(x, v, {0, 0, 0, 0}, 1));
+    const SimulationState& state = simulation.state();  // the response corrects it in place
+    gpu::ContactPair p = first_tetrahedron_floor(kFloor, kEdge);
+    p.side = test.thin ? 1.0f : 0.0f;
+    ASSERT_GT(volume_of(state, p), response::kVolumeWatch * kFloor) << "starts above the watch";
+    (void)project_one_tetrahedron(simulation, p, 8);
+    // The volume after the next substep, at these velocities (its rate: sum of g_k . v_k).
+    glm::vec3 corners[4], g[4];
+    for (int i = 0; i < 4; ++i)
+      corners[i] = glm::vec3(state.positions[i]);
+    const float volume = sim::tetrahedron_volume(corners, g);
+    float rate = 0.0f;
+    for (int i = 0; i < 4; ++i)
+      rate += glm::dot(g[i], glm::vec3(state.velocities[i]));
+    const float next = volume + kH * rate;
+    if (test.thin && test.fall > 5.0f) {
+      EXPECT_GT(next, 0.9f * kFloor) << "its collapse should stop at the floor";
+      EXPECT_LT(state.velocities[3].z, -1.0f) << "and not be turned into an expansion";
+      RecordProperty("next_over_floor", std::to_string(next / kFloor));
+    } else {
+      for (int i = 0; i < 4; ++i) {
+        EXPECT_EQ(state.positions[i], x[i]) << "node " << i;
+        EXPECT_EQ(state.velocities[i], v[i]) << "node " << i;
+      }
+    }
+  }
+}
+
 // The projections of contacts and volume constraints together give the same bits on one and on
 // eight threads (each constraint writes its own slots; each node sums its list in order).
 TEST(VolumeConstraint, OneAndEightThreadsGiveTheSameBits) {

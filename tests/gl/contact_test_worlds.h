@@ -312,7 +312,8 @@ inline std::vector<gpu::ContactPair> volume_constraints(const SimulationState& w
 /// most constraints are active and nodes are shared by many), with random velocities, about a
 /// tenth of the nodes fixed, three bodies of different motion bounds; then `volumes` volume
 /// constraints on random corners (either orientation, so that about half start inverted),
-/// their floors and step limits drawn so that most act and some are limited.
+/// their floors and step limits drawn so that most act and some are limited, a third of them
+/// thin (ContactPair::side).
 inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, std::uint32_t pairs,
                                       std::uint32_t volumes = 0) {
   std::mt19937 rng(seed);
@@ -367,6 +368,7 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
     pair.gap = -INFINITY;
     pair.step_limit = 0.002f + 0.02f * unit(rng);
     pair.converge = p % 2u == 0u ? 1.0f : 0.0f;  // some iterate while below half their floor
+    pair.side = p % 3u == 0u ? 1.0f : 0.0f;      // some thin: their corners' guards watch them
     out.constraints.pairs.push_back(pair);
   }
   // Paths as well as reaches: the watched centre moves along them.

@@ -39,7 +39,7 @@ struct ProbeOutput {
   std::vector<std::uint32_t> bindings;
 };
 
-constexpr std::uint32_t kBindingCount = gpu::kNodeSlid + 1;
+constexpr std::uint32_t kBindingCount = gpu::kNodeGuard + 1;
 constexpr std::uint32_t kConstantCount = 18;
 
 // Runs shaders/test/layout_probe.comp over `count` elements of each struct.
@@ -214,7 +214,8 @@ TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
       gpu::kBodyBvh,           gpu::kCandidatePair,     gpu::kContactPair,
       gpu::kContactCorrection, gpu::kNodeContactOffset, gpu::kNodeContactList,
       gpu::kNodeContactCount,  gpu::kFrameStart,        gpu::kNodeMotion,
-      gpu::kProjectionStart,   gpu::kContactImpulse,    gpu::kNodeSlid};
+      gpu::kProjectionStart,   gpu::kContactImpulse,    gpu::kNodeSlid,
+      gpu::kNodeGuard};
   ASSERT_EQ(expected.size(), kBindingCount);
   std::vector<std::uint32_t> bindings = run_layout_probe(1).bindings;
   ASSERT_EQ(bindings.size(), kBindingCount + kConstantCount);

@@ -61,6 +61,7 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
       {"Projection Start", gpu::kProjectionStart, nodes, sizeof(glm::vec4)},
       {"Contact Impulse", gpu::kContactImpulse, 3u * pairs, sizeof(glm::vec4)},
       {"Node Slid", gpu::kNodeSlid, nodes, sizeof(std::uint32_t)},
+      {"Node Guard", gpu::kNodeGuard, nodes, sizeof(std::uint32_t)},
   };
 }
 

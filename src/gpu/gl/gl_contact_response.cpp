@@ -107,6 +107,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   auto new_projection_start = grow(buffers_.projection_start, nodes, gpu::kProjectionStart);
   auto new_impulses = grow(buffers_.impulses, 3u * pairs, gpu::kContactImpulse);
   auto new_slid = grow(buffers_.node_slid, nodes, gpu::kNodeSlid);
+  auto new_guard = grow(buffers_.node_guard, nodes, gpu::kNodeGuard);
 
   frame_ready_ = false;  // until the upload below has completed
   adopt(buffers_.pairs, new_pairs);
@@ -125,6 +126,13 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
     const std::vector<std::uint32_t> never(nodes, response::kNeverSlid);
     buffers_.node_slid->upload(std::span<const std::uint32_t>(never));
   }
+  // The guard stamps: 0, which no projection has (they count from 1), where the buffer is new;
+  // a stamp from an earlier projection is as good as none.
+  if (new_guard.has_value()) {
+    adopt(buffers_.node_guard, new_guard);
+    const std::vector<std::uint32_t> none(buffers_.node_guard->size(), 0u);
+    buffers_.node_guard->upload(std::span<const std::uint32_t>(none));
+  }
   // Corrections, impulses and counts need no initial values: each projection writes all it
   // reads (a substep's first iteration resets the impulses).
   buffers_.pairs->upload(std::span<const gpu::ContactPair>(constraints.pairs));
@@ -136,7 +144,6 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   first_volume_ = static_cast<std::uint32_t>(first_volume);
   node_count_ = sim.node_count;
   frame_positions_ = sim.gl_positions;
-  activity_.set_uniform("u_pair_count", pair_count_);
   count_.set_uniform("u_node_count", node_count_);
   count_.set_uniform("u_first_volume", first_volume_);
   apply_.set_uniform("u_node_count", node_count_);
@@ -193,10 +200,14 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   buffers_.projection_start->bind(gpu::kProjectionStart);
   buffers_.impulses->bind(gpu::kContactImpulse);
   buffers_.node_slid->bind(gpu::kNodeSlid);
+  buffers_.node_guard->bind(gpu::kNodeGuard);
   ++substep_;
   pairs_.set_uniform("u_substep", substep_);
   apply_.set_uniform("u_substep", substep_);
 
+  // The constraint groups: the contacts, then the volume constraints (the list's last).
+  const std::uint32_t group_begin[2] = {0u, first_volume_};
+  const std::uint32_t group_end[2] = {first_volume_, pair_count_};
   // Deviation, activity, count, solve, node pass (contact_constraints.h), each reading what the
   // one before wrote. With no constraints the node passes still run: the node pass watches
   // every free node's reach, as the CPU backend does.
@@ -205,9 +216,17 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
     deviation_.set_uniform("u_h", k.h);
     deviation_.dispatch_covering(node_count_);
     storage_barrier();  // the activity pass reads the deviations
+    // The contacts, then the volume constraints, which read the contacts' guard stamps.
     activity_.set_uniform("u_elapsed", k.elapsed);
-    activity_.dispatch_covering(pair_count_);
-    storage_barrier();  // the count pass reads the activity flags
+    activity_.set_uniform("u_h", k.h);
+    activity_.set_uniform("u_projection", substep_);
+    for (std::uint32_t group = 0; group < 2u; ++group) {
+      if (group_begin[group] == group_end[group]) continue;
+      activity_.set_uniform("u_pair_begin", group_begin[group]);
+      activity_.set_uniform("u_pair_end", group_end[group]);
+      activity_.dispatch_covering(group_end[group] - group_begin[group]);
+      storage_barrier();  // the volume constraints read the stamps, the count pass the flags
+    }
   }
   count_.dispatch_covering(node_count_);
   storage_barrier();  // the solve pass reads the counts
@@ -221,8 +240,6 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   // contacts left (the CPU backend's order); a group without constraints is skipped, except
   // that the last node pass always runs (it watches the reaches). `last`: the friction's
   // last-iteration rule applies.
-  const std::uint32_t group_begin[2] = {0u, first_volume_};
-  const std::uint32_t group_end[2] = {first_volume_, pair_count_};
   const std::uint32_t last_group = first_volume_ < pair_count_ ? 1u : 0u;
   const auto iterate = [&](bool first_iteration, bool last) {
     for (std::uint32_t group = 0; group <= last_group; ++group) {

@@ -60,6 +60,7 @@ struct ContactBuffers {
   std::optional<Ssbo<glm::vec4>> projection_start;  // SSBO 36: per node
   std::optional<Ssbo<glm::vec4>> impulses;          // SSBO 37: three per constraint
   std::optional<Ssbo<std::uint32_t>> node_slid;     // SSBO 38: per node, kept across frames
+  std::optional<Ssbo<std::uint32_t>> node_guard;    // SSBO 39: per node, kept across frames
 };
 
 class GlContactResponse final : public response::ResponseBackend {
@@ -115,7 +116,7 @@ class GlContactResponse final : public response::ResponseBackend {
   ComputeProgram apply_;
   ComputeProgram residual_;
   int iterations_done_ = 0;    // by the last project()
-  std::uint32_t substep_ = 0;  // project() calls so far (the node_slid stamps)
+  std::uint32_t substep_ = 0;  // project() calls so far (the node_slid and node_guard stamps)
   ContactBuffers buffers_;
   // The frame begin_frame set up: project() refuses to run on a simulation uploaded since (its
   // node count or buffers differ), whose frame starts would be stale.
