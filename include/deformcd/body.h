@@ -32,10 +32,9 @@ struct BodyOptions {
   /// keeps the pure lumping; at most 1). Lumped masses of a tetrahedral mesh vary by thousands
   /// within a body, the lightest at the surface, and they set the explicit integration's stable
   /// substep: at 0.5 the paper's phase 1 runs at 4 substeps a frame instead of blowing up at
-  /// 10. With the contact response it takes a third of the iterations off; at 0.5, 2 of the 26
-  /// perturbed impact starts fold through themselves after the bodies part (at 0.3 none since
-  /// thin tetrahedra are watched), and it stays off by default until every shipped scene has
-  /// been measured with it (docs/simulation-and-response.md, "Node masses").
+  /// 10. With the contact response it takes a quarter to a third of the iterations off; a scene
+  /// with a response sets it to kResponseNodeMassFloor (0.3) unless its material says
+  /// otherwise (docs/simulation-and-response.md, "Node masses").
   double node_mass_floor = 0.0;
 };
 

@@ -26,6 +26,21 @@ inline constexpr int kMaxSubstepFactor = 8;
   return self.value_or(responds);
 }
 
+/// A scene body's node mass floor (BodyOptions::node_mass_floor) when its `material` sets none
+/// and the scene has a contact response. Pure lumping leaves surface nodes thousands of times
+/// lighter than interior ones, and a contact and a volume floor on such a node move mostly it,
+/// back and forth, to the iteration cap: at 0.3 the impact and the stack take a quarter to a
+/// third fewer iterations a frame, the pile sleeps 34 frames sooner, and the 26 perturbed impact
+/// starts hold (docs/simulation-and-response.md, "Node masses").
+inline constexpr double kResponseNodeMassFloor = 0.3;
+
+/// A body's node mass floor, given its setting (a scene's `material.node_mass_floor`) and
+/// whether there is a contact response: unset, kResponseNodeMassFloor with a response, else 0
+/// (pure lumping).
+[[nodiscard]] inline double node_mass_floor_on(std::optional<double> floor, bool responds) {
+  return floor.value_or(responds ? kResponseNodeMassFloor : 0.0);
+}
+
 /// The most Jacobi projections per substep ResponseSettings::iterations may ask for.
 inline constexpr int kMaxResponseIterations = 64;
 

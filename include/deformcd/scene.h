@@ -34,8 +34,9 @@ struct MaterialSpec {
   /// means equal to `stiffness`; 0 is the paper's springs-only model.
   std::optional<double> volume_stiffness;
   /// Each node's lumped mass at least this share of the body's mean (BodyOptions::
-  /// node_mass_floor; 0 keeps the pure lumping, at most 1).
-  double node_mass_floor = BodyOptions{}.node_mass_floor;
+  /// node_mass_floor; 0 keeps the pure lumping, at most 1). Unset: kResponseNodeMassFloor in a
+  /// scene with a `response`, else 0 (node_mass_floor_on).
+  std::optional<double> node_mass_floor;
 };
 
 /// Nodes held in place: listed by index, and/or every node inside a box (in scene coordinates,

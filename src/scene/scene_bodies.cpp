@@ -42,7 +42,8 @@ BodyInit make_body(const TetMesh& model, const BodySpec& spec, const Scene& scen
   BodyOptions options;
   if (spec.material.density) options.density = *spec.material.density;
   options.stiffness = spec.material.stiffness;
-  options.node_mass_floor = spec.material.node_mass_floor;
+  options.node_mass_floor =
+      node_mass_floor_on(spec.material.node_mass_floor, scene.response.has_value());
   BodyInit init;
   init.name = spec.name;
   init.body = build_body(mesh, options, where);

@@ -154,8 +154,10 @@ MaterialSpec read_material(JsonFields f) {
   m.stiffness = positive(f, "stiffness", m.stiffness);
   m.damping = non_negative(f, "damping", m.damping);
   if (f.has("volume_stiffness")) m.volume_stiffness = non_negative(f, "volume_stiffness", 0.0);
-  m.node_mass_floor = non_negative(f, "node_mass_floor", m.node_mass_floor);
-  if (m.node_mass_floor > 1.0) f.fail("node_mass_floor", "must be between 0 and 1");
+  if (f.has("node_mass_floor")) {
+    m.node_mass_floor = non_negative(f, "node_mass_floor", 0.0);
+    if (*m.node_mass_floor > 1.0) f.fail("node_mass_floor", "must be between 0 and 1");
+  }
   f.reject_unknown();
   return m;
 }

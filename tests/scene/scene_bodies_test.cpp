@@ -34,6 +34,32 @@ TEST(SceneBodies, PlacesScalesAndRotates) {
   EXPECT_NEAR(p.z, 0.0f, 1e-5f);
 }
 
+// A body whose material sets no node mass floor gets kResponseNodeMassFloor in a scene with a
+// response and pure lumping without one; a floor the material sets (0 included) is kept.
+TEST(SceneBodies, AResponseFloorsTheNodeMassesUnlessTheMaterialSaysOtherwise) {
+  // Two tetrahedra on one face, the second a hundredth as high: its apex is the lightest node.
+  const auto load_wedge = [](const std::filesystem::path&) {
+    TetMesh m;
+    m.nodes = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -0.01}};
+    m.tetrahedra = {{0, 1, 2, 3}, {0, 2, 1, 4}};
+    return m;
+  };
+  const auto masses = [&](std::optional<double> floor, bool response) {
+    BodySpec spec;
+    spec.material.node_mass_floor = floor;
+    Scene scene = one_cube(spec);
+    if (response) scene.response = ResponseSettings{};
+    return make_scene_bodies(scene, load_wedge, 100)[0].body.node_mass;
+  };
+  const std::vector<float> lumped = masses(0.0, false);
+  const std::vector<float> floored = masses(kResponseNodeMassFloor, false);
+  ASSERT_NE(lumped, floored) << "the thin tetrahedron's apex should be floored";
+  EXPECT_EQ(masses(std::nullopt, false), lumped);
+  EXPECT_EQ(masses(std::nullopt, true), floored);
+  EXPECT_EQ(masses(0.0, true), lumped);
+  EXPECT_EQ(masses(0.5, true), masses(0.5, false));
+}
+
 TEST(SceneBodies, SquashDeformsThePoseButNotTheRestLengths) {
   BodySpec spec;
   spec.squash = {1.0, 0.5, 1.0};

@@ -68,12 +68,12 @@ TEST_F(SceneReaderTest, ReadsEveryKey) {
   EXPECT_EQ(*b.path_to, glm::dvec3(4, 5, 6));
 }
 
-// material.node_mass_floor: read into the spec (0, pure lumping, when absent), refused with its
-// path outside [0, 1].
+// material.node_mass_floor: read into the spec (unset when absent: the response decides,
+// node_mass_floor_on), refused with its path outside [0, 1].
 TEST_F(SceneReaderTest, NodeMassFloorIsReadAndRefusedOutsideZeroToOne) {
   const Scene s = read_scene(write(R"({"bodies": [{"model": "models/cube"},
       {"model": "models/cube", "material": {"node_mass_floor": 0.5}}]})"));
-  EXPECT_EQ(s.bodies[0].material.node_mass_floor, 0.0);
+  EXPECT_FALSE(s.bodies[0].material.node_mass_floor.has_value());
   EXPECT_EQ(s.bodies[1].material.node_mass_floor, 0.5);
   for (const char* value : {"1.5", "-0.1"}) {
     const std::string msg = error_of(std::string(R"({"bodies": [{"model": "models/cube",
