@@ -127,7 +127,8 @@ void check_response_settings(const ResponseSettings& s) {
 
 namespace {
 
-// Tetrahedron t's least height at rest: 3 x its rest volume over its largest face's area.
+// Tetrahedron t's least height at rest: 3 x its rest volume over its largest face's area (the
+// areas of the body's starting pose, which a scene's `squash` deforms a little).
 float least_rest_height(const Body& body, std::size_t t) {
   const Tetrahedron& n = body.tetrahedra[t];
   const glm::vec3 x[4] = {glm::vec3(body.positions[n[0]]), glm::vec3(body.positions[n[1]]),
