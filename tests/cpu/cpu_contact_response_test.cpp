@@ -271,6 +271,49 @@ TEST(VolumeConstraint, AnInvertedTetrahedronIsIteratedBackAboveHalfItsFloor) {
   }
 }
 
+// A unit-corner tetrahedron (edge kPushEdge; nodes 0-2 its base, 3 its apex, `apex` edges over
+// the base point (0.2, 0.2)) under a fixed face 0.2 edges above the apex, facing down (nodes 4-6),
+// projected once (8 iterations asked, a 1 ms substep, one thread) with `contact` (the apex
+// against the face; awake) and the tetrahedron's volume constraint `floor`: its volume before,
+// and the nodes after.
+constexpr float kPushEdge = 0.01f;
+
+struct PushedApex {
+  float volume_before;
+  SimulationState after;
+};
+
+PushedApex push_apex(float apex, gpu::ContactPair contact, const gpu::ContactPair& floor) {
+  constexpr float kEdge = kPushEdge;
+  const float face = apex + 0.2f;
+  const std::vector<glm::vec4> x = {
+      {0.0f, 0.0f, 0.0f, 1.0f},
+      {kEdge, 0.0f, 0.0f, 1.0f},
+      {0.0f, kEdge, 0.0f, 1.0f},
+      {0.2f * kEdge, 0.2f * kEdge, apex * kEdge, 1.0f},
+      {-kEdge, -kEdge, face * kEdge, 0.0f},
+      {-kEdge, 2.0f * kEdge, face * kEdge, 0.0f},
+      {2.0f * kEdge, -kEdge, face * kEdge, 0.0f},
+  };
+  const std::vector<glm::vec4> v(x.size(), glm::vec4(0.0f));
+  cpu::CpuSimulation simulation(1);
+  simulation.upload(test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1));
+  const float before = volume_of(simulation.state(), floor);
+  response::FrameConstraints c;
+  for (std::uint32_t k = 0; k < 4u; ++k)
+    contact.nodes[k] = 3u + k;
+  contact.gap = -INFINITY;  // awake
+  c.pairs = {contact, floor};
+  c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // no stray
+  cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
+  response.begin_frame(c);
+  response::ContactConstants k{};
+  k.h = 1e-3f;
+  k.elapsed = k.h;
+  (void)response.project(k, 8);
+  return {before, simulation.state()};
+}
+
 // A tetrahedron above its floor (apex at 0.4 of an edge: 0.4 of its rest volume, the floor 0.3
 // of it) whose apex a contact within the projection pushes a whole edge down, through the base: a
 // fixed face 0.2 edges above the apex, facing down, holds it a thickness of 1 edge below. The
@@ -279,38 +322,16 @@ TEST(VolumeConstraint, AnInvertedTetrahedronIsIteratedBackAboveHalfItsFloor) {
 // instead of letting the contact turn it inside out (as it did when only a tetrahedron already
 // below its floor was active).
 TEST(VolumeConstraint, ATetrahedronAContactPushesThroughItselfWithinAProjectionKeepsItsFloor) {
-  constexpr float kEdge = 0.01f;
+  constexpr float kEdge = kPushEdge;
   constexpr float kFloor = 0.3f * kEdge * kEdge * kEdge / 6.0f;
-  const std::vector<glm::vec4> x = {
-      {0.0f, 0.0f, 0.0f, 1.0f},  // 0-3: the tetrahedron, its apex (3) over the base
-      {kEdge, 0.0f, 0.0f, 1.0f},
-      {0.0f, kEdge, 0.0f, 1.0f},
-      {0.2f * kEdge, 0.2f * kEdge, 0.4f * kEdge, 1.0f},
-      {-kEdge, -kEdge, 0.6f * kEdge, 0.0f},  // 4-6: the fixed face, normal -z
-      {-kEdge, 2.0f * kEdge, 0.6f * kEdge, 0.0f},
-      {2.0f * kEdge, -kEdge, 0.6f * kEdge, 0.0f},
-  };
-  const std::vector<glm::vec4> v(x.size(), glm::vec4(0.0f));
-  cpu::CpuSimulation simulation(1);
-  simulation.upload(test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1));
-  const SimulationState& state = simulation.state();  // the response corrects it in place
-  response::FrameConstraints c;
   gpu::ContactPair contact = constraint(gpu::kContactVertexFace, {3, 4, 5, 6});
   contact.thickness = kEdge;
-  contact.gap = -INFINITY;  // awake
   const gpu::ContactPair floor = first_tetrahedron_floor(kFloor, kEdge);
-  c.pairs = {contact, floor};
-  c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // no stray
-  ASSERT_GT(volume_of(state, floor), 1.2f * kFloor) << "starts above its floor";
-  ASSERT_LT(volume_of(state, floor), response::kVolumeWatch * kFloor) << "and watched";
-  cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
-  response.begin_frame(c);
-  response::ContactConstants k{};
-  k.h = 1e-3f;
-  k.elapsed = k.h;
-  (void)response.project(k, 8);
-  EXPECT_LT(state.positions[3].z, 0.2f * kEdge) << "the contact should push the apex down";
-  EXPECT_GT(volume_of(state, floor), 0.9f * kFloor) << "turned inside out by the contact";
+  const PushedApex pushed = push_apex(0.4f, contact, floor);
+  ASSERT_GT(pushed.volume_before, 1.2f * kFloor) << "starts above its floor";
+  ASSERT_LT(pushed.volume_before, response::kVolumeWatch * kFloor) << "and watched";
+  EXPECT_LT(pushed.after.positions[3].z, 0.2f * kEdge) << "the contact should push the apex down";
+  EXPECT_GT(volume_of(pushed.after, floor), 0.9f * kFloor) << "turned inside out by the contact";
 }
 
 // The same push on a tetrahedron above the watch (apex at 0.8 of an edge: 2.7x its floor, whose
@@ -321,18 +342,8 @@ TEST(VolumeConstraint, ATetrahedronAContactPushesThroughItselfWithinAProjectionK
 // floor. An ordinary contact, or a tetrahedron not marked thin, leaves the constraint idle, and
 // the push turns the tetrahedron inside out, as it did the armadillo's cap sliver.
 TEST(VolumeConstraint, AGuardingContactWatchesTheFloorOfItsCornersThinTetrahedra) {
-  constexpr float kEdge = 0.01f;
+  constexpr float kEdge = kPushEdge;
   constexpr float kFloor = 0.3f * kEdge * kEdge * kEdge / 6.0f;
-  const std::vector<glm::vec4> x = {
-      {0.0f, 0.0f, 0.0f, 1.0f},  // 0-3: the tetrahedron, its apex (3) over the base
-      {kEdge, 0.0f, 0.0f, 1.0f},
-      {0.0f, kEdge, 0.0f, 1.0f},
-      {0.2f * kEdge, 0.2f * kEdge, 0.8f * kEdge, 1.0f},
-      {-kEdge, -kEdge, kEdge, 0.0f},  // 4-6: the fixed face, normal -z
-      {-kEdge, 2.0f * kEdge, kEdge, 0.0f},
-      {2.0f * kEdge, -kEdge, kEdge, 0.0f},
-  };
-  const std::vector<glm::vec4> v(x.size(), glm::vec4(0.0f));
   struct Case {
     bool guard;
     bool thin;
@@ -340,31 +351,20 @@ TEST(VolumeConstraint, AGuardingContactWatchesTheFloorOfItsCornersThinTetrahedra
   for (const Case test : {Case{true, true}, Case{false, true}, Case{true, false}}) {
     SCOPED_TRACE(std::string(test.guard ? "guarding" : "ordinary") + " contact, " +
                  (test.thin ? "thin" : "thick") + " tetrahedron");
-    cpu::CpuSimulation simulation(1);
-    simulation.upload(test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1));
-    const SimulationState& state = simulation.state();  // the response corrects it in place
-    response::FrameConstraints c;
     gpu::ContactPair contact = constraint(gpu::kContactVertexFace, {3, 4, 5, 6});
     contact.thickness = 1.4f * kEdge;
     contact.hold_depth = test.guard ? 2.0f * contact.thickness : 0.0f;
-    contact.gap = -INFINITY;  // awake
     ASSERT_EQ(response::guards_volumes(contact), test.guard);
     gpu::ContactPair floor = first_tetrahedron_floor(kFloor, kEdge);
     floor.side = test.thin ? 1.0f : 0.0f;
-    c.pairs = {contact, floor};
-    c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // no stray
-    ASSERT_GT(volume_of(state, floor), response::kVolumeWatch * kFloor) << "starts unwatched";
-    cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
-    response.begin_frame(c);
-    response::ContactConstants k{};
-    k.h = 1e-3f;
-    k.elapsed = k.h;
-    (void)response.project(k, 8);
-    EXPECT_LT(state.positions[3].z, 0.5f * kEdge) << "the contact should push the apex down";
+    const PushedApex pushed = push_apex(0.8f, contact, floor);
+    ASSERT_GT(pushed.volume_before, response::kVolumeWatch * kFloor) << "starts unwatched";
+    EXPECT_LT(pushed.after.positions[3].z, 0.5f * kEdge) << "the contact should push the apex down";
     if (test.guard && test.thin) {
-      EXPECT_GT(volume_of(state, floor), 0.9f * kFloor) << "turned inside out by the contact";
+      EXPECT_GT(volume_of(pushed.after, floor), 0.9f * kFloor)
+          << "turned inside out by the contact";
     } else {
-      EXPECT_LT(volume_of(state, floor), 0.0f) << "unwatched, the push should invert it";
+      EXPECT_LT(volume_of(pushed.after, floor), 0.0f) << "unwatched, the push should invert it";
     }
   }
 }

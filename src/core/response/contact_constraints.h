@@ -307,7 +307,7 @@ inline bool contact_clear(const gpu::ContactPair& pair, const glm::vec3 x[4]) {
   return height > 0.0f && height * height > limit * limit * glm::dot(normal, normal);
 }
 
-/// A volume constraint acts from kVolumeWatch x its floor down (contact_active), not only
+/// A volume constraint acts from kVolumeWatch x its floor down (volume_watched), not only
 /// below it: the activity pass fixes a projection's active set, and contacts acting in its
 /// iterations pushed the nodes of tetrahedra still above their floor through the opposite face
 /// with nothing to stop them. The pile: frames with inverted tetrahedra 460 of 480 (at most 17
