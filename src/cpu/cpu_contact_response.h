@@ -46,8 +46,11 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::shared_ptr<Executor> executor_;
   const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
   std::vector<glm::vec4> frame_start_;  // per node: position at the frame's start, w = reach
-  std::vector<glm::vec4> corrections_;  // two per corner (slot 4 p + k): position, velocity change
-  std::vector<glm::vec4> impulses_;     // three per constraint: what it gave this substep
+  // Per acting constraint acting_[a]: two per corner (slot 4 a + k), position and velocity
+  // change; three of what it gave this substep; and a 1 (gather_correction's activity flags).
+  std::vector<glm::vec4> corrections_;
+  std::vector<glm::vec4> impulses_;
+  std::vector<std::uint32_t> acting_flags_;
   // Per node n: its active contacts (2 n) and volume constraints (2 n + 1) this substep.
   std::vector<std::uint32_t> counts_;
   std::size_t first_volume_ = 0;        // the first volume constraint (all after it are)
