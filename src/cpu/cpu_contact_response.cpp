@@ -153,13 +153,17 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
     // the slots of the many candidates that do not act. The contacts come first: the volume
     // constraints are last in the list.
     // The slots are numbered by the acting list (4 a + corner for acting_[a]), not by the
-    // constraint list: the solve writes and the node pass reads a compact block (on the impact,
+    // constraint list, and the iterations read the acting constraints from a copy in that
+    // order: the solve reads and writes, and the node pass reads, compact blocks (on the impact,
     // 2,200 acting constraints of 55,000 listed: 280 kB of corrections, not 7 MB). Not cleared:
     // every solve writes its eight corrections, and the first iteration resets what it gave.
+    acting_pairs_.resize(acting_.size());
+    for (std::uint32_t a = 0; a < acting_.size(); ++a)
+      acting_pairs_[a] = pairs[acting_[a]];
     active_slots_.resize(slots);
     for (std::uint32_t a = 0; a < acting_.size(); ++a)
       for (std::uint32_t corner = 0; corner < 4u; ++corner)
-        active_slots_[slot_cursor_[pairs[acting_[a]].nodes[corner]]++] = 4u * a + corner;
+        active_slots_[slot_cursor_[acting_pairs_[a].nodes[corner]]++] = 4u * a + corner;
     corrections_.resize(8u * acting_.size());
     impulses_.resize(3u * acting_.size());
     acting_flags_.assign(acting_.size(), 1u);
@@ -175,8 +179,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         parallel_for(
             end - first,
             [&](std::size_t a) {
-              const std::uint32_t p = acting_[first + a];
-              const gpu::ContactPair& pair = pairs[p];
+              const gpu::ContactPair& pair = acting_pairs_[first + a];
               glm::vec4 x[4], v[4];
               std::uint32_t count[4];
               for (std::uint32_t i = 0; i < 4u; ++i) {
@@ -230,7 +233,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
     // as much as a tenth of the response on the impact.
     std::uint32_t last_violated = 0u;  // an index into acting_ (any, at first)
     const auto is_violated = [&](std::uint32_t a) {
-      const gpu::ContactPair& pair = pairs[acting_[a]];
+      const gpu::ContactPair& pair = acting_pairs_[a];
       const glm::vec4 x[4] = {
           nodes_.host_positions[pair.nodes[0]], nodes_.host_positions[pair.nodes[1]],
           nodes_.host_positions[pair.nodes[2]], nodes_.host_positions[pair.nodes[3]]};

@@ -53,11 +53,12 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::vector<std::uint32_t> acting_flags_;
   // Per node n: its active contacts (2 n) and volume constraints (2 n + 1) this substep.
   std::vector<std::uint32_t> counts_;
-  std::size_t first_volume_ = 0;        // the first volume constraint (all after it are)
-  std::vector<std::uint32_t> active_;   // per constraint: 1 when it acts this substep
-  std::vector<std::uint32_t> acting_;   // the active constraints, ascending
-  std::vector<std::uint32_t> touched_;  // the nodes of active constraints, as first named
-  std::uint32_t substep_ = 0;           // project() calls so far
+  std::size_t first_volume_ = 0;                // the first volume constraint (all after it are)
+  std::vector<std::uint32_t> active_;           // per constraint: 1 when it acts this substep
+  std::vector<std::uint32_t> acting_;           // the active constraints, ascending
+  std::vector<gpu::ContactPair> acting_pairs_;  // their copies, in that order
+  std::vector<std::uint32_t> touched_;          // the nodes of active constraints, as first named
+  std::uint32_t substep_ = 0;                   // project() calls so far
   std::vector<std::uint32_t> guard_;    // per node: the last projection a guarding contact named it
   std::vector<std::uint32_t> slid_;     // per node: the last substep a contact of it slid in
   std::vector<std::uint32_t> watched_;  // the nodes with a finite reach, ascending
