@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
 
 #include <glm/vec3.hpp>
+
+#include "deformcd/error.h"
 
 namespace deformcd {
 
@@ -44,13 +47,19 @@ double BodySleep::rms_motion(std::size_t body, std::span<const glm::vec4> positi
 
 std::vector<std::uint32_t> BodySleep::end_frame(
     std::span<const glm::vec4> position,
-    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links) {
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links,
+    std::span<const std::uint8_t> inverted) {
   const std::size_t n = objects_.size();
+  if (!inverted.empty() && inverted.size() != n)
+    throw Error("BodySleep::end_frame: " + std::to_string(inverted.size()) +
+                " inverted flags for " + std::to_string(n) + " bodies");
   const bool first_frame = last_position_.empty();
   for (std::size_t b = 0; b < n; ++b) {
     if (fixed_[b] != 0u) continue;
-    const bool slow = asleep_[b] != 0u || (!first_frame && rms_motion(b, position) <
-                                                               static_cast<double>(slow_speed_[b]));
+    const bool shaped = inverted.empty() || inverted[b] == 0u;
+    const bool slow =
+        asleep_[b] != 0u ||
+        (!first_frame && shaped && rms_motion(b, position) < static_cast<double>(slow_speed_[b]));
     slow_time_[b] = slow ? slow_time_[b] + dt_ : 0.0f;
   }
   last_position_.resize(position.size());

@@ -40,10 +40,15 @@ class BodySleep {
 
   /// After a frame: `position` per node (the frame's end), `links` the body pairs that the
   /// frame's contact constraints joined (those between two sleeping bodies may be left out:
-  /// they are joined by the island they fell asleep in). A body is slow in a frame when its
-  /// nodes moved less than the slow speed x dt since the last frame's end, as a root mean
-  /// square (the first frame, with no last one, is not slow). Returns the bodies that fell
-  /// asleep or woke, ascending.
+  /// they are joined by the island they fell asleep in), `inverted` per body 1 where one of its
+  /// tetrahedra is inside out at the frame's end (empty: none is). A body is slow in a frame
+  /// when its nodes moved less than the slow speed x dt since the last frame's end, as a root
+  /// mean square (the first frame, with no last one, is not slow), and none of its tetrahedra
+  /// is inside out: asleep, a body holds its shape as it is, and one that fell asleep with a
+  /// tetrahedron inside out (a bunny's cap sliver at -0.002 of its rest volume, from the pile's
+  /// frame 243 at pure lumping, docs/notes/2026-12-07-thin-tetrahedra-watch.md) would keep it so
+  /// until woken, its surface folded where a user sees it. Returns the bodies that fell asleep
+  /// or woke, ascending.
   ///
   /// Why the motion over the frame, not the velocities: a body held at rest by constraints
   /// that fight (the volume floor's pushes against the contacts' on a crushed bottom layer)
@@ -52,7 +57,8 @@ class BodySleep {
   /// never slept (docs/notes/2026-12-05-friction-tilt.md).
   std::vector<std::uint32_t> end_frame(
       std::span<const glm::vec4> position,
-      const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links);
+      const std::vector<std::pair<std::uint32_t, std::uint32_t>>& links,
+      std::span<const std::uint8_t> inverted = {});
 
   /// Wakes every sleeping body (their slow time counts from zero again, as a woken island's
   /// does). Returns the bodies that woke, ascending.

@@ -9,6 +9,7 @@
 
 #include "core/collision/primitive_distance.h"
 #include "core/response/contact_constraints.h"
+#include "core/sim/mass_spring.h"
 #include "cpu/executor.h"
 #include "cpu/parallel_for.h"
 #include "deformcd/error.h"
@@ -508,7 +509,18 @@ void ContactResponse::end_frame() {
   for (std::uint32_t a = 0; a < n; ++a)
     for (std::uint32_t b = a; b < n; ++b)
       if (linked_[a * n + b] != 0u) links.emplace_back(a, b);
-  apply_sleep_changes(sleep_->end_frame(positions(), links));
+  // The bodies with a tetrahedron inside out (of those the volume floor holds: every one,
+  // unless the floor is off) stay awake while their floors restore them.
+  const std::span<const glm::vec4> x = positions();
+  std::vector<std::uint8_t> inverted(objects_.size(), 0u);
+  for (const VolumeFloor& v : volume_floors_) {
+    if (inverted[v.body] != 0u || sleep_->asleep(v.body)) continue;
+    glm::vec3 corner[4], g[4];
+    for (std::uint32_t k = 0; k < 4u; ++k)
+      corner[k] = glm::vec3(x[v.pair.nodes[k]]);
+    if (!(sim::tetrahedron_volume(corner, g) > 0.0f)) inverted[v.body] = 1u;
+  }
+  apply_sleep_changes(sleep_->end_frame(x, links, inverted));
 }
 
 void ContactResponse::set_gravity(const glm::vec3& gravity) {

@@ -134,6 +134,31 @@ TEST(BodySleep, AnIslandThatFellAsleepTogetherWakesTogether) {
   EXPECT_EQ(sleep.inverse_masses(2), std::vector<float>{0.0f});
 }
 
+// A body with a tetrahedron inside out is not at rest, however slowly it moves: it stays awake
+// (its slow time counts from zero again) until the flag clears, then sleeps after the slow time,
+// as a body that never had one. One-node bodies, both still: 0 flagged for four frames.
+TEST(BodySleep, ABodyWithATetrahedronInsideOutStaysAwake) {
+  std::vector<gpu::ObjectInfo> objects(2, gpu::ObjectInfo{});
+  for (std::uint32_t b = 0; b < 2u; ++b) {
+    objects[b].node_offset = b;
+    objects[b].node_count = 1u;
+  }
+  BodySleep sleep({.speed = 0.5f, .time = 0.25f}, objects, std::vector<float>(2, 1.0f),
+                  std::vector<float>(2, 1.0f), std::vector<std::uint8_t>(2, 1u), 0.1f);
+  const std::vector<glm::vec4> still(2, glm::vec4(0.0f));
+  const std::vector<std::uint8_t> first_inverted = {1u, 0u}, none = {0u, 0u};
+  int frame = 0;
+  std::vector<int> fell_asleep(2, 0);
+  for (; frame < 12; ++frame) {
+    const std::vector<std::uint8_t>& inverted = frame < 4 ? first_inverted : none;
+    for (const std::uint32_t b : sleep.end_frame(still, {}, inverted))
+      if (sleep.asleep(b)) fell_asleep[b] = frame;
+  }
+  EXPECT_EQ(fell_asleep[1], 3) << "slow from frame 1: 0.3 s by frame 3";
+  EXPECT_EQ(fell_asleep[0], 6) << "slow from frame 4, once the flag cleared: 0.3 s by frame 6";
+  EXPECT_THROW(sleep.end_frame(still, {}, std::vector<std::uint8_t>{0u}), Error);
+}
+
 TEST(BodySleep, TheSameOnOneAndTwoThreads) {
   const std::vector<BodyInit> bodies = test::blocks_over_a_slab(3.0);
   std::vector<glm::vec3> end[2];
