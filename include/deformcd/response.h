@@ -53,7 +53,8 @@ inline constexpr int kMaxResponseIterations = 64;
 /// along a path never sleep. A body is slow in a frame when the mass-weighted root mean square
 /// of its nodes' moves over the frame stays below `speed` x its mean surface edge length per
 /// second x the frame's length (the motion a viewer sees: velocities that cancel within the
-/// frame, where constraints fight at rest, do not keep a body awake).
+/// frame, where constraints fight at rest, do not keep a body awake), and, with the volume
+/// floor on, none of its tetrahedra is inside out (asleep, it would keep the fold until woken).
 struct SleepSettings {
   /// Mean surface edges per second (> 0).
   float speed = 0.5f;
