@@ -209,21 +209,25 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
             },
             256);
         // The node pass, over the nodes with an active constraint of the group (the others'
-        // sums are zero).
-        parallel_for(touched_.size(), [&](std::size_t t) {
-          const std::uint32_t i = touched_[t];
-          const std::uint32_t begin = slot_begin_[i] + (group == 0u ? 0u : counts_[2u * i]);
-          const std::uint32_t stop = begin + counts_[2u * i + group];
-          if (begin == stop) return;
-          glm::vec3 dx(0.0f);
-          glm::vec4 dv(0.0f);
-          response::gather_correction(active_slots_.data(), begin, stop, acting_flags_.data(),
-                                      corrections_.data(), dx, dv);
-          if (last && group == 0u && dv.w > 0.0f && nodes_.host_positions[i].w > 0.0f)
-            slid_[i] = substep_;
-          response::apply_correction(nodes_.host_positions[i], nodes_.host_velocities[i], dx,
-                                     glm::vec3(dv));
-        });
+        // sums are zero). Split finer than the default grain: the impact touches about 2,400
+        // nodes a substep, which the default left to one thread.
+        parallel_for(
+            touched_.size(),
+            [&](std::size_t t) {
+              const std::uint32_t i = touched_[t];
+              const std::uint32_t begin = slot_begin_[i] + (group == 0u ? 0u : counts_[2u * i]);
+              const std::uint32_t stop = begin + counts_[2u * i + group];
+              if (begin == stop) return;
+              glm::vec3 dx(0.0f);
+              glm::vec4 dv(0.0f);
+              response::gather_correction(active_slots_.data(), begin, stop, acting_flags_.data(),
+                                          corrections_.data(), dx, dv);
+              if (last && group == 0u && dv.w > 0.0f && nodes_.host_positions[i].w > 0.0f)
+                slid_[i] = substep_;
+              response::apply_correction(nodes_.host_positions[i], nodes_.host_velocities[i], dx,
+                                         glm::vec3(dv));
+            },
+            512);
       }
     };
     // Whether an active constraint is still violated (contact_violated): an OR, the same
