@@ -8,8 +8,8 @@
 #include <utility>
 
 #include "core/collision/primitive_distance.h"
+#include "core/geometry.h"
 #include "core/response/contact_constraints.h"
-#include "core/sim/mass_spring.h"
 #include "cpu/executor.h"
 #include "cpu/parallel_for.h"
 #include "deformcd/error.h"
@@ -515,10 +515,9 @@ void ContactResponse::end_frame() {
   std::vector<std::uint8_t> inverted(objects_.size(), 0u);
   for (const VolumeFloor& v : volume_floors_) {
     if (inverted[v.body] != 0u || sleep_->asleep(v.body)) continue;
-    glm::vec3 corner[4], g[4];
-    for (std::uint32_t k = 0; k < 4u; ++k)
-      corner[k] = glm::vec3(x[v.pair.nodes[k]]);
-    if (!(sim::tetrahedron_volume(corner, g) > 0.0f)) inverted[v.body] = 1u;
+    const auto corner = [&](std::uint32_t k) { return glm::dvec3(glm::vec3(x[v.pair.nodes[k]])); };
+    if (!(geom::signed_volume6(corner(0), corner(1), corner(2), corner(3)) > 0.0))
+      inverted[v.body] = 1u;
   }
   apply_sleep_changes(sleep_->end_frame(x, links, inverted));
 }

@@ -43,6 +43,19 @@ float highest(const World& world, std::size_t body) {
   return y;
 }
 
+// BodySleep over `count` one-node bodies (node b is body b's), each free and allowed to sleep:
+// slow below 0.5 m/s, asleep after 0.25 s, frames of 0.1 s.
+BodySleep one_node_bodies(std::uint32_t count) {
+  std::vector<gpu::ObjectInfo> objects(count, gpu::ObjectInfo{});
+  for (std::uint32_t b = 0; b < count; ++b) {
+    objects[b].node_offset = b;
+    objects[b].node_count = 1u;
+  }
+  const SleepSettings settings{.speed = 0.5f, .time = 0.25f};
+  return BodySleep(settings, objects, std::vector<float>(count, 1.0f),
+                   std::vector<float>(count, 1.0f), std::vector<std::uint8_t>(count, 1u), 0.1f);
+}
+
 TEST(BodySleep, ARestingBlockSleepsWakesWhenABlockLandsOnItAndBothSleepTogether) {
   const std::vector<BodyInit> bodies = test::blocks_over_a_slab(3.0);
   World world(bodies, test::sleep_step(), test::sleep_options(BackendKind::kCpu, 1));
@@ -102,13 +115,7 @@ TEST(BodySleep, ARestingBlockSleepsWakesWhenABlockLandsOnItAndBothSleepTogether)
 // fell asleep alone sleeps on. One-node bodies: 0 and 1 resting on each other, 2 apart, 3
 // moving until it hits 1.
 TEST(BodySleep, AnIslandThatFellAsleepTogetherWakesTogether) {
-  std::vector<gpu::ObjectInfo> objects(4, gpu::ObjectInfo{});
-  for (std::uint32_t b = 0; b < 4u; ++b) {
-    objects[b].node_offset = b;
-    objects[b].node_count = 1u;
-  }
-  BodySleep sleep({.speed = 0.5f, .time = 0.25f}, objects, std::vector<float>(4, 1.0f),
-                  std::vector<float>(4, 1.0f), std::vector<std::uint8_t>(4, 1u), 0.1f);
+  BodySleep sleep = one_node_bodies(4u);
   // Body 3 moves 0.3 m a frame (3 m/s); 0 jitters by 0.01 m a frame (slow) around a point.
   std::vector<glm::vec4> position(4, glm::vec4(0.0f));
   const auto frame_end = [&](int frame) {
@@ -138,13 +145,7 @@ TEST(BodySleep, AnIslandThatFellAsleepTogetherWakesTogether) {
 // (its slow time counts from zero again) until the flag clears, then sleeps after the slow time,
 // as a body that never had one. One-node bodies, both still: 0 flagged for four frames.
 TEST(BodySleep, ABodyWithATetrahedronInsideOutStaysAwake) {
-  std::vector<gpu::ObjectInfo> objects(2, gpu::ObjectInfo{});
-  for (std::uint32_t b = 0; b < 2u; ++b) {
-    objects[b].node_offset = b;
-    objects[b].node_count = 1u;
-  }
-  BodySleep sleep({.speed = 0.5f, .time = 0.25f}, objects, std::vector<float>(2, 1.0f),
-                  std::vector<float>(2, 1.0f), std::vector<std::uint8_t>(2, 1u), 0.1f);
+  BodySleep sleep = one_node_bodies(2u);
   const std::vector<glm::vec4> still(2, glm::vec4(0.0f));
   const std::vector<std::uint8_t> first_inverted = {1u, 0u}, none = {0u, 0u};
   int frame = 0;
