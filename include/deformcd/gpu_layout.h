@@ -51,18 +51,19 @@ enum Binding : std::uint32_t {
   kCandidatePair = 28,      ///< glm::uvec2 per candidate face pair (global face indices)
   // Contact response (beyond the paper).
   kContactPair = 29,  ///< ContactPair per contact constraint of the frame
-  /// two glm::vec4 per constraint corner (slot 4 p + k): 2 slot its position change, 2 slot + 1
-  /// its velocity change (xyz); the w of constraint p's first (8 p) > 0 when it acts
+  /// two glm::vec4 per corner of a constraint acting in the projection (slot 4 a + k, a its place
+  /// in the acting list, ascending): 2 slot its position change, 2 slot + 1 its velocity change
+  /// (xyz; w, the slide flag)
   kContactCorrection = 30,
   kNodeContactOffset = 31,  ///< uint per node + 1: CSR offsets into kNodeContactList
   kNodeContactList = 32,    ///< uint per (node, constraint corner): the slot 4 p + k, sorted
-  kNodeContactCount = 33,   ///< uint per node: its active constraints this substep
+  kNodeContactCount = 33,   ///< two uint per node: its active contacts, volume constraints
   kFrameStart = 34,         ///< glm::vec4 per node: position at the frame's start, w = reach
   kNodeMotion = 35,         ///< glm::vec4 per node: path velocity (xyz, m/s), reach (w, m)
   /// glm::vec4 per node at a projection's start: position - h x velocity (xyz), distance from
   /// its straight path (w, m) (response::projection_start)
   kProjectionStart = 36,
-  /// three glm::vec4 per constraint (3 p to 3 p + 2): what it has given in the substep's
+  /// three glm::vec4 per acting constraint (3 a to 3 a + 2): what it has given in the substep's
   /// iterations so far (normal speed, push, the first iteration's approach; friction, the first
   /// iteration's slip; the hold; response::solve_contact)
   kContactImpulse = 37,

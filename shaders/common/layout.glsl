@@ -38,14 +38,14 @@
 #define BINDING_BODY_BVH 27            // BodyBvh per body
 #define BINDING_CANDIDATE_PAIR 28      // uvec2 per candidate face pair (global face indices)
 #define BINDING_CONTACT_PAIR 29        // ContactPair per contact constraint of the frame
-#define BINDING_CONTACT_CORRECTION 30  // vec4 per constraint corner (4 p + k): xyz, w = counts
+#define BINDING_CONTACT_CORRECTION 30  // 2 vec4 per acting constraint corner (4 a + k)
 #define BINDING_NODE_CONTACT_OFFSET 31  // uint per node + 1: CSR offsets
 #define BINDING_NODE_CONTACT_LIST 32    // uint per (node, constraint corner): slot 4 p + k
-#define BINDING_NODE_CONTACT_COUNT 33   // uint per node: active constraints this substep
+#define BINDING_NODE_CONTACT_COUNT 33   // 2 uint per node: active contacts, volume constraints
 #define BINDING_FRAME_START 34          // vec4 per node: frame-start position, w = reach
 #define BINDING_NODE_MOTION 35          // vec4 per node: path velocity (xyz, m/s), reach (w, m)
 #define BINDING_PROJECTION_START 36     // vec4 per node: x - h v (xyz), path deviation (w)
-#define BINDING_CONTACT_IMPULSE 37      // vec4 per constraint: given this substep (solve_contact)
+#define BINDING_CONTACT_IMPULSE 37      // 3 vec4 per acting constraint: given this substep
 #define BINDING_NODE_SLID 38            // uint per node: the last substep a contact of it slid in
 #define BINDING_NODE_GUARD 39           // uint per node: the last projection a guard named it
 

@@ -1,7 +1,7 @@
 #version 430
 // The contact response's activity pass: one invocation per constraint p of [u_pair_begin,
-// u_pair_end) says whether it acts now, in the w of its first correction slot (8 p), which the
-// count pass reads before the solve pass overwrites it. Two dispatches a projection
+// u_pair_end) says whether it acts now (1, else 0) in its acting flag, which the compaction pass
+// turns into the acting list. Two dispatches a projection
 // (src/core/response/contact_constraints.h): the contacts (contact_awake, then contact_active:
 // only an awake constraint looks at its geometry), each active one that guards volume
 // constraints (guards_volumes) stamping its nodes with the projection (u_projection: every
@@ -9,6 +9,7 @@
 // read the stamps. No two invocations write the same slot.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
+#include "response/response_work_buffers.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -21,8 +22,8 @@ layout(std430, binding = BINDING_NODE_VELOCITY) readonly buffer NodeVelocities {
 layout(std430, binding = BINDING_CONTACT_PAIR) readonly buffer ContactPairs {
   ContactPair pairs[];
 };
-layout(std430, binding = BINDING_CONTACT_CORRECTION) writeonly buffer ContactCorrections {
-  vec4 corrections[];
+layout(std430, binding = BINDING_CONTACT_ACTING) writeonly buffer ContactActing {
+  uint contact_acting[];
 };
 layout(std430, binding = BINDING_PROJECTION_START) readonly buffer ProjectionStarts {
   vec4 projection_starts[];
@@ -71,5 +72,5 @@ void main() {
       for (uint i = 0u; i < 4u; ++i) node_guard[pair.nodes[i]] = u_projection;
     }
   }
-  corrections[8u * p] = vec4(0.0, 0.0, 0.0, acting ? 1.0 : 0.0);
+  contact_acting[p] = acting ? 1u : 0u;
 }

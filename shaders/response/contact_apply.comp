@@ -1,16 +1,16 @@
 #version 430
-// The contact response's node pass: one invocation per node sums its constraints' corrections over
-// its CSR list in list order (gather_correction in src/core/response/contact_constraints.h, written
-// out here because GLSL cannot pass a buffer to a function), applies the sums to its own position
-// and velocity (apply_correction) and, in a projection's last pass (u_watch_reach), flags a stray
-// beyond its reach (strayed); after the contacts' last iteration (u_record_slide) it records a
-// slide of one of its contacts (the w of the velocity slots). Only the slots of one group's
-// constraints, [u_pair_begin, u_pair_end), are summed (the contacts, then the volume constraints:
-// contact_pairs.comp); slots of constraints that do not act (the flag in the w of a constraint's
-// first slot) are skipped, as the CPU skips them. Each invocation reads and writes only its own
+// The contact response's node pass: one invocation per touched node (the count pass's list,
+// dispatched indirectly) sums its active corrections of one group (u_group: the contacts, then
+// the volume constraints: contact_pairs.comp) over its active-slot list in list order
+// (gather_correction in src/core/response/contact_constraints.h, written out here because GLSL
+// cannot pass a buffer to a function) and applies the sums to its own position and velocity
+// (apply_correction); after the contacts' last iteration (u_record_slide) it records a slide of
+// one of its contacts (the w of the velocity slots). A node without an active constraint of
+// the group is left alone, as the CPU leaves it. Each invocation reads and writes only its own
 // node's position and velocity.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
+#include "response/response_work_buffers.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -26,44 +26,39 @@ layout(std430, binding = BINDING_CONTACT_CORRECTION) readonly buffer ContactCorr
 layout(std430, binding = BINDING_NODE_CONTACT_OFFSET) readonly buffer NodeContactOffsets {
   uint node_contact_offset[];
 };
-layout(std430, binding = BINDING_NODE_CONTACT_LIST) readonly buffer NodeContactList {
-  uint node_contact_list[];
-};
-// The counts, and after them (at u_node_count) the flag a node sets when it strays.
-layout(std430, binding = BINDING_NODE_CONTACT_COUNT) buffer NodeContactCounts {
+layout(std430, binding = BINDING_NODE_CONTACT_COUNT) readonly buffer NodeContactCounts {
   uint node_contact_count[];
 };
-layout(std430, binding = BINDING_FRAME_START) readonly buffer FrameStarts {
-  vec4 frame_start[];
+layout(std430, binding = BINDING_NODE_ACTIVE_SLOT) readonly buffer NodeActiveSlots {
+  uint node_active_slot[];
 };
-layout(std430, binding = BINDING_NODE_MOTION) readonly buffer NodeMotion {
-  vec4 node_motion[];
+layout(std430, binding = BINDING_TOUCHED_NODE) readonly buffer TouchedNodes {
+  uint touched_node[];
+};
+layout(std430, binding = BINDING_RESPONSE_STATE) readonly buffer ResponseState {
+  uint response_state[];
 };
 layout(std430, binding = BINDING_NODE_SLID) buffer NodeSlid {
   uint node_slid[];
 };
 
-uniform uint u_node_count;
-uniform uint u_pair_begin;
-uniform uint u_pair_end;
-uniform float u_elapsed;
-uniform bool u_watch_reach;
+uniform uint u_group;
 uniform bool u_record_slide;
 uniform uint u_substep;
 
 void main() {
-  const uint i = gl_GlobalInvocationID.x;
-  if (i >= u_node_count) return;  // the last work group reaches past the end
+  const uint t = gl_GlobalInvocationID.x;
+  if (t >= response_state[RESPONSE_TOUCHED_NODES]) return;  // the last group reaches past
+  const uint i = touched_node[t];
+  // The group's slots: the contacts' first, then the volume constraints'.
+  const uint begin = node_contact_offset[i] + (u_group == 0u ? 0u : node_contact_count[2u * i]);
+  const uint end = begin + node_contact_count[2u * i + u_group];
+  if (begin == end) return;
   // gather_correction, line for line.
-  const uint begin = node_contact_offset[i];
-  const uint end = node_contact_offset[i + 1u];
   precise vec3 dx = vec3(0.0);
   precise vec4 dv = vec4(0.0);
   for (uint e = begin; e < end; ++e) {
-    const uint slot = node_contact_list[e];
-    const uint p = slot / 4u;
-    if (p < u_pair_begin || p >= u_pair_end) continue;  // another group's
-    if (!(corrections[8u * p].w > 0.0)) continue;
+    const uint slot = node_active_slot[e];
     dx += corrections[2u * slot].xyz;
     dv += corrections[2u * slot + 1u];
   }
@@ -73,10 +68,6 @@ void main() {
   // the substep (the CPU node pass's rule).
   if (u_record_slide && dv.w > 0.0 && position.w > 0.0) node_slid[i] = u_substep;
   apply_correction(position, velocity, dx, dv.xyz);
-  // Every writer writes the same 1, so the flag is the same whatever the order.
-  if (u_watch_reach && strayed(position, frame_start[i], node_motion[i], u_elapsed)) {
-    node_contact_count[2u * u_node_count] = 1u;
-  }
   positions[i] = position;
   velocities[i] = velocity;
 }

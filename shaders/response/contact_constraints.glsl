@@ -5,9 +5,9 @@
 // restitution) is in the C++ header.
 //
 // gather_correction is not here: GLSL 4.30 cannot pass a buffer to a function, so its loop is
-// written out in response/contact_apply.comp, again line for line. The count pass
-// (response/contact_count.comp) counts each node's active constraints over its list; the CPU
-// sums the same integer counts from its compacted list of active constraints.
+// written out in response/contact_apply.comp, again line for line. The compaction and count
+// passes (response/contact_compact.comp, contact_count.comp) list the acting constraints and
+// each node's active slots; the CPU builds the same lists on the host.
 //
 // Every float is `precise`: without it the driver may fuse a * b + c into one fma (one rounding
 // instead of two) or reorder sums, and the results would drift from the C++ ones by an ulp here

@@ -1,18 +1,17 @@
 #version 430
-// The contact response's solve pass (after the activity and count passes; once per Jacobi
-// iteration): one invocation per constraint p that the activity pass found acting (the flag in
-// the w of its first slot, 8 p) reads its four nodes' positions and velocities and writes their
-// corrections to the constraint's own slots: corner 4 p + k's at 2 (4 p + k) (position) and
-// 2 (4 p + k) + 1 (velocity) (solve_contact), the flag kept for the next iteration, and what it
-// has given over the substep's iterations to its own impulse slots 3 p to 3 p + 2; it reads its
-// free nodes' slide stamps (the node pass writes them after the last iteration) and projection
-// starts (the deviation pass's). One dispatch
-// covers one group, constraints [u_pair_begin, u_pair_end): the contacts (u_group 0) or the
-// volume constraints (1), its nodes weighing by their counts in the group. An inactive
-// constraint is left alone, as the CPU backend leaves it: the node pass skips its slots. No two
-// invocations write the same slot, and nothing here writes a node.
+// The contact response's solve pass (after the compaction and count passes; once per Jacobi
+// iteration): one invocation per acting constraint, entry a of the acting list (constraint p),
+// reads its four nodes' positions and velocities and writes their corrections to its own
+// slots: corner k's at 2 (4 a + k) (position) and 2 (4 a + k) + 1 (velocity) (solve_contact),
+// and what it has given over the substep's iterations to its own impulse slots 3 a to 3 a + 2;
+// it reads its free nodes' slide stamps (the node pass writes them after the last iteration)
+// and projection starts (the deviation pass's). Dispatched indirectly over one group: the
+// acting contacts (u_group 0, the acting list's first RESPONSE_ACTING_CONTACTS entries) or the
+// acting volume constraints (1, the rest), its nodes weighing by their counts in the group. No
+// two invocations write the same slot, and nothing here writes a node.
 #include "common/layout.glsl"
 #include "response/contact_constraints.glsl"
+#include "response/response_work_buffers.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -43,9 +42,13 @@ layout(std430, binding = BINDING_PROJECTION_START) readonly buffer ProjectionSta
 layout(std430, binding = BINDING_FRAME_START) readonly buffer FrameStarts {
   vec4 frame_start[];
 };
+layout(std430, binding = BINDING_ACTING_LIST) readonly buffer ActingList {
+  uint acting_list[];
+};
+layout(std430, binding = BINDING_RESPONSE_STATE) readonly buffer ResponseState {
+  uint response_state[];
+};
 
-uniform uint u_pair_begin;
-uniform uint u_pair_end;
 uniform uint u_group;
 uniform float u_h;
 uniform float u_friction_static;
@@ -57,10 +60,11 @@ uniform bool u_last_iteration;
 uniform uint u_substep;
 
 void main() {
-  const uint p = u_pair_begin + gl_GlobalInvocationID.x;
-  if (p >= u_pair_end) return;  // the last work group reaches past the end
-  if (!(corrections[8u * p].w > 0.0)) return;  // not acting in this substep
-  const ContactPair pair = pairs[p];
+  const uint contacts = response_state[RESPONSE_ACTING_CONTACTS];
+  const uint a = (u_group == 0u ? 0u : contacts) + gl_GlobalInvocationID.x;
+  // The last work group reaches past the group's end.
+  if (a >= (u_group == 0u ? contacts : response_state[RESPONSE_ACTING_TOTAL])) return;
+  const ContactPair pair = pairs[acting_list[a]];
   vec4 x[4], v[4], start[4];
   for (uint i = 0u; i < 4u; ++i) {
     x[i] = positions[pair.nodes[i]];
@@ -77,15 +81,14 @@ void main() {
     slid[i] = node_slid[pair.nodes[i]];
   }
   vec4 correction[8];
-  vec4 given[3] = vec4[3](impulses[3u * p], impulses[3u * p + 1u], impulses[3u * p + 2u]);
+  vec4 given[3] = vec4[3](impulses[3u * a], impulses[3u * a + 1u], impulses[3u * a + 2u]);
   solve_contact(pair, x, v, count, start, window_start,
                 ContactConstants(u_h, u_friction_static, u_friction_dynamic, u_restitution,
                                  u_max_untangle_step, 0.0),
                 u_first_iteration, u_last_iteration, slid_before(x, slid, u_substep), given,
                 correction);
-  correction[0].w = 1.0;  // the activity flag, for the next iteration's solve and node passes
-  for (uint k = 0u; k < 8u; ++k) corrections[8u * p + k] = correction[k];
-  impulses[3u * p] = given[0];
-  impulses[3u * p + 1u] = given[1];
-  impulses[3u * p + 2u] = given[2];
+  for (uint k = 0u; k < 8u; ++k) corrections[8u * a + k] = correction[k];
+  impulses[3u * a] = given[0];
+  impulses[3u * a + 1u] = given[1];
+  impulses[3u * a + 2u] = given[2];
 }

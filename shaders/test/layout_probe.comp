@@ -5,6 +5,7 @@
 // tests/gl/layout_agreement_test.cpp computes the same function.
 #include "collision/gl_work_buffers.glsl"
 #include "common/layout.glsl"
+#include "response/response_work_buffers.glsl"
 
 layout(local_size_x = 4) in;
 
@@ -188,5 +189,19 @@ void main() {
     bindings[55] = CONTACT_EDGE_EDGE;
     bindings[56] = CONTACT_UNTANGLE;
     bindings[57] = CONTACT_VOLUME;
+    bindings[58] = BINDING_CONTACT_ACTING;
+    bindings[59] = BINDING_ACTING_LIST;
+    bindings[60] = BINDING_NODE_ACTIVE_SLOT;
+    bindings[61] = BINDING_TOUCHED_NODE;
+    bindings[62] = BINDING_RESPONSE_STATE;
+    bindings[63] = RESPONSE_ACTING_CONTACTS;
+    bindings[64] = RESPONSE_ACTING_TOTAL;
+    bindings[65] = RESPONSE_TOUCHED_NODES;
+    bindings[66] = RESPONSE_STRAY_FLAG;
+    bindings[67] = RESPONSE_RESIDUAL_FLAG;
+    bindings[68] = RESPONSE_SOLVE_CONTACTS_ARGS;
+    bindings[69] = RESPONSE_SOLVE_VOLUMES_ARGS;
+    bindings[70] = RESPONSE_RESIDUAL_ARGS;
+    bindings[71] = RESPONSE_NODE_PASS_ARGS;
   }
 }

@@ -166,7 +166,6 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         active_slots_[slot_cursor_[acting_pairs_[a].nodes[corner]]++] = 4u * a + corner;
     corrections_.resize(8u * acting_.size());
     impulses_.resize(3u * acting_.size());
-    acting_flags_.assign(acting_.size(), 1u);
     const std::size_t split = static_cast<std::size_t>(
         std::lower_bound(acting_.begin(), acting_.end(), first_volume_) - acting_.begin());
     // One Jacobi iteration: the contacts, then the volume constraints on the positions the
@@ -220,8 +219,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
               if (begin == stop) return;
               glm::vec3 dx(0.0f);
               glm::vec4 dv(0.0f);
-              response::gather_correction(active_slots_.data(), begin, stop, acting_flags_.data(),
-                                          corrections_.data(), dx, dv);
+              response::gather_correction(active_slots_.data(), begin, stop, corrections_.data(),
+                                          dx, dv);
               if (last && group == 0u && dv.w > 0.0f && nodes_.host_positions[i].w > 0.0f)
                 slid_[i] = substep_;
               response::apply_correction(nodes_.host_positions[i], nodes_.host_velocities[i], dx,

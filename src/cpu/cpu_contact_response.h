@@ -1,15 +1,14 @@
 #pragma once
 // The contact response on the CPU, in parallel with oneTBB: the same passes as the GL backend's
-// shaders (deviation, activity, count, solve, node) over a simulation's positions and
-// velocities in place (in host memory: sim::NodeBuffers), with the same results. Only the active
-// constraints (a few percent of the window's candidates) are counted and solved: their list is
-// compacted after the activity pass in constraint order, the counts summed from it, and each node's
-// active slots listed in its list's order, so the node pass adds the GL pass's terms in its order
-// without walking the inactive slots (on the impact scene that pass took a third of the
-// projections' time). The projections before the last visit only the nodes the active constraints
-// touch: every other node's corrections are zero, and only the last projection watches the reaches.
-// Each projection solves the contacts, then the volume constraints
-// (response::first_volume_constraint), each group with its own counts and node pass.
+// shaders (deviation, activity, compaction, count, solve, node, stray) over a simulation's
+// positions and velocities in place (in host memory: sim::NodeBuffers), with the same results.
+// Only the active constraints (a few percent of the window's candidates) are counted and solved:
+// their list is compacted after the activity pass in constraint order, the counts summed from
+// it, and each node's active slots listed in its list's order, so the node pass adds GL's terms
+// in GL's order without walking the inactive slots. The node passes visit only the nodes the
+// active constraints touch: every other node's corrections are zero, and the stray check after
+// the iterations watches the reaches. Each projection solves the contacts, then the volume
+// constraints (response::first_volume_constraint), each group with its own counts and node pass.
 
 #include <memory>
 #include <vector>
@@ -47,10 +46,9 @@ class CpuContactResponse final : public response::ResponseBackend {
   const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
   std::vector<glm::vec4> frame_start_;  // per node: position at the frame's start, w = reach
   // Per acting constraint acting_[a]: two per corner (slot 4 a + k), position and velocity
-  // change; three of what it gave this substep; and a 1 (gather_correction's activity flags).
+  // change; three of what it gave this substep.
   std::vector<glm::vec4> corrections_;
   std::vector<glm::vec4> impulses_;
-  std::vector<std::uint32_t> acting_flags_;
   // Per node n: its active contacts (2 n) and volume constraints (2 n + 1) this substep.
   std::vector<std::uint32_t> counts_;
   std::size_t first_volume_ = 0;                // the first volume constraint (all after it are)

@@ -14,6 +14,7 @@
 #include "gl/gl_test_context.h"
 #include "gpu/gl/collision_work_buffers.h"
 #include "gpu/gl/compute_program.h"
+#include "gpu/gl/response_work_buffers.h"
 
 namespace deformcd::gl {
 namespace {
@@ -40,7 +41,7 @@ struct ProbeOutput {
 };
 
 constexpr std::uint32_t kBindingCount = gpu::kNodeGuard + 1;
-constexpr std::uint32_t kConstantCount = 18;
+constexpr std::uint32_t kConstantCount = 32;
 
 // Runs shaders/test/layout_probe.comp over `count` elements of each struct.
 ProbeOutput run_layout_probe(std::uint32_t count) {
@@ -240,6 +241,20 @@ TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
   EXPECT_EQ(constants[15], gpu::kContactEdgeEdge) << "CONTACT_EDGE_EDGE";
   EXPECT_EQ(constants[16], gpu::kContactUntangle) << "CONTACT_UNTANGLE";
   EXPECT_EQ(constants[17], gpu::kContactVolume) << "CONTACT_VOLUME";
+  EXPECT_EQ(constants[18], kContactActingBinding) << "BINDING_CONTACT_ACTING";
+  EXPECT_EQ(constants[19], kActingListBinding) << "BINDING_ACTING_LIST";
+  EXPECT_EQ(constants[20], kNodeActiveSlotBinding) << "BINDING_NODE_ACTIVE_SLOT";
+  EXPECT_EQ(constants[21], kTouchedNodeBinding) << "BINDING_TOUCHED_NODE";
+  EXPECT_EQ(constants[22], kResponseStateBinding) << "BINDING_RESPONSE_STATE";
+  EXPECT_EQ(constants[23], kActingContactsWord) << "RESPONSE_ACTING_CONTACTS";
+  EXPECT_EQ(constants[24], kActingTotalWord) << "RESPONSE_ACTING_TOTAL";
+  EXPECT_EQ(constants[25], kTouchedNodesWord) << "RESPONSE_TOUCHED_NODES";
+  EXPECT_EQ(constants[26], kStrayFlagWord) << "RESPONSE_STRAY_FLAG";
+  EXPECT_EQ(constants[27], kResidualFlagWord) << "RESPONSE_RESIDUAL_FLAG";
+  EXPECT_EQ(constants[28], kSolveContactsArgsWord) << "RESPONSE_SOLVE_CONTACTS_ARGS";
+  EXPECT_EQ(constants[29], kSolveVolumesArgsWord) << "RESPONSE_SOLVE_VOLUMES_ARGS";
+  EXPECT_EQ(constants[30], kResidualArgsWord) << "RESPONSE_RESIDUAL_ARGS";
+  EXPECT_EQ(constants[31], kNodePassArgsWord) << "RESPONSE_NODE_PASS_ARGS";
 }
 
 }  // namespace

@@ -487,7 +487,7 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
 /// sticking contact's hold measures how far pushes carried its point; `window_start`: where
 /// they started the window (contact_geometry's `start`).
 ///
-/// `given` (three ContactImpulse slots, 3 p to 3 p + 2, per constraint) carries what the
+/// `given` (three ContactImpulse slots, 3 a to 3 a + 2, per acting constraint) carries what the
 /// constraint has given over the substep's iterations so far: given[0] x the normal speed, y the
 /// push, z the first iteration's approach; given[1] xyz the friction (a velocity, in the units
 /// of given[0].x), w the first iteration's slip; given[2] xyz the hold (a position); the first
@@ -625,18 +625,15 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   }
 }
 
-/// The node pass: one node's summed position and velocity corrections over its list, in list
-/// order, of its active constraints (`active`: one flag per constraint). Both backends solve
-/// only the active constraints and skip the others' slots here (GL reads the flag from the w of
-/// a constraint's first slot).
+/// The node pass: one node's summed position and velocity corrections over `list[begin, end)`,
+/// its active slots (4 a + corner, a a constraint's place in the acting list) in list order.
+/// Both backends list only the active slots (the CPU on the host, GL in its count pass).
 inline void gather_correction(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
-                              const std::uint32_t* active, const glm::vec4* corrections,
-                              glm::vec3& dx, glm::vec4& dv) {
+                              const glm::vec4* corrections, glm::vec3& dx, glm::vec4& dv) {
   dx = glm::vec3(0.0f);
   dv = glm::vec4(0.0f);
   for (std::uint32_t e = begin; e < end; ++e) {
     const std::uint32_t slot = list[e];
-    if (active[slot / 4u] == 0u) continue;
     dx += glm::vec3(corrections[2u * slot]);
     dv += corrections[2u * slot + 1u];
   }

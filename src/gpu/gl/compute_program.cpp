@@ -44,8 +44,18 @@ void ComputeProgram::dispatch_covering(std::uint32_t invocations) const {
   if (groups > 0) dispatch(groups);
 }
 
+void ComputeProgram::dispatch_indirect(std::uint32_t args, std::uint32_t word) const {
+  use();
+  DEFORMCD_GL_CHECK(glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, args));
+  DEFORMCD_GL_CHECK(glDispatchComputeIndirect(static_cast<GLintptr>(word * sizeof(std::uint32_t))));
+}
+
 void storage_barrier() {
   DEFORMCD_GL_CHECK(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT));
+}
+
+void command_barrier() {
+  DEFORMCD_GL_CHECK(glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT));
 }
 
 void memory_barrier(std::uint32_t barrier_bits) {

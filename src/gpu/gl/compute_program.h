@@ -24,6 +24,9 @@ class ComputeProgram : public Program {
   // Enough work groups along x for `invocations` threads; the shader must skip the indices
   // past the end of its data, since the last group may reach beyond it.
   void dispatch_covering(std::uint32_t invocations) const;
+  // use(), then glDispatchComputeIndirect with the work-group counts at uint `word` of buffer
+  // `args` (a GL buffer name), which earlier shaders wrote: call command_barrier() after them.
+  void dispatch_indirect(std::uint32_t args, std::uint32_t word) const;
 
   // The layout(local_size_x/y/z) of the shader.
   [[nodiscard]] const std::array<std::uint32_t, 3>& work_group_size() const noexcept {
@@ -40,6 +43,10 @@ class ComputeProgram : public Program {
 // Makes shader-storage writes of earlier dispatches visible to later ones: call between
 // dispatches where one reads what another wrote.
 void storage_barrier();
+
+// Makes shader-storage writes of earlier dispatches visible to later ones and to the indirect
+// dispatches reading their arguments from them.
+void command_barrier();
 
 // glMemoryBarrier with any GL_*_BARRIER_BIT combination.
 void memory_barrier(std::uint32_t barrier_bits);

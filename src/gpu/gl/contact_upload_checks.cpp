@@ -4,6 +4,7 @@
 
 #include "deformcd/error.h"
 #include "deformcd/gpu_layout.h"
+#include "gpu/gl/response_work_buffers.h"
 
 namespace deformcd::gl {
 
@@ -52,16 +53,22 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
   const std::uint64_t nodes = node_count;
   return {
       {"Contact Pair", gpu::kContactPair, pairs, sizeof(gpu::ContactPair)},
+      // At most every constraint acts in a projection.
       {"Contact Correction", gpu::kContactCorrection, 8u * pairs, sizeof(glm::vec4)},
       {"Node Contact Offset", gpu::kNodeContactOffset, nodes + 1u, sizeof(std::uint32_t)},
       {"Node Contact List", gpu::kNodeContactList, 4u * pairs, sizeof(std::uint32_t)},
-      {"Node Contact Count", gpu::kNodeContactCount, 2u * nodes + 1u, sizeof(std::uint32_t)},
+      {"Node Contact Count", gpu::kNodeContactCount, 2u * nodes, sizeof(std::uint32_t)},
       {"Frame Start", gpu::kFrameStart, nodes, sizeof(glm::vec4)},
       {"Node Motion", gpu::kNodeMotion, nodes, sizeof(glm::vec4)},
       {"Projection Start", gpu::kProjectionStart, nodes, sizeof(glm::vec4)},
       {"Contact Impulse", gpu::kContactImpulse, 3u * pairs, sizeof(glm::vec4)},
       {"Node Slid", gpu::kNodeSlid, nodes, sizeof(std::uint32_t)},
       {"Node Guard", gpu::kNodeGuard, nodes, sizeof(std::uint32_t)},
+      {"Contact Acting", kContactActingBinding, pairs, sizeof(std::uint32_t)},
+      {"Acting List", kActingListBinding, pairs, sizeof(std::uint32_t)},
+      {"Node Active Slot", kNodeActiveSlotBinding, 4u * pairs, sizeof(std::uint32_t)},
+      {"Touched Node", kTouchedNodeBinding, nodes, sizeof(std::uint32_t)},
+      {"Response State", kResponseStateBinding, kResponseStateWords, sizeof(std::uint32_t)},
   };
 }
 

@@ -20,7 +20,7 @@ std::size_t check_constraints_fit(const response::FrameConstraints& constraints,
                                   std::uint32_t node_count);
 
 // The buffers GlContactResponse needs for `constraints` over `node_count` nodes, in binding
-// order (for check_buffer_sizes).
+// order, its private work buffers last (for check_buffer_sizes).
 [[nodiscard]] std::vector<BufferSize> contact_buffer_sizes(
     const response::FrameConstraints& constraints, std::uint32_t node_count);
 

@@ -25,19 +25,6 @@ void dispatch_chunk(ComputeProgram& program, const PairChunk& chunk) {
   program.dispatch(groups_x, groups_y, chunk.count);
 }
 
-// Dispatches `program` with the work-group counts at uint `word` of `args`.
-void dispatch_indirect(const ComputeProgram& program, const Ssbo<std::uint32_t>& args,
-                       std::uint32_t word) {
-  program.use();
-  DEFORMCD_GL_CHECK(glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, args.name()));
-  DEFORMCD_GL_CHECK(glDispatchComputeIndirect(static_cast<GLintptr>(word * sizeof(std::uint32_t))));
-}
-
-// The indirect arguments are read as a command, the lists by the next shader.
-void command_barrier() {
-  memory_barrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-}
-
 }  // namespace
 
 void GlCollision::run(BroadPhase method, const CollisionBuffers& b) {
@@ -95,7 +82,7 @@ void GlCollision::run_octree_compact(const CollisionBuffers& b) {
        .other_groups = groups_covering(b.max_box_rows, octree_candidates_.work_group_size()[0])},
       octree_candidates_.work_group_size()[1], kExpandArgsWord);
   command_barrier();
-  dispatch_indirect(octree_candidates_, b.dispatch_args, kExpandArgsWord);
+  octree_candidates_.dispatch_indirect(b.dispatch_args.name(), kExpandArgsWord);
   run_candidate_narrow_phase(b);
 }
 
@@ -122,7 +109,7 @@ void GlCollision::run_bvh(const CollisionBuffers& b) {
        .other_groups = groups_covering(b.max_query_faces, bvh_traverse_.work_group_size()[0])},
       bvh_traverse_.work_group_size()[1], kTraverseArgsWord);
   command_barrier();
-  dispatch_indirect(bvh_traverse_, b.dispatch_args, kTraverseArgsWord);
+  bvh_traverse_.dispatch_indirect(b.dispatch_args.name(), kTraverseArgsWord);
   run_candidate_narrow_phase(b);
 }
 
@@ -132,7 +119,7 @@ void GlCollision::run_candidate_narrow_phase(const CollisionBuffers& b) {
       {.source = 1, .capacity = b.candidate_capacity, .count_axis = 0, .other_groups = 1},
       tri_tri_candidates_.work_group_size()[0], kNarrowArgsWord);
   command_barrier();
-  dispatch_indirect(tri_tri_candidates_, b.dispatch_args, kNarrowArgsWord);
+  tri_tri_candidates_.dispatch_indirect(b.dispatch_args.name(), kNarrowArgsWord);
 }
 
 void GlCollision::write_dispatch_args(const IndirectList& list, std::uint32_t local_size,

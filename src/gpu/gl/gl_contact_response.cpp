@@ -12,6 +12,7 @@
 #include "gpu/gl/buffer_limit.h"
 #include "gpu/gl/contact_upload_checks.h"
 #include "gpu/gl/gl_check.h"
+#include "gpu/gl/response_work_buffers.h"
 
 namespace deformcd::gl {
 
@@ -62,10 +63,17 @@ GlContactResponse::GlContactResponse(const DeviceInfo& device, sim::SimulationBa
       frame_start_("response/contact_frame_start.comp"),
       deviation_("response/contact_deviation.comp"),
       activity_("response/contact_activity.comp"),
-      pairs_("response/contact_pairs.comp"),
+      compact_("response/contact_compact.comp"),
       count_("response/contact_count.comp"),
+      dispatch_args_("response/contact_dispatch_args.comp"),
+      pairs_("response/contact_pairs.comp"),
       apply_("response/contact_apply.comp"),
-      residual_("response/contact_residual.comp") {}
+      residual_("response/contact_residual.comp"),
+      stray_("response/contact_stray.comp") {
+  dispatch_args_.set_uniform("u_solve_local_size", pairs_.work_group_size()[0]);
+  dispatch_args_.set_uniform("u_residual_local_size", residual_.work_group_size()[0]);
+  dispatch_args_.set_uniform("u_node_local_size", apply_.work_group_size()[0]);
+}
 
 void GlContactResponse::begin_frame(const response::FrameConstraints& constraints) {
   upload(constraints, false);
@@ -89,25 +97,30 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
                                       : "GlContactResponseOptions::max_buffer_bytes",
                      kOwner);
   check_fits_one_dispatch(pairs_, constraints.pairs.size(), max_work_groups_x_);
-  for (const ComputeProgram* per_node : {&frame_start_, &deviation_, &count_, &apply_})
+  for (const ComputeProgram* per_node : {&frame_start_, &deviation_, &count_, &apply_, &stray_})
     check_fits_one_dispatch(*per_node, sim.node_count, max_work_groups_x_);
 
   const std::uint64_t nodes = sim.node_count;
   const std::uint64_t pairs = constraints.pairs.size();
-  const auto grow = [&](const auto& buffer, std::uint64_t needed, gpu::Binding binding) {
+  const auto grow = [&](const auto& buffer, std::uint64_t needed, std::uint32_t binding) {
     return replacement(buffer, needed, max_buffer_bytes_, label_of(sizes, binding, kOwner));
   };
   auto new_pairs = grow(buffers_.pairs, pairs, gpu::kContactPair);
   auto new_corrections = grow(buffers_.corrections, 8u * pairs, gpu::kContactCorrection);
   auto new_offset = grow(buffers_.node_offset, nodes + 1u, gpu::kNodeContactOffset);
   auto new_list = grow(buffers_.node_list, lists.list.size(), gpu::kNodeContactList);
-  auto new_count = grow(buffers_.node_count, 2u * nodes + 2u, gpu::kNodeContactCount);
+  auto new_count = grow(buffers_.node_count, 2u * nodes, gpu::kNodeContactCount);
   auto new_start = grow(buffers_.frame_start, nodes, gpu::kFrameStart);
   auto new_motion = grow(buffers_.node_motion, nodes, gpu::kNodeMotion);
   auto new_projection_start = grow(buffers_.projection_start, nodes, gpu::kProjectionStart);
   auto new_impulses = grow(buffers_.impulses, 3u * pairs, gpu::kContactImpulse);
   auto new_slid = grow(buffers_.node_slid, nodes, gpu::kNodeSlid);
   auto new_guard = grow(buffers_.node_guard, nodes, gpu::kNodeGuard);
+  auto new_acting = grow(buffers_.contact_acting, pairs, kContactActingBinding);
+  auto new_acting_list = grow(buffers_.acting_list, pairs, kActingListBinding);
+  auto new_active_slot = grow(buffers_.node_active_slot, lists.list.size(), kNodeActiveSlotBinding);
+  auto new_touched = grow(buffers_.touched_node, nodes, kTouchedNodeBinding);
+  auto new_state = grow(buffers_.state, kResponseStateWords, kResponseStateBinding);
 
   frame_ready_ = false;  // until the upload below has completed
   adopt(buffers_.pairs, new_pairs);
@@ -119,6 +132,11 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   adopt(buffers_.node_motion, new_motion);
   adopt(buffers_.projection_start, new_projection_start);
   adopt(buffers_.impulses, new_impulses);
+  adopt(buffers_.contact_acting, new_acting);
+  adopt(buffers_.acting_list, new_acting_list);
+  adopt(buffers_.node_active_slot, new_active_slot);
+  adopt(buffers_.touched_node, new_touched);
+  adopt(buffers_.state, new_state);
   // The slide stamps outlive a window (a contact's slide goes on across searches): set only
   // where the buffer is new (or the nodes others), to a substep no projection has.
   if (new_slid.has_value() || node_count_ != sim.node_count) {
@@ -133,8 +151,8 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
     const std::vector<std::uint32_t> none(buffers_.node_guard->size(), 0u);
     buffers_.node_guard->upload(std::span<const std::uint32_t>(none));
   }
-  // Corrections, impulses and counts need no initial values: each projection writes all it
-  // reads (a substep's first iteration resets the impulses).
+  // Corrections, impulses, counts, lists and the state need no initial values: each
+  // projection writes all it reads (a substep's first iteration resets the impulses).
   buffers_.pairs->upload(std::span<const gpu::ContactPair>(constraints.pairs));
   buffers_.node_offset->upload(std::span<const std::uint32_t>(lists.offset));
   buffers_.node_list->upload(std::span<const std::uint32_t>(lists.list));
@@ -144,9 +162,11 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   first_volume_ = static_cast<std::uint32_t>(first_volume);
   node_count_ = sim.node_count;
   frame_positions_ = sim.gl_positions;
+  compact_.set_uniform("u_pair_count", pair_count_);
+  compact_.set_uniform("u_first_volume", first_volume_);
   count_.set_uniform("u_node_count", node_count_);
   count_.set_uniform("u_first_volume", first_volume_);
-  apply_.set_uniform("u_node_count", node_count_);
+  stray_.set_uniform("u_node_count", node_count_);
   frame_start_.set_uniform("u_node_count", node_count_);
   frame_start_.set_uniform("u_keep_positions", keep_positions ? 1u : 0u);
   deviation_.set_uniform("u_node_count", node_count_);
@@ -201,17 +221,29 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   buffers_.impulses->bind(gpu::kContactImpulse);
   buffers_.node_slid->bind(gpu::kNodeSlid);
   buffers_.node_guard->bind(gpu::kNodeGuard);
+  buffers_.contact_acting->bind(kContactActingBinding);
+  buffers_.acting_list->bind(kActingListBinding);
+  buffers_.node_active_slot->bind(kNodeActiveSlotBinding);
+  buffers_.touched_node->bind(kTouchedNodeBinding);
+  buffers_.state->bind(kResponseStateBinding);
   ++substep_;
   pairs_.set_uniform("u_substep", substep_);
   apply_.set_uniform("u_substep", substep_);
+  // The stray and residual flags start cleared (the last projection's reads have waited for
+  // every pass that wrote them).
+  const std::uint32_t cleared[2] = {0u, 0u};
+  buffers_.state->upload(std::span<const std::uint32_t>(cleared), kStrayFlagWord);
+  static_assert(kResidualFlagWord == kStrayFlagWord + 1u);
 
-  // The constraint groups: the contacts, then the volume constraints (the list's last).
-  const std::uint32_t group_begin[2] = {0u, first_volume_};
-  const std::uint32_t group_end[2] = {first_volume_, pair_count_};
-  // Deviation, activity, count, solve, node pass (contact_constraints.h), each reading what the
-  // one before wrote. With no constraints the node passes still run: the node pass watches
-  // every free node's reach, as the CPU backend does.
+  // Deviation, activity, compaction, count, then per iteration the solve and node passes
+  // (contact_constraints.h), each reading what the one before wrote; the stray pass last. With
+  // no constraints only the stray pass runs: it watches every free node's reach, as the CPU
+  // backend does.
+  iterations_done_ = iterations;
   if (pair_count_ > 0) {
+    // The constraint groups: the contacts, then the volume constraints (the list's last).
+    const std::uint32_t group_begin[2] = {0u, first_volume_};
+    const std::uint32_t group_end[2] = {first_volume_, pair_count_};
     deviation_.set_uniform("u_elapsed", k.elapsed);
     deviation_.set_uniform("u_h", k.h);
     deviation_.dispatch_covering(node_count_);
@@ -225,73 +257,63 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
       activity_.set_uniform("u_pair_begin", group_begin[group]);
       activity_.set_uniform("u_pair_end", group_end[group]);
       activity_.dispatch_covering(group_end[group] - group_begin[group]);
-      storage_barrier();  // the volume constraints read the stamps, the count pass the flags
+      storage_barrier();  // the volume constraints read the stamps, the compaction the flags
     }
-  }
-  count_.dispatch_covering(node_count_);
-  storage_barrier();  // the solve pass reads the counts
-  pairs_.set_uniform("u_h", k.h);
-  pairs_.set_uniform("u_friction_static", k.friction_static);
-  pairs_.set_uniform("u_friction_dynamic", k.friction_dynamic);
-  pairs_.set_uniform("u_restitution", k.restitution);
-  pairs_.set_uniform("u_max_untangle_step", k.max_untangle_step);
-  apply_.set_uniform("u_elapsed", k.elapsed);
-  // Each iteration solves the contacts, then the volume constraints on the positions the
-  // contacts left (the CPU backend's order); a group without constraints is skipped, except
-  // that the last node pass always runs (it watches the reaches). `last`: the friction's
-  // last-iteration rule applies.
-  const std::uint32_t last_group = first_volume_ < pair_count_ ? 1u : 0u;
-  const auto iterate = [&](bool first_iteration, bool last) {
-    for (std::uint32_t group = 0; group <= last_group; ++group) {
-      const bool last_pass = last && group == last_group;
-      if (group_begin[group] == group_end[group] && !last_pass) continue;
-      if (group_begin[group] < group_end[group]) {
-        pairs_.set_uniform("u_pair_begin", group_begin[group]);
-        pairs_.set_uniform("u_pair_end", group_end[group]);
+    compact_.dispatch(1);
+    storage_barrier();  // the count pass reads the acting places and the cleared touched count
+    count_.dispatch_covering(node_count_);
+    storage_barrier();  // the arguments are the counts
+    dispatch_args_.dispatch(1);
+    command_barrier();  // the indirect dispatches read the arguments
+
+    pairs_.set_uniform("u_h", k.h);
+    pairs_.set_uniform("u_friction_static", k.friction_static);
+    pairs_.set_uniform("u_friction_dynamic", k.friction_dynamic);
+    pairs_.set_uniform("u_restitution", k.restitution);
+    pairs_.set_uniform("u_max_untangle_step", k.max_untangle_step);
+    const std::uint32_t state = buffers_.state->name();
+    // Each iteration solves the contacts, then the volume constraints on the positions the
+    // contacts left (the CPU backend's order); a group with no constraints listed is skipped.
+    // `last`: the friction's last-iteration rule applies.
+    const auto iterate = [&](bool first_iteration, bool last) {
+      for (std::uint32_t group = 0; group < 2u; ++group) {
+        if (group_begin[group] == group_end[group]) continue;
         pairs_.set_uniform("u_group", group);
         pairs_.set_uniform("u_first_iteration", static_cast<std::uint32_t>(first_iteration));
         pairs_.set_uniform("u_last_iteration", static_cast<std::uint32_t>(last));
-        pairs_.dispatch_covering(group_end[group] - group_begin[group]);
+        pairs_.dispatch_indirect(state,
+                                 group == 0u ? kSolveContactsArgsWord : kSolveVolumesArgsWord);
         storage_barrier();  // the node pass reads the corrections
+        apply_.set_uniform("u_group", group);
+        apply_.set_uniform("u_record_slide", static_cast<std::uint32_t>(last && group == 0u));
+        apply_.dispatch_indirect(state, kNodePassArgsWord);
+        // The next solve pass reads the corrected nodes and overwrites the corrections read
+        // here.
+        storage_barrier();
       }
-      // Only the last pass's positions are the projection's: it alone watches the reaches.
-      apply_.set_uniform("u_pair_begin", group_begin[group]);
-      apply_.set_uniform("u_pair_end", group_end[group]);
-      apply_.set_uniform("u_watch_reach", static_cast<std::uint32_t>(last_pass));
-      apply_.set_uniform("u_record_slide", static_cast<std::uint32_t>(last && group == 0u));
-      apply_.dispatch_covering(node_count_);
-      // The next solve pass reads the corrected nodes and overwrites the corrections read here.
-      if (!last_pass) storage_barrier();
+    };
+    for (int iteration = 0; iteration < iterations; ++iteration)
+      iterate(iteration == 0, iteration + 1 == iterations);
+    // More while the solve has not converged (the residual pass's flag, read back), to
+    // kMaxIterationFactor x the iterations asked.
+    while (iterations_done_ < response::kMaxIterationFactor * iterations) {
+      residual_.dispatch_indirect(state, kResidualArgsWord);
+      // download() puts the barrier that makes the pass's write visible to it.
+      if (buffers_.state->download(kResidualFlagWord, 1)[0] == 0u) break;
+      buffers_.state->upload(std::span<const std::uint32_t>(cleared, 1), kResidualFlagWord);
+      iterate(false, true);
+      ++iterations_done_;
     }
-  };
-  for (int iteration = 0; iteration < iterations; ++iteration)
-    iterate(iteration == 0, iteration + 1 == iterations);
-  // More while the solve has not converged (the residual pass's flag, read back), to
-  // kMaxIterationFactor x the iterations asked; each such iteration is the last so far, so its
-  // node pass watches the reaches again, on a cleared stray flag.
-  iterations_done_ = iterations;
-  const std::size_t stray_flag = 2u * std::size_t{node_count_};
-  while (pair_count_ > 0 && iterations_done_ < response::kMaxIterationFactor * iterations) {
-    storage_barrier();  // the residual pass reads the last node pass's positions
-    const std::uint32_t zero = 0u;
-    buffers_.node_count->upload(std::span<const std::uint32_t>(&zero, 1), stray_flag + 1u);
-    residual_.set_uniform("u_pair_count", pair_count_);
-    residual_.set_uniform("u_node_count", node_count_);
-    residual_.dispatch_covering(pair_count_);
-    // download() puts the barrier that makes the pass's write visible to it.
-    if (buffers_.node_count->download(stray_flag + 1u, 1)[0] == 0u) break;
-    buffers_.node_count->upload(std::span<const std::uint32_t>(&zero, 1), stray_flag);
-    iterate(false, true);
-    ++iterations_done_;
   }
-  // The next substep (and the next projection's pair pass), the collision shaders and renderers
-  // drawing from SSBO 0 read the corrected nodes; the next pair pass overwrites the corrections
-  // read here.
+  stray_.set_uniform("u_elapsed", k.elapsed);
+  stray_.dispatch_covering(node_count_);
+  // The next substep (and the next projection's passes), the collision shaders and renderers
+  // drawing from SSBO 0 read the corrected nodes.
   memory_barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
                  GL_BUFFER_UPDATE_BARRIER_BIT);
   // The stray flag: the one wait of a projection (a new search must start before the next
   // substep when it is set).
-  return buffers_.node_count->download(2u * std::size_t{node_count_}, 1)[0] != 0u;
+  return buffers_.state->download(kStrayFlagWord, 1)[0] != 0u;
 }
 
 std::vector<glm::vec4> GlContactResponse::download_frame_start() const {
