@@ -55,6 +55,7 @@ uniform float u_friction_static;
 uniform float u_friction_dynamic;
 uniform float u_restitution;
 uniform float u_max_untangle_step;
+uniform float u_inverse_relaxation;
 uniform bool u_first_iteration;
 uniform bool u_last_iteration;
 uniform uint u_substep;
@@ -84,7 +85,7 @@ void main() {
   vec4 given[3] = vec4[3](impulses[3u * a], impulses[3u * a + 1u], impulses[3u * a + 2u]);
   solve_contact(pair, x, v, count, start, window_start,
                 ContactConstants(u_h, u_friction_static, u_friction_dynamic, u_restitution,
-                                 u_max_untangle_step, 0.0),
+                                 u_max_untangle_step, 0.0, u_inverse_relaxation),
                 u_first_iteration, u_last_iteration, slid_before(x, slid, u_substep), given,
                 correction);
   for (uint k = 0u; k < 8u; ++k) corrections[8u * a + k] = correction[k];

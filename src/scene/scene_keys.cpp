@@ -23,7 +23,7 @@ const std::vector<ObjectKeys>& table() {
       {"collision", {"broadphase", "self"}},
       {"response",
        {"thickness", "relative_thickness", "friction_static", "friction_dynamic", "restitution",
-        "untangle_step", "volume_floor", "substep_motion", "iterations", "sleep"}},
+        "untangle_step", "volume_floor", "substep_motion", "iterations", "relaxation", "sleep"}},
       {"response.sleep", {"speed", "time"}},
       {"bodies[]",
        {"name", "model", "meshing", "position", "rotation", "scale", "velocity", "squash",

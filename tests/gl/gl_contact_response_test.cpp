@@ -37,7 +37,8 @@ using response::FrameConstraints;
 // Two constant sets: no restitution and a small untangling step, then restitution, stronger
 // friction and a smaller step; a substep of 1 ms.
 constexpr ContactConstants kPlain{1e-3f, 0.5f, 0.3f, 0.0f, 0.005f, 1e-3f};
-constexpr ContactConstants kBouncy{1e-3f, 0.8f, 0.6f, 0.5f, 0.002f, 4e-3f};
+// Relaxed mass splitting (ResponseSettings::relaxation 2) in the bouncy substeps.
+constexpr ContactConstants kBouncy{1e-3f, 0.8f, 0.6f, 0.5f, 0.002f, 4e-3f, 0.5f};
 const std::vector<ContactConstants> kSchedule = {kPlain, kPlain, kPlain, kBouncy, kBouncy, kBouncy};
 // Jacobi iterations per projection: the schedule's projections cycle through these (one, a
 // few, and the default), every other test runs kIterations.

@@ -1026,6 +1026,11 @@ TEST(ContactResponse, BadSettingsAreErrorsNamingTheField) {
   r = {};
   r.volume_floor = 1.0f;
   EXPECT_NE(error_of(r).find("volume_floor must be below 1"), std::string::npos);
+  r = {};
+  r.relaxation = 0.5f;
+  EXPECT_NE(error_of(r).find("relaxation must be between 1 and 2"), std::string::npos);
+  r.relaxation = NAN;
+  EXPECT_NE(error_of(r).find("relaxation"), std::string::npos);
   EXPECT_EQ(error_of(ResponseSettings{}), "");
 }
 

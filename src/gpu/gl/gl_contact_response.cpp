@@ -271,6 +271,7 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
     pairs_.set_uniform("u_friction_dynamic", k.friction_dynamic);
     pairs_.set_uniform("u_restitution", k.restitution);
     pairs_.set_uniform("u_max_untangle_step", k.max_untangle_step);
+    pairs_.set_uniform("u_inverse_relaxation", k.inverse_relaxation);
     const std::uint32_t state = buffers_.state->name();
     // Each iteration solves the contacts, then the volume constraints on the positions the
     // contacts left (the CPU backend's order); a group with no constraints listed is skipped.
