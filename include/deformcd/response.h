@@ -117,21 +117,21 @@ struct ResponseSettings {
   /// 4 x these, while an active contact is still deeper than half its thickness or a
   /// tetrahedron below half its volume_floor (ResponseCounts::iterations counts them).
   int iterations = 8;
-  /// Over-relaxation of the mass splitting (1 to 2): a node shared by several acting
-  /// constraints moves by this many times the mean of their corrections, but never by more
-  /// than one constraint alone would move it (1: the plain mean, a Jacobi step). Jacobi
-  /// averaging converges slowly where contacts and volume floors share nodes: 1.5 takes 13-23 %
-  /// of the iterations off the impact, the stack and the pile, but resting contacts jitter (the
-  /// stack without self-contact and the floor never falls asleep) and overlapped starts part
-  /// later; hence 1 (docs/benchmarks.md, "Relaxed mass splitting").
-  float relaxation = 1.0f;
+  /// Over-relaxation of the volume constraints' mass splitting (1 to 2): a node shared by
+  /// several acting volume constraints moves by this many times the mean of their
+  /// corrections, but never by more than one of them alone would move it (1: the plain mean, a
+  /// Jacobi step, which converges slowly where a node's many tetrahedra are below their floor
+  /// at once). The contacts keep the plain mean: relaxed, resting contacts jitter. 1.5 takes an
+  /// eighth of the iterations off the impact and the stack, a quarter off half-overlapped
+  /// bodies coming apart (docs/benchmarks.md, "Relaxed volume constraints").
+  float volume_relaxation = 1.5f;
   /// Resting islands of bodies fall asleep (see SleepSettings). Unset: bodies never sleep.
   std::optional<SleepSettings> sleep;
 };
 
 /// Throws Error naming the field ("friction_static must be >= 0, not -1") when a value is
 /// negative or not finite, friction_dynamic exceeds friction_static, restitution exceeds 1,
-/// volume_floor is 1 or more, iterations is outside 1 to 64, relaxation outside 1 to 2, or a
+/// volume_floor is 1 or more, iterations is outside 1 to 64, volume_relaxation outside 1 to 2, or a
 /// sleep setting is not positive and finite.
 void check_response_settings(const ResponseSettings& settings);
 

@@ -31,11 +31,11 @@ struct ContactConstants {
   float restitution;        // 0: the approach speed is absorbed, 1: given back along n
   float max_untangle_step;  // m: most an untangling constraint moves its nodes per substep
   float elapsed;            // s: from the frame's start to the end of this substep
-  float inverse_relaxation;  // 1 / the relaxation (split_count)
+  float inverse_relaxation;  // 1 / the volume constraints' relaxation (split_count)
 };
 
-// split_count, line for line: a node's weight in mass splitting (its count / the relaxation,
-// never below 1).
+// split_count, line for line: a node's weight in the volume constraints' mass splitting (its
+// count / the relaxation, never below 1).
 float split_count(uint count, float inverse_relaxation) {
   precise float scaled = float(count) * inverse_relaxation;
   return distance_max(scaled, 1.0);
@@ -382,15 +382,14 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   precise vec3 relative_velocity = vec3(0.0);
   precise vec3 drift = vec3(0.0);  // how far position corrections carried the contact point
   for (int i = 0; i < 4; ++i) {
-    weight += split_count(count[i], k.inverse_relaxation) * position[i].w * b[i] * b[i];
+    weight += float(count[i]) * position[i].w * b[i] * b[i];
     relative_velocity += b[i] * velocity[i].xyz;
     drift += b[i] * ((x[i] - k.h * velocity[i].xyz) - start[i].xyz);
   }
   if (!(weight > 0.0)) return;  // every node fixed
   precise float reduce = 1.0;  // no node moves more than 10 x its share of the correction
   for (int i = 0; i < 4; ++i) {
-    precise float lever =
-        split_count(count[i], k.inverse_relaxation) * position[i].w * abs(b[i]);
+    precise float lever = float(count[i]) * position[i].w * abs(b[i]);
     if (lever > 10.0 * weight) reduce = distance_min(reduce, 10.0 * weight / lever);
   }
   precise float normal_velocity = exact_dot(relative_velocity, n);

@@ -593,40 +593,38 @@ TEST(ContactConstraints, AStickingContactHoldsItsPointAgainstPushesWithinItsStat
   EXPECT_EQ(held(0.0f, glm::vec3(0.1f, 0.0f, 0.0f), response::kNoneSlid), 0.0f);
 }
 
-// Mass splitting with relaxation (ResponseSettings::relaxation): a vertex 5 mm inside the
-// thickness of a fixed face, shared by `count` acting constraints, moves by relaxation / count
-// of the 5 mm, but by no more than the 5 mm a lone constraint asks.
-TEST(ContactConstraints, RelaxationScalesASharedNodesShareButNeverPastWhatOneConstraintAsks) {
-  const gpu::ContactPair pair = constraint(gpu::kContactVertexFace, glm::uvec4(0u, 1u, 2u, 3u));
-  const glm::vec4 x[4] = {{0.01f, 0.01f, 0.005f, 1.0f},
-                          {0.0f, 0.0f, 0.0f, 0.0f},
-                          {0.05f, 0.0f, 0.0f, 0.0f},
-                          {0.0f, 0.05f, 0.0f, 0.0f}};
+// The volume constraints' mass splitting with relaxation (ResponseSettings::volume_relaxation):
+// a tetrahedron flattened at rest, its apex alone free and shared by `count` acting volume
+// constraints, moves by relaxation / count of what the constraint asks of it, but by no more
+// than a lone constraint moves it.
+TEST(VolumeConstraint, RelaxationScalesASharedNodesShareButNeverPastWhatOneConstraintAsks) {
+  const gpu::ContactPair pair = first_tetrahedron_floor(1e-7f, 1.0f);
+  const glm::vec4 x[4] = {{0.0f, 0.0f, 0.0f, 0.0f},
+                          {0.01f, 0.0f, 0.0f, 0.0f},
+                          {0.0f, 0.01f, 0.0f, 0.0f},
+                          {0.002f, 0.002f, 0.001f, 1.0f}};  // 1/6 x 1e-7 m^3, below the floor
   const glm::vec4 v[4] = {};
-  glm::vec4 start[4];
-  glm::vec3 window_start[4];
-  for (int i = 0; i < 4; ++i) {
-    start[i] = glm::vec4(glm::vec3(x[i]), 0.0f);
-    window_start[i] = glm::vec3(x[i]);
-  }
-  // The vertex's push along the face's normal after one iteration.
-  const auto push = [&](std::uint32_t shared_by, float relaxation) {
-    const std::uint32_t count[4] = {shared_by, 1u, 1u, 1u};
+  const glm::vec4 start[4] = {};
+  const glm::vec3 window_start[4] = {};
+  // The apex's rise after one iteration.
+  const auto rise = [&](std::uint32_t shared_by, float relaxation) {
+    const std::uint32_t count[4] = {1u, 1u, 1u, shared_by};
     response::ContactConstants k{};
     k.h = 1e-3f;
     k.inverse_relaxation = 1.0f / relaxation;
-    glm::vec4 given[3], correction[8];
+    glm::vec4 given[3] = {}, correction[8] = {};
     response::solve_contact(pair, x, v, count, start, window_start, k, true, false,
                             response::kNoneSlid, given, correction);
-    return correction[0].z;
+    return correction[6].z;
   };
-  EXPECT_NEAR(push(1u, 1.0f), 0.005f, 1e-7f);
-  EXPECT_NEAR(push(2u, 1.0f), 0.0025f, 1e-7f);
-  EXPECT_NEAR(push(4u, 1.0f), 0.00125f, 1e-7f);
-  EXPECT_NEAR(push(2u, 2.0f), 0.005f, 1e-7f);
-  EXPECT_NEAR(push(4u, 2.0f), 0.0025f, 1e-7f);
-  EXPECT_NEAR(push(4u, 1.5f), 0.001875f, 1e-7f);
-  EXPECT_NEAR(push(1u, 2.0f), 0.005f, 1e-7f) << "a lone constraint over-corrected";
+  const float alone = rise(1u, 1.0f);
+  ASSERT_GT(alone, 0.0f) << "the apex should rise to the floor";
+  EXPECT_NEAR(rise(2u, 1.0f), alone / 2.0f, 1e-6f * alone);
+  EXPECT_NEAR(rise(4u, 1.0f), alone / 4.0f, 1e-6f * alone);
+  EXPECT_NEAR(rise(2u, 2.0f), alone, 1e-6f * alone);
+  EXPECT_NEAR(rise(4u, 2.0f), alone / 2.0f, 1e-6f * alone);
+  EXPECT_NEAR(rise(4u, 1.5f), alone * 0.375f, 1e-6f * alone);
+  EXPECT_NEAR(rise(1u, 2.0f), alone, 1e-6f * alone) << "a lone constraint over-corrected";
 }
 
 }  // namespace

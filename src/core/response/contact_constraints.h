@@ -39,18 +39,20 @@ struct ContactConstants {
   float restitution;        ///< 0: the approach speed is absorbed, 1: given back along n
   float max_untangle_step;  ///< m: most an untangling constraint moves its nodes per substep
   float elapsed;            ///< s: from the frame's start to the end of this substep
-  /// 1 / ResponseSettings::relaxation: scales a node's constraint count in mass splitting
-  /// (split_count). 1: plain mass splitting.
+  /// 1 / ResponseSettings::volume_relaxation: scales a node's count of volume constraints in
+  /// their mass splitting (split_count). 1: plain mass splitting.
   float inverse_relaxation = 1.0f;
 };
 
-/// A node's weight in mass splitting, as a multiple of its inverse mass: its count of acting
-/// constraints in the group (at least 1) divided by the relaxation, never below 1. Plain mass
-/// splitting (relaxation 1) moves a node by the mean of its constraints' corrections, a Jacobi
-/// step that converges slowly where many constraints share nodes; relaxation r moves it by r x
-/// the mean (successive over-relaxation of the averaged step, as position-based solvers
-/// relax theirs), but a node by no more than one constraint alone would move it: a lone
-/// constraint is never over-corrected.
+/// A node's weight in the volume constraints' mass splitting, as a multiple of its inverse
+/// mass: its count of acting volume constraints (at least 1) divided by the relaxation, never
+/// below 1. Plain mass splitting (relaxation 1) moves a node by the mean of its constraints'
+/// corrections, a Jacobi step that converges slowly where a node's many tetrahedra are below
+/// their floor at once; relaxation r moves it by r x the mean (successive over-relaxation of
+/// the averaged step, as position-based solvers relax theirs), but by no more than one
+/// constraint alone would move it: a lone constraint is never over-corrected. The contacts
+/// keep plain mass splitting: relaxed, resting contacts jitter (docs/benchmarks.md, "Relaxed
+/// volume constraints").
 inline float split_count(std::uint32_t count, float inverse_relaxation) {
   return glm::max(static_cast<float>(count) * inverse_relaxation, 1.0f);
 }
@@ -535,7 +537,7 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   glm::vec3 relative_velocity(0.0f);
   glm::vec3 drift(0.0f);  // how far position corrections carried the contact point
   for (int i = 0; i < 4; ++i) {
-    weight += split_count(count[i], k.inverse_relaxation) * position[i].w * b[i] * b[i];
+    weight += static_cast<float>(count[i]) * position[i].w * b[i] * b[i];
     relative_velocity += b[i] * glm::vec3(velocity[i]);
     drift += b[i] * ((x[i] - k.h * glm::vec3(velocity[i])) - glm::vec3(start[i]));
   }
@@ -549,8 +551,7 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   // 2 x in 22.
   float reduce = 1.0f;
   for (int i = 0; i < 4; ++i) {
-    const float lever =
-        split_count(count[i], k.inverse_relaxation) * position[i].w * std::abs(b[i]);
+    const float lever = static_cast<float>(count[i]) * position[i].w * std::abs(b[i]);
     if (lever > 10.0f * weight) reduce = std::min(reduce, 10.0f * weight / lever);
   }
   const float normal_velocity = glm::dot(relative_velocity, n);
