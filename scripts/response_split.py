@@ -31,7 +31,7 @@ DEFAULT_BENCH = ["scenes/impact.json", "--frames", "80", "--backend", "cpu", "--
 GROUPS = [
     ("simulation", re.compile(r"CpuSimulation|tet_volume_forces|spring_edge_states")),
     ("substeps", re.compile(r"CpuContactResponse|contact_geometry|solve_contact|contact_clear"
-                            r"|contact_active|gather_correction")),
+                            r"|contact_active|apply_correction|SweepOrder")),
     ("searches", re.compile(r"CpuProximity|primitives_within|emit_face_pair|emit_if_within"
                             r"|add_proximity_pair|to_proximity_pairs|query_bvh|refit_bvh"
                             r"|ContactResponse::widen|ContactResponse::search|sweep_")),

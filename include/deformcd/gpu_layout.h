@@ -51,10 +51,10 @@ enum Binding : std::uint32_t {
   kCandidatePair = 28,      ///< glm::uvec2 per candidate face pair (global face indices)
   // Contact response (beyond the paper).
   kContactPair = 29,  ///< ContactPair per contact constraint of the frame
-  /// two glm::vec4 per corner of a constraint acting in the projection (slot 4 a + k, a its place
-  /// in the acting list, ascending): 2 slot its position change, 2 slot + 1 its velocity change
-  /// (xyz; w, the slide flag)
-  kContactCorrection = 30,
+  /// uint per constraint acting in the projection (a, its place in the acting list, ascending):
+  /// bit k set where the contact slides on at corner k in the last sweep (the slide stamps'
+  /// source)
+  kContactSlides = 30,
   kNodeContactOffset = 31,  ///< uint per node + 1: CSR offsets into kNodeContactList
   kNodeContactList = 32,    ///< uint per (node, constraint corner): the slot 4 p + k, sorted
   kNodeContactCount = 33,   ///< two uint per node: its active contacts, volume constraints
@@ -68,8 +68,8 @@ enum Binding : std::uint32_t {
   /// iteration's slip; the hold; response::solve_contact)
   kContactImpulse = 37,
   /// uint per node: the last substep (a projection's count, from 1) in which one of its
-  /// contacts slid (response::solve_contact's slide flag, summed by the node pass); free nodes
-  /// only
+  /// contacts slid (response::solve_contact's slide flag, stamped after the last sweep); free
+  /// nodes only
   kNodeSlid = 38,
   /// uint per node: the last projection (a count, from 1) in which an active contact that
   /// guards volume constraints named it (response::guards_volumes); its volume constraints act

@@ -6,10 +6,10 @@
 /// Each frame the world finds the vertex-triangle and edge-edge pairs of its bodies (and of one
 /// body with itself, with self-collision) that may come closer than the contact thickness
 /// during the frame (Detector::find_proximity, with a bound on each body's motion); after every
-/// substep it projects them apart (position-based, Jacobi, momentum-conserving), with Coulomb
-/// friction. Surfaces that already intersect (a start pose that overlaps, a frame fast enough to
-/// tunnel) are pushed apart along the exact intersection the detector found, each vertex out
-/// of the other body through the face it crosses.
+/// substep it projects them apart (position-based, Gauss-Seidel sweeps, momentum-conserving), with
+/// Coulomb friction. Surfaces that already intersect (a start pose that overlaps, a frame fast
+/// enough to tunnel) are pushed apart along the exact intersection the detector found, each vertex
+/// out of the other body through the face it crosses.
 
 #include <optional>
 
@@ -41,7 +41,7 @@ inline constexpr double kResponseNodeMassFloor = 0.3;
   return floor.value_or(responds ? kResponseNodeMassFloor : 0.0);
 }
 
-/// The most Jacobi projections per substep ResponseSettings::iterations may ask for.
+/// The most sweeps per substep ResponseSettings::iterations may ask for.
 inline constexpr int kMaxResponseIterations = 64;
 
 /// Sleeping (ResponseSettings::sleep), as rigid-body engines let resting bodies sleep (Box2D's
@@ -105,34 +105,23 @@ struct ResponseSettings {
   /// substeps let them into each other (docs/simulation-and-response.md, "Motion-bounded
   /// substeps").
   float substep_motion = 0.3f;
-  /// Jacobi projections per substep (1 to 64): each re-solves the constraints that act in the
-  /// substep on the positions the one before left, correcting what each has given so far (a
-  /// total that never goes below zero, so an over-correction is taken back). Mass splitting
-  /// moves a node by the mean of its constraints' corrections, so one projection leaves a node
-  /// that several constraints share short of what the deepest asks (a sharp vertex pressed into
-  /// a face beside its edges), and the springs push it back every substep; on the impact scene
-  /// 1 projection lets surfaces intersect in 13 of 80 frames, 8 in none. More projections
-  /// converge further: resting bodies jitter less (the benchmarks log in docs/notes/,
-  /// "Accumulated corrections"), at a cost that grows with them. A projection runs more, up to
-  /// 4 x these, while an active contact is still deeper than half its thickness or a
-  /// tetrahedron below half its volume_floor (ResponseCounts::iterations counts them).
+  /// Iterations per substep (1 to 64): Gauss-Seidel sweeps over the constraints that act in
+  /// the substep, each solved on the positions the ones before it left, correcting what it has
+  /// given so far (a total that never goes below zero, so an over-correction is taken back).
+  /// On the impact scene the sweeps converge within 8
+  /// (docs/notes/2026-12-07-gauss-seidel-probe.md); resting bodies jitter less with more, at a cost
+  /// that grows with them. A projection runs more, up to 4 x these, while an active contact is
+  /// still deeper than half its thickness or a tetrahedron below half its volume_floor
+  /// (ResponseCounts::iterations counts them).
   int iterations = 8;
-  /// Over-relaxation of the volume constraints' mass splitting (1 to 2): a node shared by
-  /// several acting volume constraints moves by this many times the mean of their
-  /// corrections, but never by more than one of them alone would move it (1: the plain mean, a
-  /// Jacobi step, which converges slowly where a node's many tetrahedra are below their floor
-  /// at once). The contacts keep the plain mean: relaxed, resting contacts jitter. 1.5 takes an
-  /// eighth of the iterations off the impact and the stack, a quarter off half-overlapped
-  /// bodies coming apart (docs/benchmarks.md, "Relaxed volume constraints").
-  float volume_relaxation = 1.5f;
   /// Resting islands of bodies fall asleep (see SleepSettings). Unset: bodies never sleep.
   std::optional<SleepSettings> sleep;
 };
 
 /// Throws Error naming the field ("friction_static must be >= 0, not -1") when a value is
 /// negative or not finite, friction_dynamic exceeds friction_static, restitution exceeds 1,
-/// volume_floor is 1 or more, iterations is outside 1 to 64, volume_relaxation outside 1 to 2, or a
-/// sleep setting is not positive and finite.
+/// volume_floor is 1 or more, iterations is outside 1 to 64, or a sleep setting is not positive
+/// and finite.
 void check_response_settings(const ResponseSettings& settings);
 
 }  // namespace deformcd

@@ -102,7 +102,7 @@ struct ResponseCounts {
   std::uint64_t self_searches = 0;
   /// Substeps the frame took: the scene's, or more where ResponseSettings::substep_motion asked.
   std::uint64_t substeps = 0;
-  /// Jacobi iterations the frame's projections ran, all substeps together: `iterations` each,
+  /// Sweeps the frame's projections ran, all substeps together: `iterations` each,
   /// and more where an active contact was still deeper than half its thickness (up to 4 x).
   std::uint64_t iterations = 0;
   /// Bodies asleep after the frame (ResponseSettings::sleep).

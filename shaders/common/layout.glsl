@@ -38,7 +38,7 @@
 #define BINDING_BODY_BVH 27            // BodyBvh per body
 #define BINDING_CANDIDATE_PAIR 28      // uvec2 per candidate face pair (global face indices)
 #define BINDING_CONTACT_PAIR 29        // ContactPair per contact constraint of the frame
-#define BINDING_CONTACT_CORRECTION 30  // 2 vec4 per acting constraint corner (4 a + k)
+#define BINDING_CONTACT_SLIDES 30      // uint per acting constraint: bit k, corner k slides on
 #define BINDING_NODE_CONTACT_OFFSET 31  // uint per node + 1: CSR offsets
 #define BINDING_NODE_CONTACT_LIST 32    // uint per (node, constraint corner): slot 4 p + k
 #define BINDING_NODE_CONTACT_COUNT 33   // 2 uint per node: active contacts, volume constraints

@@ -1,17 +1,15 @@
 // Contact response as per-element functions, mirroring src/core/response/contact_constraints.h
 // line for line: the same float operations in the same order, so that the GL and CPU backends
 // compute the same bits (tests/gl/gl_contact_response_test.cpp checks it). Change both files
-// together. The why of the method (Jacobi with per-constraint scaling, Coulomb friction,
-// restitution) is in the C++ header.
-//
-// gather_correction is not here: GLSL 4.30 cannot pass a buffer to a function, so its loop is
-// written out in response/contact_apply.comp, again line for line. The compaction and count
-// passes (response/contact_compact.comp, contact_count.comp) list the acting constraints and
-// each node's active slots; the CPU builds the same lists on the host.
+// together. The why of the method (Gauss-Seidel sweeps in colours, the contacts mass split,
+// Coulomb friction, restitution) is in the C++ header. The compaction and count passes
+// (response/contact_compact.comp, contact_count.comp) list the acting constraints and each
+// node's active slots; the CPU builds the same lists on the host. The sweep's order (colour by
+// colour) is the host's (src/core/response/sweep_order.h), for both backends.
 //
 // Every float is `precise`: without it the driver may fuse a * b + c into one fma (one rounding
 // instead of two) or reorder sums, and the results would drift from the C++ ones by an ulp here
-// and there, which a few substeps of Jacobi iteration amplify. dot, cross and the min / max of
+// and there, which a few substeps of sweeps amplify. dot, cross and the min / max of
 // glm are written out for the same reason (glm::dot sums (x + y) + z; glm::max(a, b) is
 // a < b ? b : a, which differs from GLSL's max only for NaN and signed zeros, but the mirror
 // should not differ at all). segment_closest_parameters, which the edge-edge geometry uses, those
@@ -31,15 +29,7 @@ struct ContactConstants {
   float restitution;        // 0: the approach speed is absorbed, 1: given back along n
   float max_untangle_step;  // m: most an untangling constraint moves its nodes per substep
   float elapsed;            // s: from the frame's start to the end of this substep
-  float inverse_relaxation;  // 1 / the volume constraints' relaxation (split_count)
 };
-
-// split_count, line for line: a node's weight in the volume constraints' mass splitting (its
-// count / the relaxation, never below 1).
-float split_count(uint count, float inverse_relaxation) {
-  precise float scaled = float(count) * inverse_relaxation;
-  return distance_max(scaled, 1.0);
-}
 
 // slid_before's answers (response::kNoneSlid, kSomeSlid, kAllSlid).
 const uint NONE_SLID = 0u;
@@ -306,10 +296,10 @@ bool contact_violated(ContactPair pair, vec4 position[4], vec3 start[4]) {
 
 // solve_volume, line for line: a volume constraint's corrections (the tetrahedron's collapse
 // rate cancelled beyond the rate that brings it to its floor in one substep, the volume below
-// its floor restored by position alone, along the gradient,
-// mass split, no node moved more than step_limit in one iteration).
-void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], uint count[4],
-                  ContactConstants k, inout vec4 given[3], inout vec4 correction[8]) {
+// its floor restored by position alone, along the gradient, each node weighing its inverse
+// mass, no node moved more than step_limit in one iteration).
+void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], ContactConstants k,
+                  inout vec4 given[3], inout vec4 correction[8]) {
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
   vec3 g[4];
   precise float volume = tetrahedron_volume(x, g);
@@ -318,7 +308,7 @@ void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], uint cou
   precise float lever = 0.0;  // the largest w_k |g_k|
   for (int i = 0; i < 4; ++i) {
     precise float g2 = exact_dot(g[i], g[i]);
-    weight += split_count(count[i], k.inverse_relaxation) * position[i].w * g2;
+    weight += position[i].w * g2;
     rate += exact_dot(g[i], velocity[i].xyz);
     lever = distance_max(lever, position[i].w * sqrt(g2));
   }
@@ -345,14 +335,15 @@ void solve_volume(ContactPair pair, vec4 position[4], vec4 velocity[4], uint cou
 }
 
 // solve_contact, line for line: corrections of the four nodes into correction[2 k] (position
-// change) and correction[2 k + 1] (velocity change), the nodes weighing by mass splitting
-// (count[k] x inverse mass). The approach velocity is cancelled (restitution x the first
+// change) and correction[2 k + 1] (velocity change), a contact's nodes weighing by mass
+// splitting (count[k] x inverse mass; a volume constraint reads no count). The approach velocity is cancelled (restitution x the first
 // iteration's approach given back), moving the nodes by that change x h; the depth left is
 // removed by position alone (an untangling constraint by at most max_untangle_step per
 // iteration); Coulomb friction on the tangential relative velocity. `given` carries the normal
 // speed (given[0].x) and push (y) given over the substep's iterations so far and the first
 // iteration's approach (z), and the friction given (given[1].xyz, a vector) and the first
-// iteration's slip (given[1].w); each iteration corrects the totals, the normal ones clamped at
+// iteration's slip (given[1].w), whether the first iteration's friction left the static cone
+// (given[2].w); each iteration corrects the totals, the normal ones clamped at
 // zero, the friction to its cone of the accumulated normal change; a sticking contact's hold
 // (given[2].xyz) takes back the tangential drift position corrections gave its point since the
 // projection's start (`start`), within the static cone of the push; `window_start`: where the
@@ -370,7 +361,7 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
     given[2] = vec4(0.0);
   }
   if (pair.kind == CONTACT_VOLUME) {
-    solve_volume(pair, position, velocity, count, k, given, correction);
+    solve_volume(pair, position, velocity, k, given, correction);
     return;
   }
   const vec3 x[4] = vec3[4](position[0].xyz, position[1].xyz, position[2].xyz, position[3].xyz);
@@ -407,8 +398,9 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   // every iteration to the cone of the accumulated normal change (given[0].x): friction_dynamic's
   // for a contact that slid through the last substep, which slides on while its first
   // iteration's slip is more than friction_static's cone; for a sticking one friction_static's
-  // until the last iteration, which takes friction_dynamic's where half or more of the first
-  // iteration's slip (given[1].w) is left.
+  // until the last iteration, which takes friction_dynamic's where the first iteration's
+  // wanted friction left friction_static's cone and half or more of its slip (given[1].w) is
+  // left.
   precise vec3 tangential = relative_velocity - normal_velocity * n;
   precise vec3 before = given[1].xyz;
   precise vec3 held = before - exact_dot(before, n) * n;  // in the tangent plane of now
@@ -416,9 +408,13 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
   precise float wanted_length = sqrt(exact_dot(wanted, wanted));
   precise float slip_left = reduce * sqrt(exact_dot(tangential, tangential));
   if (first_iteration) given[1].w = slip_left;
+  precise float static_cone = k.friction_static * given[0].x;
+  float overflowed = given[2].w;  // 1: the first iteration's friction left the static cone
+  if (first_iteration) overflowed = wanted_length > static_cone ? 1.0 : 0.0;
   precise float half_first = 0.5 * given[1].w;
   const bool was_sliding = history == ALL_SLID;
-  const bool starts_sliding = !was_sliding && last_iteration && slip_left > half_first;
+  const bool starts_sliding =
+      !was_sliding && last_iteration && overflowed > 0.0 && slip_left > half_first;
   const bool dynamic = was_sliding || starts_sliding;
   precise float coefficient = dynamic ? k.friction_dynamic : k.friction_static;
   precise float limit = coefficient * given[0].x;
@@ -427,7 +423,6 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
     precise float scale = limit / wanted_length;
     friction_total = wanted * scale;
   }
-  precise float static_cone = k.friction_static * given[0].x;
   const bool slides = starts_sliding || (was_sliding && given[1].w > static_cone);
   given[1] = vec4(friction_total, given[1].w);
   precise vec3 friction = friction_total - held;
@@ -447,7 +442,7 @@ void solve_contact(ContactPair pair, vec4 position[4], vec4 velocity[4], uint co
       hold_total = wanted_hold * hold_scale;
     }
   }
-  given[2] = vec4(hold_total, 0.0);
+  given[2] = vec4(hold_total, overflowed);
   precise vec3 hold = hold_total - held_hold;
   precise vec3 dv = (normal_speed * n + friction) / weight;
   precise vec3 dx = dv * k.h + (push / weight) * n + hold / weight;

@@ -2,12 +2,12 @@
 // The contact response's count pass, after the compaction pass: one invocation per node walks
 // its CSR list of constraint corners (slots 4 p + k, ascending) and lists its active ones, as
 // acting-list slots 4 a + k (a: the constraint's place in the acting list), from its list
-// offset on in the node active-slot buffer: the node pass then sums only those, in the list's
-// order. It counts them, the contacts (at 2 n) apart from the volume constraints (2 n + 1, those
-// from u_first_volume on, last in the list): the solve passes solve the two groups one after the
-// other, each node weighing by its count in the group. A node with an active slot adds itself to
-// the touched nodes (their order is the atomics' and changes nothing: the node pass writes each
-// node alone). Each invocation writes only its own node's counts and slots. The CPU backend
+// offset on in the node active-slot buffer: the slide pass then looks through only those. It
+// counts them, the contacts (at 2 n) apart from the volume constraints (2 n + 1, those from
+// u_first_volume on, last in the list): a contact's nodes weigh by their counts of active
+// contacts in the sweeps (mass splitting), and a node with either count is touched. A node with
+// an active slot adds itself to the touched nodes (their order is the atomics' and changes
+// nothing: the slide pass writes each node alone). Each invocation writes only its own node's counts and slots. The CPU backend
 // builds the same counts and slot lists from its acting list (src/cpu/cpu_contact_response.cpp).
 #include "common/layout.glsl"
 #include "response/response_work_buffers.glsl"

@@ -1,9 +1,8 @@
 #version 430
 // Writes the contact response's glDispatchComputeIndirect arguments from the counts the
 // compaction and count passes took, so that no count is read back to the host inside a
-// projection: the solve pass over the acting contacts and over the acting volume constraints,
-// the residual pass over all acting constraints, the node pass over the touched nodes. One
-// invocation. A count of 0 gives 0 work groups, which GL runs as nothing.
+// projection: the residual pass over the acting constraints, the slide pass over the touched
+// nodes. One invocation. A count of 0 gives 0 work groups, which GL runs as nothing.
 #include "response/response_work_buffers.glsl"
 
 layout(local_size_x = 1) in;
@@ -12,9 +11,8 @@ layout(std430, binding = BINDING_RESPONSE_STATE) buffer ResponseState {
   uint response_state[];
 };
 
-uniform uint u_solve_local_size;     // contact_pairs.comp's local size along x
-uniform uint u_residual_local_size;  // contact_residual.comp's
-uniform uint u_node_local_size;      // contact_apply.comp's
+uniform uint u_residual_local_size;  // contact_residual.comp's local size along x
+uniform uint u_node_local_size;      // contact_slide.comp's
 
 // Work groups of `local_size` invocations covering `count` (the counts are at most the
 // constraints or nodes, which the host checked fit one dispatch).
@@ -29,11 +27,8 @@ void write_args(uint word, uint groups) {
 }
 
 void main() {
-  const uint contacts = response_state[RESPONSE_ACTING_CONTACTS];
   const uint total = response_state[RESPONSE_ACTING_TOTAL];
-  write_args(RESPONSE_SOLVE_CONTACTS_ARGS, groups_covering(contacts, u_solve_local_size));
-  write_args(RESPONSE_SOLVE_VOLUMES_ARGS, groups_covering(total - contacts, u_solve_local_size));
   write_args(RESPONSE_RESIDUAL_ARGS, groups_covering(total, u_residual_local_size));
-  write_args(RESPONSE_NODE_PASS_ARGS,
+  write_args(RESPONSE_SLIDE_PASS_ARGS,
              groups_covering(response_state[RESPONSE_TOUCHED_NODES], u_node_local_size));
 }

@@ -1,6 +1,6 @@
 #version 430
 // The contact response's frame start: one invocation per node records where the node starts
-// the search window and how far it may stray from its path (its reach), which the node pass
+// the search window and how far it may stray from its path (its reach), which the stray pass
 // watches: frame_start[i] = vec4(position.xyz, node_motion[i].w). Within a window whose
 // constraints were replaced (update_frame: reaches raised), the start stays and only the
 // reach is taken.

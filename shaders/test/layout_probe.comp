@@ -160,7 +160,7 @@ void main() {
     bindings[27] = BINDING_BODY_BVH;
     bindings[28] = BINDING_CANDIDATE_PAIR;
     bindings[29] = BINDING_CONTACT_PAIR;
-    bindings[30] = BINDING_CONTACT_CORRECTION;
+    bindings[30] = BINDING_CONTACT_SLIDES;
     bindings[31] = BINDING_NODE_CONTACT_OFFSET;
     bindings[32] = BINDING_NODE_CONTACT_LIST;
     bindings[33] = BINDING_NODE_CONTACT_COUNT;
@@ -199,9 +199,9 @@ void main() {
     bindings[65] = RESPONSE_TOUCHED_NODES;
     bindings[66] = RESPONSE_STRAY_FLAG;
     bindings[67] = RESPONSE_RESIDUAL_FLAG;
-    bindings[68] = RESPONSE_SOLVE_CONTACTS_ARGS;
-    bindings[69] = RESPONSE_SOLVE_VOLUMES_ARGS;
-    bindings[70] = RESPONSE_RESIDUAL_ARGS;
-    bindings[71] = RESPONSE_NODE_PASS_ARGS;
+    bindings[68] = RESPONSE_RESIDUAL_ARGS;
+    bindings[69] = RESPONSE_SLIDE_PASS_ARGS;
+    bindings[70] = BINDING_SWEEP_ORDER;
+    bindings[71] = BINDING_SWEEP_COLOURS;
   }
 }

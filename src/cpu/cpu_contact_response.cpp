@@ -36,8 +36,6 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   if (guard_.size() != nodes) guard_.assign(nodes, 0u);
   start_.assign(nodes, glm::vec4(0.0f));
   counts_.assign(2u * nodes, 0u);
-  slot_begin_.resize(nodes);
-  slot_cursor_.resize(nodes);
   touched_.clear();
   executor_->run([&] {
     parallel_for(nodes, [&](std::size_t i) {
@@ -77,9 +75,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
   const std::vector<gpu::ContactPair>& pairs = constraints_->pairs;
   executor_->run([&] {
     // Deviation pass, activity pass (only awake constraints look at their geometry), count,
-    // then per iteration the solve and node passes: each writes only its own element's slots,
-    // and each node reads its own list in order. The node passes visit only the watched nodes
-    // (those a constraint can name) or the touched ones (those an active constraint names).
+    // then the sweeps; the deviation and stray passes visit only the watched nodes (those a
+    // constraint can name).
     parallel_for(watched_.size(), [&](std::size_t w) {
       const std::uint32_t i = watched_[w];
       start_[i] =
@@ -142,91 +139,77 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         ++counts_[2u * n + group];
       }
     }
-    std::uint32_t slots = 0;
-    for (const std::uint32_t n : touched_) {
-      slot_begin_[n] = slots;
-      slot_cursor_[n] = slots;
-      slots += counts_[2u * n] + counts_[2u * n + 1u];
-    }
-    // Each node's active slots, ascending (constraints in order, corners in order): its list's
-    // order without the inactive slots, so the sums are the GL node pass's, without walking
-    // the slots of the many candidates that do not act. The contacts come first: the volume
-    // constraints are last in the list.
-    // The slots are numbered by the acting list (4 a + corner for acting_[a]), not by the
-    // constraint list, and the iterations read the acting constraints from a copy in that
-    // order: the solve reads and writes, and the node pass reads, compact blocks (on the impact,
-    // 2,200 acting constraints of 55,000 listed: 280 kB of corrections, not 7 MB). Not cleared:
-    // every solve writes its eight corrections, and the first iteration resets what it gave.
+    // The acting constraints' copies, in acting order (the sweeps read compact blocks: on the
+    // impact, 2,200 acting constraints of 55,000 listed), and their colours.
     acting_pairs_.resize(acting_.size());
     for (std::uint32_t a = 0; a < acting_.size(); ++a)
       acting_pairs_[a] = pairs[acting_[a]];
-    active_slots_.resize(slots);
-    for (std::uint32_t a = 0; a < acting_.size(); ++a)
-      for (std::uint32_t corner = 0; corner < 4u; ++corner)
-        active_slots_[slot_cursor_[acting_pairs_[a].nodes[corner]]++] = 4u * a + corner;
-    corrections_.resize(8u * acting_.size());
     impulses_.resize(3u * acting_.size());
-    const std::size_t split = static_cast<std::size_t>(
+    slides_.resize(acting_.size());
+    const auto split = static_cast<std::uint32_t>(
         std::lower_bound(acting_.begin(), acting_.end(), first_volume_) - acting_.begin());
-    // One Jacobi iteration: the contacts, then the volume constraints on the positions the
-    // contacts left. `last`: the friction's last-iteration rule applies (contact_constraints.h).
+    sweep_.colour(pairs, acting_, split, static_cast<std::uint32_t>(nodes_.node_count));
+    const std::vector<std::uint32_t>& order = sweep_.order();
+    const std::vector<std::uint32_t>& colour_begin = sweep_.colour_begin();
+    // One sweep: colour by colour (the contacts', then the volume constraints'), each
+    // constraint solved on its nodes as the colours before left them and applied at once; no
+    // two constraints of a colour share a node, so the colour's order and threads change no
+    // bit. `last`: the friction's last-iteration rule applies, and the slides are stamped after
+    // the sweep (a contact later in it must read the last substep's stamps).
+    const auto solve = [&](std::uint32_t a, bool first_iteration, bool last) {
+      const gpu::ContactPair& pair = acting_pairs_[a];
+      const bool contact = a < split;
+      glm::vec4 x[4], v[4];
+      std::uint32_t count[4] = {0u, 0u, 0u, 0u};
+      for (std::uint32_t i = 0; i < 4u; ++i) {
+        x[i] = nodes_.host_positions[pair.nodes[i]];
+        v[i] = nodes_.host_velocities[pair.nodes[i]];
+      }
+      // A volume constraint reads no count, projection start, window start or slide history
+      // (solve_volume): their loads are left out, and zeros passed.
+      glm::vec4 start[4] = {glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f)};
+      glm::vec3 window_start[4] = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f),
+                                   glm::vec3(0.0f)};
+      std::uint32_t history = response::kNoneSlid;
+      if (contact) {
+        std::uint32_t slid[4];
+        for (std::uint32_t i = 0; i < 4u; ++i) {
+          count[i] = counts_[2u * pair.nodes[i]];
+          start[i] = start_[pair.nodes[i]];
+          slid[i] = slid_[pair.nodes[i]];
+        }
+        load_window_start(pair, window_start);
+        history = response::slid_before(x, slid, substep_);
+      }
+      glm::vec4 correction[8];
+      response::solve_contact(pair, x, v, count, start, window_start, k, first_iteration, last,
+                              history, &impulses_[3u * a], correction);
+      std::uint8_t slides = 0u;
+      for (std::uint32_t i = 0; i < 4u; ++i) {
+        response::apply_correction(
+            nodes_.host_positions[pair.nodes[i]], nodes_.host_velocities[pair.nodes[i]],
+            glm::vec3(correction[2u * i]), glm::vec3(correction[2u * i + 1u]));
+        if (correction[2u * i + 1u].w > 0.0f) slides |= static_cast<std::uint8_t>(1u << i);
+      }
+      slides_[a] = slides;
+    };
     const auto iterate = [&](bool first_iteration, bool last) {
-      for (std::uint32_t group = 0; group < 2u; ++group) {
-        const std::size_t first = group == 0u ? 0u : split;
-        const std::size_t end = group == 0u ? split : acting_.size();
-        if (first == end) continue;
+      for (std::size_t c = 0; c + 1u < colour_begin.size(); ++c) {
+        const std::uint32_t begin = colour_begin[c];
         parallel_for(
-            end - first,
-            [&](std::size_t a) {
-              const gpu::ContactPair& pair = acting_pairs_[first + a];
-              glm::vec4 x[4], v[4];
-              std::uint32_t count[4];
-              for (std::uint32_t i = 0; i < 4u; ++i) {
-                x[i] = nodes_.host_positions[pair.nodes[i]];
-                v[i] = nodes_.host_velocities[pair.nodes[i]];
-                count[i] = counts_[2u * pair.nodes[i] + group];
-              }
-              // A volume constraint reads no projection start, window start or slide history
-              // (solve_volume): the group leaves their loads out, and passes zeros.
-              glm::vec4 start[4] = {glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f),
-                                    glm::vec4(0.0f)};
-              glm::vec3 window_start[4] = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f),
-                                           glm::vec3(0.0f)};
-              std::uint32_t history = response::kNoneSlid;
-              if (group == 0u) {
-                std::uint32_t slid[4];
-                for (std::uint32_t i = 0; i < 4u; ++i) {
-                  start[i] = start_[pair.nodes[i]];
-                  slid[i] = slid_[pair.nodes[i]];
-                }
-                load_window_start(pair, window_start);
-                history = response::slid_before(x, slid, substep_);
-              }
-              response::solve_contact(pair, x, v, count, start, window_start, k, first_iteration,
-                                      last, history, &impulses_[3u * (first + a)],
-                                      &corrections_[8u * (first + a)]);
-            },
-            256);
-        // The node pass, over the nodes with an active constraint of the group (the others'
-        // sums are zero). Split finer than the default grain: the impact touches about 2,400
-        // nodes a substep, which the default left to one thread.
-        parallel_for(
-            touched_.size(),
-            [&](std::size_t t) {
-              const std::uint32_t i = touched_[t];
-              const std::uint32_t begin = slot_begin_[i] + (group == 0u ? 0u : counts_[2u * i]);
-              const std::uint32_t stop = begin + counts_[2u * i + group];
-              if (begin == stop) return;
-              glm::vec3 dx(0.0f);
-              glm::vec4 dv(0.0f);
-              response::gather_correction(active_slots_.data(), begin, stop, corrections_.data(),
-                                          dx, dv);
-              if (last && group == 0u && dv.w > 0.0f && nodes_.host_positions[i].w > 0.0f)
-                slid_[i] = substep_;
-              response::apply_correction(nodes_.host_positions[i], nodes_.host_velocities[i], dx,
-                                         glm::vec3(dv));
-            },
-            512);
+            colour_begin[c + 1u] - begin,
+            [&](std::size_t e) { solve(order[begin + e], first_iteration, last); }, 64);
+      }
+      if (!last) return;
+      // A free node one of whose contacts slides on records the substep (in acting order: every
+      // writer writes the same stamp).
+      for (std::uint32_t a = 0; a < split; ++a) {
+        if (slides_[a] == 0u) continue;
+        for (std::uint32_t i = 0; i < 4u; ++i) {
+          const std::uint32_t n = acting_pairs_[a].nodes[i];
+          if ((slides_[a] >> i & 1u) != 0u && nodes_.host_positions[n].w > 0.0f)
+            slid_[n] = substep_;
+        }
       }
     };
     // Whether an active constraint is still violated (contact_violated): an OR, the same
@@ -268,8 +251,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       iterate(false, true);
       ++iterations_done_;
     }
-    // The strays, as GL's last node pass flags them: an untouched node is where the deviation
-    // pass measured it. An unwatched node never strays (its reach is infinite).
+    // The strays, as GL's stray pass flags them: an untouched node is where the deviation pass
+    // measured it. An unwatched node never strays (its reach is infinite).
     parallel_for(watched_.size(), [&](std::size_t w) {
       const std::uint32_t i = watched_[w];
       const glm::vec4& x = nodes_.host_positions[i];

@@ -1,19 +1,18 @@
 #pragma once
 // The contact response on the CPU, in parallel with oneTBB: the same passes as the GL backend's
-// shaders (deviation, activity, compaction, count, solve, node, stray) over a simulation's
-// positions and velocities in place (in host memory: sim::NodeBuffers), with the same results.
-// Only the active constraints (a few percent of the window's candidates) are counted and solved:
-// their list is compacted after the activity pass in constraint order, the counts summed from
-// it, and each node's active slots listed in its list's order, so the node pass adds GL's terms
-// in GL's order without walking the inactive slots. The node passes visit only the nodes the
-// active constraints touch: every other node's corrections are zero, and the stray check after
-// the iterations watches the reaches. Each projection solves the contacts, then the volume
-// constraints (response::first_volume_constraint), each group with its own counts and node pass.
+// shaders (deviation, activity, compaction, count, sweeps, stray) over a simulation's positions
+// and velocities in place (in host memory: sim::NodeBuffers), with the same results. Only the
+// active constraints (a few percent of the window's candidates) are counted and solved: their
+// list is compacted after the activity pass in constraint order, the contacts' counts summed
+// from it, and each iteration sweeps them colour by colour (response::SweepOrder: the contacts,
+// then the volume constraints), a colour's constraints in parallel, each applying its
+// corrections to its nodes at once. The stray check after the iterations watches the reaches.
 
 #include <memory>
 #include <vector>
 
 #include "core/response/response_backend.h"
+#include "core/response/sweep_order.h"
 #include "core/sim/simulation_backend.h"
 #include "cpu/executor.h"
 
@@ -45,11 +44,13 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::shared_ptr<Executor> executor_;
   const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
   std::vector<glm::vec4> frame_start_;  // per node: position at the frame's start, w = reach
-  // Per acting constraint acting_[a]: two per corner (slot 4 a + k), position and velocity
-  // change; three of what it gave this substep.
-  std::vector<glm::vec4> corrections_;
+  // Per acting constraint acting_[a]: three of what it gave this substep (impulses_), and the
+  // corners whose contact slides in the last sweep (slides_: bit k for corner k).
   std::vector<glm::vec4> impulses_;
-  // Per node n: its active contacts (2 n) and volume constraints (2 n + 1) this substep.
+  std::vector<std::uint8_t> slides_;
+  response::SweepOrder sweep_;  // the acting constraints' colours, this substep
+  // Per node n: its active contacts (2 n) and volume constraints (2 n + 1) this substep (the
+  // contacts' mass splitting; a node with either is touched).
   std::vector<std::uint32_t> counts_;
   std::size_t first_volume_ = 0;                // the first volume constraint (all after it are)
   std::vector<std::uint32_t> active_;           // per constraint: 1 when it acts this substep
@@ -61,11 +62,6 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::vector<std::uint32_t> slid_;     // per node: the last substep a contact of it slid in
   std::vector<std::uint32_t> watched_;  // the nodes with a finite reach, ascending
   std::vector<glm::vec4> start_;        // per node: response::projection_start, this substep
-  // Per touched node n, its active slots: active_slots_[slot_begin_[n] ..), the contacts'
-  // (counts_[2 n]) then the volume constraints' (counts_[2 n + 1]).
-  std::vector<std::uint32_t> slot_begin_;
-  std::vector<std::uint32_t> active_slots_;
-  std::vector<std::uint32_t> slot_cursor_;  // the fill's per node position
 };
 
 }  // namespace deformcd::cpu

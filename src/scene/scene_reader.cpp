@@ -135,9 +135,6 @@ ResponseSettings read_response(JsonFields f) {
   if (r.iterations < 1 || r.iterations > kMaxResponseIterations) {
     f.fail("iterations", "must be between 1 and " + std::to_string(kMaxResponseIterations));
   }
-  r.volume_relaxation = static_cast<float>(positive(f, "volume_relaxation", r.volume_relaxation));
-  if (!(r.volume_relaxation >= 1.0f && r.volume_relaxation <= 2.0f))
-    f.fail("volume_relaxation", "must be between 1 and 2");
   if (auto sleep = f.object("sleep")) {
     SleepSettings z;
     z.speed = static_cast<float>(positive(*sleep, "speed", z.speed));

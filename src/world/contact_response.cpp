@@ -118,10 +118,6 @@ void check_response_settings(const ResponseSettings& s) {
     throw Error("response iterations must be between 1 and " +
                 std::to_string(kMaxResponseIterations) + ", not " + std::to_string(s.iterations));
   }
-  if (!(s.volume_relaxation >= 1.0f && s.volume_relaxation <= 2.0f)) {
-    throw Error("response volume_relaxation must be between 1 and 2, not " +
-                std::to_string(s.volume_relaxation));
-  }
   if (s.sleep.has_value()) {
     check_value("sleep speed", s.sleep->speed);
     check_value("sleep time", s.sleep->time);
@@ -898,7 +894,6 @@ void ContactResponse::project(float h, bool more_substeps) {
   k.restitution = settings_.restitution;
   // untangle_step bounds a substep's untangling, whatever the iterations: each takes its share.
   k.max_untangle_step = max_untangle_step_ / static_cast<float>(settings_.iterations);
-  k.inverse_relaxation = 1.0f / settings_.volume_relaxation;
   ++substep_;
   const bool strayed = backend_->project(k, settings_.iterations);
   counts_.iterations += static_cast<std::uint64_t>(backend_->last_iterations());

@@ -37,10 +37,9 @@ using response::FrameConstraints;
 // Two constant sets: no restitution and a small untangling step, then restitution, stronger
 // friction and a smaller step; a substep of 1 ms.
 constexpr ContactConstants kPlain{1e-3f, 0.5f, 0.3f, 0.0f, 0.005f, 1e-3f};
-// Relaxed mass splitting (ResponseSettings::relaxation 2) in the bouncy substeps.
-constexpr ContactConstants kBouncy{1e-3f, 0.8f, 0.6f, 0.5f, 0.002f, 4e-3f, 0.5f};
+constexpr ContactConstants kBouncy{1e-3f, 0.8f, 0.6f, 0.5f, 0.002f, 4e-3f};
 const std::vector<ContactConstants> kSchedule = {kPlain, kPlain, kPlain, kBouncy, kBouncy, kBouncy};
-// Jacobi iterations per projection: the schedule's projections cycle through these (one, a
+// Sweeps per projection: the schedule's projections cycle through these (one, a
 // few, and the default), every other test runs kIterations.
 constexpr int kScheduleIterations[3] = {1, 3, 8};
 constexpr int kIterations = 4;
@@ -392,7 +391,7 @@ TEST_F(GlContactResponseTest, BuffersBeyondTheLimitAreRefusedByName) {
   const test::RandomContacts set = test::random_contacts(4, 60, 100);
   GlSimulation simulation(context());
   simulation.upload(set.world);
-  // 100 constraints: 3,200 bytes of pairs and 6,400 of corrections; the per-node buffers fit.
+  // 100 constraints: 3,200 bytes of pairs and 4,800 of impulses; the per-node buffers fit.
   GlContactResponse gl(context(), simulation, {.max_buffer_bytes = 3000});
   try {
     gl.begin_frame(set.constraints);
@@ -400,7 +399,7 @@ TEST_F(GlContactResponseTest, BuffersBeyondTheLimitAreRefusedByName) {
   } catch (const GlError& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find("Contact Pair (SSBO 29)"), std::string::npos) << message;
-    EXPECT_NE(message.find("Contact Correction (SSBO 30)"), std::string::npos) << message;
+    EXPECT_NE(message.find("Contact Impulse (SSBO 37)"), std::string::npos) << message;
     EXPECT_NE(message.find("GlContactResponseOptions::max_buffer_bytes"), std::string::npos)
         << message;
     EXPECT_EQ(message.find("Frame Start"), std::string::npos) << message;

@@ -203,20 +203,16 @@ TEST_F(LayoutAgreementTest, EveryFieldOfEveryStructRoundTrips) {
 
 TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
   const std::vector<std::uint32_t> expected = {
-      gpu::kNodePosition,      gpu::kNodeVelocity,      gpu::kSpringEdge,
-      gpu::kNodeForce,         gpu::kBoxInfo,           gpu::kCollisionResult,
-      gpu::kFaceNormal,        gpu::kFaceInfo,          gpu::kObjectInfo,
-      gpu::kBoxFaceList,       gpu::kFacePair,          gpu::kBoxMask,
-      gpu::kBodyParams,        gpu::kNodeBody,          gpu::kEdgeState,
-      gpu::kNodeEdgeOffset,    gpu::kNodeEdgeTerm,      gpu::kTetInfo,
-      gpu::kCornerForce,       gpu::kNodeCornerOffset,  gpu::kTetCornerSlot,
-      gpu::kFaceBoxes,         gpu::kBodyPair,          gpu::kCollisionCounters,
-      gpu::kBoxRows,           gpu::kBvhNode,           gpu::kBvhBox,
-      gpu::kBodyBvh,           gpu::kCandidatePair,     gpu::kContactPair,
-      gpu::kContactCorrection, gpu::kNodeContactOffset, gpu::kNodeContactList,
-      gpu::kNodeContactCount,  gpu::kFrameStart,        gpu::kNodeMotion,
-      gpu::kProjectionStart,   gpu::kContactImpulse,    gpu::kNodeSlid,
-      gpu::kNodeGuard};
+      gpu::kNodePosition,    gpu::kNodeVelocity,     gpu::kSpringEdge,    gpu::kNodeForce,
+      gpu::kBoxInfo,         gpu::kCollisionResult,  gpu::kFaceNormal,    gpu::kFaceInfo,
+      gpu::kObjectInfo,      gpu::kBoxFaceList,      gpu::kFacePair,      gpu::kBoxMask,
+      gpu::kBodyParams,      gpu::kNodeBody,         gpu::kEdgeState,     gpu::kNodeEdgeOffset,
+      gpu::kNodeEdgeTerm,    gpu::kTetInfo,          gpu::kCornerForce,   gpu::kNodeCornerOffset,
+      gpu::kTetCornerSlot,   gpu::kFaceBoxes,        gpu::kBodyPair,      gpu::kCollisionCounters,
+      gpu::kBoxRows,         gpu::kBvhNode,          gpu::kBvhBox,        gpu::kBodyBvh,
+      gpu::kCandidatePair,   gpu::kContactPair,      gpu::kContactSlides, gpu::kNodeContactOffset,
+      gpu::kNodeContactList, gpu::kNodeContactCount, gpu::kFrameStart,    gpu::kNodeMotion,
+      gpu::kProjectionStart, gpu::kContactImpulse,   gpu::kNodeSlid,      gpu::kNodeGuard};
   ASSERT_EQ(expected.size(), kBindingCount);
   std::vector<std::uint32_t> bindings = run_layout_probe(1).bindings;
   ASSERT_EQ(bindings.size(), kBindingCount + kConstantCount);
@@ -251,10 +247,10 @@ TEST_F(LayoutAgreementTest, BindingMacrosMatchTheBindingEnum) {
   EXPECT_EQ(constants[25], kTouchedNodesWord) << "RESPONSE_TOUCHED_NODES";
   EXPECT_EQ(constants[26], kStrayFlagWord) << "RESPONSE_STRAY_FLAG";
   EXPECT_EQ(constants[27], kResidualFlagWord) << "RESPONSE_RESIDUAL_FLAG";
-  EXPECT_EQ(constants[28], kSolveContactsArgsWord) << "RESPONSE_SOLVE_CONTACTS_ARGS";
-  EXPECT_EQ(constants[29], kSolveVolumesArgsWord) << "RESPONSE_SOLVE_VOLUMES_ARGS";
-  EXPECT_EQ(constants[30], kResidualArgsWord) << "RESPONSE_RESIDUAL_ARGS";
-  EXPECT_EQ(constants[31], kNodePassArgsWord) << "RESPONSE_NODE_PASS_ARGS";
+  EXPECT_EQ(constants[28], kResidualArgsWord) << "RESPONSE_RESIDUAL_ARGS";
+  EXPECT_EQ(constants[29], kSlidePassArgsWord) << "RESPONSE_SLIDE_PASS_ARGS";
+  EXPECT_EQ(constants[30], kSweepOrderBinding) << "BINDING_SWEEP_ORDER";
+  EXPECT_EQ(constants[31], kSweepColoursBinding) << "BINDING_SWEEP_COLOURS";
 }
 
 }  // namespace

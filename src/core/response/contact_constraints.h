@@ -1,21 +1,26 @@
 #pragma once
-// Contact response as pure per-element functions (issue 12), in five passes per substep: each
+// Contact response as pure per-element functions (issue 12), in passes per substep: each
 // node's distance from its straight path (per node), which constraints are active (per
-// constraint), each node's count of them (per node: an integer, whatever the order), each
-// active constraint's corrections (per constraint), each node's sum (per node). The CPU backend
+// constraint), each node's count of active contacts (per node: an integer, whatever the order),
+// then sweeps over the active constraints (per constraint, colour by colour). The CPU backend
 // calls these; shaders/response/*.glsl mirror them line for line, so both backends compute the
 // same floating-point operations in the same order.
 //
 // A constraint couples four nodes with weights b (the gradient of its distance along its normal
 // n is b_k n for node k) that sum to zero, so every correction w_k b_k lambda n, with w_k the
-// inverse mass, conserves momentum. Constraints are solved in parallel (Jacobi) by mass
-// splitting (Tonge, Benevolenski and Voroshilov 2012): a node in n active constraints lends each
-// a sub-node of 1/n its mass, each constraint is solved with those, and the node takes the mean
-// of its sub-nodes' moves, i.e. the sum of w_k b_k lambda n over its constraints. That conserves
-// momentum exactly, does not overshoot where constraints pile up on a node, and solves in one
-// step the constraints that agree (ten vertices resting on one face). Each constraint keeps
-// what it has given over a substep's iterations and corrects that total, clamped at zero, so
-// that a correction its neighbours made too much of is taken back (solve_contact).
+// inverse mass, conserves momentum. An iteration is a Gauss-Seidel sweep: the active
+// constraints in colours (sweep_order.h: no two of one colour share a node, so a colour's
+// constraints are solved in parallel and in any order with the same result), each solved on its
+// nodes as the constraints before it left them and applied at once. A contact lends each of its
+// nodes' other active contacts a share (mass splitting, Tonge, Benevolenski and Voroshilov
+// 2012: node k weighs count_k x its inverse mass), so that the contacts of a node share its load
+// and its slip evenly, as Coulomb's friction needs (a contact that took a node's whole load
+// first left the others no friction cone); the volume constraints weigh their nodes' plain
+// inverse masses. Each constraint keeps what it has given over a substep's iterations and
+// corrects that total, clamped at zero, so that a correction the constraints after it made too
+// much of is taken back (solve_contact). A sweep converged within the 8 iterations asked where
+// the Jacobi iterations this replaced ran 16 on the impact
+// (docs/notes/2026-12-07-gauss-seidel-probe.md).
 
 #include <algorithm>
 #include <cmath>
@@ -39,23 +44,7 @@ struct ContactConstants {
   float restitution;        ///< 0: the approach speed is absorbed, 1: given back along n
   float max_untangle_step;  ///< m: most an untangling constraint moves its nodes per substep
   float elapsed;            ///< s: from the frame's start to the end of this substep
-  /// 1 / ResponseSettings::volume_relaxation: scales a node's count of volume constraints in
-  /// their mass splitting (split_count). 1: plain mass splitting.
-  float inverse_relaxation = 1.0f;
 };
-
-/// A node's weight in the volume constraints' mass splitting, as a multiple of its inverse
-/// mass: its count of acting volume constraints (at least 1) divided by the relaxation, never
-/// below 1. Plain mass splitting (relaxation 1) moves a node by the mean of its constraints'
-/// corrections, a Jacobi step that converges slowly where a node's many tetrahedra are below
-/// their floor at once; relaxation r moves it by r x the mean (successive over-relaxation of
-/// the averaged step, as position-based solvers relax theirs), but by no more than one
-/// constraint alone would move it: a lone constraint is never over-corrected. The contacts
-/// keep plain mass splitting: relaxed, resting contacts jitter (docs/benchmarks.md, "Relaxed
-/// volume constraints").
-inline float split_count(std::uint32_t count, float inverse_relaxation) {
-  return glm::max(static_cast<float>(count) * inverse_relaxation, 1.0f);
-}
 
 /// The plane projection of p on triangle (a, b, c) as barycentric weights (u, v, w),
 /// u + v + w = 1 (negative outside the triangle); false for a degenerate triangle. T = float is
@@ -400,9 +389,9 @@ inline constexpr int kMaxIterationFactor = 4;
 
 /// Whether an active constraint is still violated by more than kResidualShare of its
 /// thickness after a projection's iterations (C < -share x thickness; a volume constraint's
-/// tetrahedron below share x its floor): the Jacobi solve has not converged there (a node in n
-/// constraints moves 1/n of what each asks), and another iteration is due. At three times the
-/// impact scene's speed with self-contact on, the bodies went through each other at their first
+/// tetrahedron below share x its floor): the sweeps have not converged there, and another
+/// iteration is due. With the Jacobi iterations the sweeps replaced, at three times the impact
+/// scene's speed with self-contact on, the bodies went through each other at their first
 /// contact after 8 iterations (and after 16) but not after 12, 24 or 32
 /// (docs/notes/2026-12-05-self-contact-cost.md). A sliver tetrahedron under two surface faces
 /// of the lion (a hundredth of its tetrahedra's mean volume) turned inside out within the
@@ -432,12 +421,13 @@ inline bool contact_violated(const gpu::ContactPair& pair, const glm::vec4 posit
 /// that would bring it to its floor in one substep (speculative: above the floor, where it
 /// is watched from (kVolumeWatch), it holds nothing slower), moving the nodes
 /// by that change x h, and the volume left below the floor (pair.thickness) is restored by
-/// position alone, along the gradient g, mass split as the contacts are (node k weighs
-/// count[k] x its inverse mass): node k moves w_k g_k lambda, which conserves momentum (the
-/// gradients sum to zero). given[0] x and y carry the rate and the volume given over the
-/// substep's iterations, corrected each iteration and never below zero, as solve_contact's
-/// normal totals. No node moves more than pair.step_limit in one iteration: a tetrahedron
-/// flattened to a line has gradients near zero, and 1 / their square would throw its nodes.
+/// position alone, along the gradient g, node k weighing its inverse mass w_k (the sweep's
+/// next constraint sees the move: no mass splitting): node k moves w_k g_k lambda, which
+/// conserves momentum (the gradients sum to zero). given[0] x and y carry the rate and the volume
+/// given over the substep's iterations, corrected each iteration and never below zero, as
+/// solve_contact's normal totals. No node moves more than pair.step_limit in one iteration: a
+/// tetrahedron flattened to a line has gradients near zero, and 1 / their square would throw its
+/// nodes.
 ///
 /// Why (issue 33): edge springs hold a mirrored tetrahedron at rest lengths, and the linear
 /// volume force alone, explicit, does not stop a node carried through the opposite face in one
@@ -446,8 +436,8 @@ inline bool contact_violated(const gpu::ContactPair& pair, const glm::vec4 posit
 /// inverted at once and 591 surface triangle pairs intersected; with a floor of 0.3 x the rest
 /// volume, at most 18 and 6 (docs/notes/2026-12-05-volume-floor.md).
 inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[4],
-                         const glm::vec4 velocity[4], const std::uint32_t count[4],
-                         const ContactConstants& k, glm::vec4 given[3], glm::vec4 correction[8]) {
+                         const glm::vec4 velocity[4], const ContactConstants& k, glm::vec4 given[3],
+                         glm::vec4 correction[8]) {
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
                           glm::vec3(position[3])};
   glm::vec3 g[4];
@@ -457,7 +447,7 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
   float lever = 0.0f;  // the largest w_k |g_k|: node k moves w_k |g_k| |lambda|
   for (int i = 0; i < 4; ++i) {
     const float g2 = glm::dot(g[i], g[i]);
-    weight += split_count(count[i], k.inverse_relaxation) * position[i].w * g2;
+    weight += position[i].w * g2;
     rate += glm::dot(g[i], glm::vec3(velocity[i]));
     lever = glm::max(lever, position[i].w * std::sqrt(g2));
   }
@@ -482,39 +472,40 @@ inline void solve_volume(const gpu::ContactPair& pair, const glm::vec4 position[
   }
 }
 
-/// The solve pass: one active constraint's corrections of its four nodes into correction[2 k]
+/// The solve: one active constraint's corrections of its four nodes into correction[2 k]
 /// (position change) and correction[2 k + 1] (velocity change), from the current positions
-/// (w = inverse mass), velocities and the nodes' active counts (mass splitting: node k weighs
-/// as if its inverse mass were count[k] x w). Along the normal, the approach velocity is
-/// cancelled (and restitution x the first iteration's approach given back), which also moves
-/// the nodes by that velocity change x h; depth left after that is removed by position alone,
-/// without adding velocity (so a deep start or a tunnel does not turn into a launch), an
-/// untangling constraint by at most max_untangle_step per iteration. Tangentially, Coulomb
-/// friction on the relative velocity: the substep's friction total (a vector) stays within
+/// (w = inverse mass), velocities and, for a contact, the nodes' counts of active contacts
+/// (mass splitting: node k weighs as if its inverse mass were count[k] x w; a volume
+/// constraint reads no count). The sweep applies them at once (apply_correction). Along the normal,
+/// the approach velocity is cancelled (and restitution x the first iteration's approach given
+/// back), which also moves the nodes by that velocity change x h; depth left after that is removed
+/// by position alone, without adding velocity (so a deep start or a tunnel does not turn into a
+/// launch), an untangling constraint by at most max_untangle_step per iteration. Tangentially,
+/// Coulomb friction on the relative velocity: the substep's friction total (a vector) stays within
 /// friction_static x the accumulated normal velocity change, or within friction_dynamic x it
-/// where the last iteration finds the slip going on (`last_iteration`). All along the weights,
+/// where the contact slides (`last_iteration`). All along the weights,
 /// so momentum is conserved; a node moves at most its share of the whole correction (see
 /// `reduce`).
 ///
 /// `history`: how many of its free nodes slid in the last substep (slid_before); the contact
 /// slid through it (`was_sliding`) where all did. In the last iteration the w of each corner's
-/// velocity correction is 1 where it slides on (the node pass records it for the next
-/// substep), else 0. `start`: the nodes' projection starts (projection_start), from which a
-/// sticking contact's hold measures how far pushes carried its point; `window_start`: where
-/// they started the window (contact_geometry's `start`).
+/// velocity correction is 1 where it slides on (the backend stamps its free nodes after the
+/// sweep, for the next substep), else 0. `start`: the nodes' projection starts (projection_start),
+/// from which a sticking contact's hold measures how far pushes carried its point; `window_start`:
+/// where they started the window (contact_geometry's `start`).
 ///
 /// `given` (three ContactImpulse slots, 3 a to 3 a + 2, per acting constraint) carries what the
 /// constraint has given over the substep's iterations so far: given[0] x the normal speed, y the
 /// push, z the first iteration's approach; given[1] xyz the friction (a velocity, in the units
-/// of given[0].x), w the first iteration's slip; given[2] xyz the hold (a position); the first
-/// iteration resets them. Each iteration corrects the totals (the normal ones never below
-/// zero, the friction within its cone: a projected Jacobi solve on accumulated corrections, as
-/// sequential impulses clamp theirs): a constraint that an earlier iteration over-corrected,
-/// because its nodes' other constraints then moved them too, takes the excess back instead of
-/// leaving it. Without that, a light node on an edge whose heavier end another constraint also
-/// stops was thrown off the surface every substep (the rigid-lever correction of the edge-edge
-/// constraint, never undone once the contact point separated), the main source of the stack
-/// scene's resting jitter.
+/// of given[0].x), w the first iteration's slip; given[2] xyz the hold (a position), w 1 where
+/// the first iteration's friction left the static cone; the first iteration resets them. Each
+/// iteration corrects the totals (the normal ones never below zero, the friction within its
+/// cone, as sequential impulses clamp theirs): a constraint that an earlier iteration
+/// over-corrected, because its nodes' other constraints then moved them too, takes the excess
+/// back instead of leaving it. Without that, a light node on an edge whose heavier end another
+/// constraint also stops was thrown off the surface every substep (the rigid-lever correction of
+/// the edge-edge constraint, never undone once the contact point separated), the main source of the
+/// stack scene's resting jitter.
 inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position[4],
                           const glm::vec4 velocity[4], const std::uint32_t count[4],
                           const glm::vec4 start[4], const glm::vec3 window_start[4],
@@ -524,7 +515,7 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
     correction[i] = glm::vec4(0.0f);
   if (first_iteration) given[0] = given[1] = given[2] = glm::vec4(0.0f);
   if (pair.kind == gpu::kContactVolume) {
-    solve_volume(pair, position, velocity, count, k, given, correction);
+    solve_volume(pair, position, velocity, k, given, correction);
     return;
   }
   const glm::vec3 x[4] = {glm::vec3(position[0]), glm::vec3(position[1]), glm::vec3(position[2]),
@@ -581,16 +572,21 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   // iteration, and slides on while its first iteration's slip is more than friction_static's
   // cone could have stopped (it sticks again once its points have all but stopped). A sticking
   // contact has friction_static's cone until the last iteration; there it starts sliding
-  // (friction_dynamic's cone) only if half or more of its first iteration's slip is left. A
-  // constraint whose cone its share of a node's slip overflows, while the node's other
-  // constraints stop the node, does not slide: its point does not move. Judged by its own cone
-  // alone (slide when the wanted total leaves friction_static's), an elastic block on 28 degrees
-  // with 0.7 / 0.45 slid at the dynamic cone's net friction within 4 frames of the tilt, though
-  // held it needs 0.53. Without the state (the choice made afresh each substep), a slow slip
-  // was stopped by the static cone in the iterations before each last one: a block tilted
-  // gradually past its static angle broke away late and slid 10-21 % short of Coulomb's
-  // distance (docs/notes/2026-12-05-friction-tilt.md). The slide flag of the last iteration
-  // (1 in the w of each corner's velocity slot) is what the node pass records.
+  // (friction_dynamic's cone) only if its first iteration's wanted friction left
+  // friction_static's cone (Coulomb's test, taken where every contact of a node sees the whole
+  // slip with its share of the load, before the sweep has moved the slip from one to the next)
+  // and half or more of that iteration's slip is left: a constraint whose cone its share of a
+  // node's slip overflows, while the node's other constraints stop the node, does not slide, its
+  // point does not move. Judged by its own cone in the last iteration (slide when the wanted
+  // total leaves friction_static's), an elastic block on 28 degrees with 0.7 / 0.45 slid at the
+  // dynamic cone's net friction within 4 frames of the tilt, though held it needs 0.53; in a
+  // sweep, so did it by the half-slip condition alone (1.48 m in 2 s: the contacts later in the
+  // sweep see little slip first; docs/notes/2026-12-07-gauss-seidel-probe.md). Without the state
+  // (the choice made afresh each substep), a slow slip was stopped by the static cone in the
+  // iterations before each last one: a block tilted gradually past its static angle broke away late
+  // and slid 10-21 % short of Coulomb's distance (docs/notes/2026-12-05-friction-tilt.md). The
+  // slide flag of the last iteration (1 in the w of each corner's velocity slot) is what the
+  // backend stamps after the sweep.
   const glm::vec3 tangential = relative_velocity - normal_velocity * n;
   const glm::vec3 before = glm::vec3(given[1]);
   const glm::vec3 held = before - glm::dot(before, n) * n;  // in the tangent plane of now
@@ -598,8 +594,11 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
   const float wanted_length = std::sqrt(glm::dot(wanted, wanted));
   const float slip_left = reduce * std::sqrt(glm::dot(tangential, tangential));
   if (first_iteration) given[1].w = slip_left;
+  float overflowed = given[2].w;  // 1: the first iteration's friction left the static cone
+  if (first_iteration) overflowed = wanted_length > k.friction_static * given[0].x ? 1.0f : 0.0f;
   const bool was_sliding = history == kAllSlid;
-  const bool starts_sliding = !was_sliding && last_iteration && slip_left > 0.5f * given[1].w;
+  const bool starts_sliding =
+      !was_sliding && last_iteration && overflowed > 0.0f && slip_left > 0.5f * given[1].w;
   const bool dynamic = was_sliding || starts_sliding;
   const float limit = (dynamic ? k.friction_dynamic : k.friction_static) * given[0].x;
   glm::vec3 friction_total = wanted;
@@ -629,7 +628,7 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
     if (wanted_hold_length > hold_limit)
       hold_total = wanted_hold * (hold_limit / wanted_hold_length);
   }
-  given[2] = glm::vec4(hold_total, 0.0f);
+  given[2] = glm::vec4(hold_total, overflowed);
   const glm::vec3 hold = hold_total - held_hold;
   const glm::vec3 dv = (normal_speed * n + friction) / weight;
   const glm::vec3 dx = dv * k.h + (push / weight) * n + hold / weight;
@@ -638,20 +637,6 @@ inline void solve_contact(const gpu::ContactPair& pair, const glm::vec4 position
     const float scale = position[i].w * b[i];
     correction[2 * i] = glm::vec4(scale * dx, 0.0f);
     correction[2 * i + 1] = glm::vec4(scale * dv, slide_flag);
-  }
-}
-
-/// The node pass: one node's summed position and velocity corrections over `list[begin, end)`,
-/// its active slots (4 a + corner, a a constraint's place in the acting list) in list order.
-/// Both backends list only the active slots (the CPU on the host, GL in its count pass).
-inline void gather_correction(const std::uint32_t* list, std::uint32_t begin, std::uint32_t end,
-                              const glm::vec4* corrections, glm::vec3& dx, glm::vec4& dv) {
-  dx = glm::vec3(0.0f);
-  dv = glm::vec4(0.0f);
-  for (std::uint32_t e = begin; e < end; ++e) {
-    const std::uint32_t slot = list[e];
-    dx += glm::vec3(corrections[2u * slot]);
-    dv += corrections[2u * slot + 1u];
   }
 }
 

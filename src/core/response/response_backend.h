@@ -26,8 +26,9 @@ class ResponseBackend {
   /// `constraints` may be the same object as before, changed since (kept as begin_frame's).
   virtual void update_frame(const FrameConstraints& constraints) = 0;
   /// The projection after a substep, on the current positions and velocities: the deviation,
-  /// activity and count passes once, then `iterations` (>= 1) Jacobi projections of the active
-  /// constraints, each a solve and a node pass (see contact_constraints.h), and more, to
+  /// activity and count passes once, then `iterations` (>= 1) Gauss-Seidel sweeps over the
+  /// active constraints in the colours of response::SweepOrder (see contact_constraints.h), and
+  /// more, to
   /// kMaxIterationFactor x `iterations` in all, while an active contact is still violated
   /// (contact_violated; the friction's last-iteration rule in each of those). Returns whether a
   /// free node ends it beyond its reach (apply_correction): the window's constraints no longer

@@ -54,7 +54,7 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
   return {
       {"Contact Pair", gpu::kContactPair, pairs, sizeof(gpu::ContactPair)},
       // At most every constraint acts in a projection.
-      {"Contact Correction", gpu::kContactCorrection, 8u * pairs, sizeof(glm::vec4)},
+      {"Contact Slides", gpu::kContactSlides, pairs, sizeof(std::uint32_t)},
       {"Node Contact Offset", gpu::kNodeContactOffset, nodes + 1u, sizeof(std::uint32_t)},
       {"Node Contact List", gpu::kNodeContactList, 4u * pairs, sizeof(std::uint32_t)},
       {"Node Contact Count", gpu::kNodeContactCount, 2u * nodes, sizeof(std::uint32_t)},
@@ -69,6 +69,9 @@ std::vector<BufferSize> contact_buffer_sizes(const response::FrameConstraints& c
       {"Node Active Slot", kNodeActiveSlotBinding, 4u * pairs, sizeof(std::uint32_t)},
       {"Touched Node", kTouchedNodeBinding, nodes, sizeof(std::uint32_t)},
       {"Response State", kResponseStateBinding, kResponseStateWords, sizeof(std::uint32_t)},
+      {"Sweep Order", kSweepOrderBinding, pairs, sizeof(std::uint32_t)},
+      // At most a colour per acting constraint.
+      {"Sweep Colours", kSweepColoursBinding, pairs + 1u, sizeof(std::uint32_t)},
   };
 }
 

@@ -66,13 +66,12 @@ GlContactResponse::GlContactResponse(const DeviceInfo& device, sim::SimulationBa
       compact_("response/contact_compact.comp"),
       count_("response/contact_count.comp"),
       dispatch_args_("response/contact_dispatch_args.comp"),
-      pairs_("response/contact_pairs.comp"),
-      apply_("response/contact_apply.comp"),
+      sweep_("response/contact_sweep.comp"),
+      slide_("response/contact_slide.comp"),
       residual_("response/contact_residual.comp"),
       stray_("response/contact_stray.comp") {
-  dispatch_args_.set_uniform("u_solve_local_size", pairs_.work_group_size()[0]);
   dispatch_args_.set_uniform("u_residual_local_size", residual_.work_group_size()[0]);
-  dispatch_args_.set_uniform("u_node_local_size", apply_.work_group_size()[0]);
+  dispatch_args_.set_uniform("u_node_local_size", slide_.work_group_size()[0]);
 }
 
 void GlContactResponse::begin_frame(const response::FrameConstraints& constraints) {
@@ -96,8 +95,8 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
                      limit_is_device_ ? "the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE"
                                       : "GlContactResponseOptions::max_buffer_bytes",
                      kOwner);
-  check_fits_one_dispatch(pairs_, constraints.pairs.size(), max_work_groups_x_);
-  for (const ComputeProgram* per_node : {&frame_start_, &deviation_, &count_, &apply_, &stray_})
+  check_fits_one_dispatch(activity_, constraints.pairs.size(), max_work_groups_x_);
+  for (const ComputeProgram* per_node : {&frame_start_, &deviation_, &count_, &slide_, &stray_})
     check_fits_one_dispatch(*per_node, sim.node_count, max_work_groups_x_);
 
   const std::uint64_t nodes = sim.node_count;
@@ -106,7 +105,7 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
     return replacement(buffer, needed, max_buffer_bytes_, label_of(sizes, binding, kOwner));
   };
   auto new_pairs = grow(buffers_.pairs, pairs, gpu::kContactPair);
-  auto new_corrections = grow(buffers_.corrections, 8u * pairs, gpu::kContactCorrection);
+  auto new_slides = grow(buffers_.slides, pairs, gpu::kContactSlides);
   auto new_offset = grow(buffers_.node_offset, nodes + 1u, gpu::kNodeContactOffset);
   auto new_list = grow(buffers_.node_list, lists.list.size(), gpu::kNodeContactList);
   auto new_count = grow(buffers_.node_count, 2u * nodes, gpu::kNodeContactCount);
@@ -121,10 +120,12 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   auto new_active_slot = grow(buffers_.node_active_slot, lists.list.size(), kNodeActiveSlotBinding);
   auto new_touched = grow(buffers_.touched_node, nodes, kTouchedNodeBinding);
   auto new_state = grow(buffers_.state, kResponseStateWords, kResponseStateBinding);
+  auto new_sweep_order = grow(buffers_.sweep_order, pairs, kSweepOrderBinding);
+  auto new_sweep_colours = grow(buffers_.sweep_colours, pairs + 1u, kSweepColoursBinding);
 
   frame_ready_ = false;  // until the upload below has completed
   adopt(buffers_.pairs, new_pairs);
-  adopt(buffers_.corrections, new_corrections);
+  adopt(buffers_.slides, new_slides);
   adopt(buffers_.node_offset, new_offset);
   adopt(buffers_.node_list, new_list);
   adopt(buffers_.node_count, new_count);
@@ -137,6 +138,8 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   adopt(buffers_.node_active_slot, new_active_slot);
   adopt(buffers_.touched_node, new_touched);
   adopt(buffers_.state, new_state);
+  adopt(buffers_.sweep_order, new_sweep_order);
+  adopt(buffers_.sweep_colours, new_sweep_colours);
   // The slide stamps outlive a window (a contact's slide goes on across searches): set only
   // where the buffer is new (or the nodes others), to a substep no projection has.
   if (new_slid.has_value() || node_count_ != sim.node_count) {
@@ -151,13 +154,14 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
     const std::vector<std::uint32_t> none(buffers_.node_guard->size(), 0u);
     buffers_.node_guard->upload(std::span<const std::uint32_t>(none));
   }
-  // Corrections, impulses, counts, lists and the state need no initial values: each
-  // projection writes all it reads (a substep's first iteration resets the impulses).
+  // Slides, impulses, counts, lists, the sweep's order and the state need no initial values:
+  // each projection writes all it reads (a substep's first iteration resets the impulses).
   buffers_.pairs->upload(std::span<const gpu::ContactPair>(constraints.pairs));
   buffers_.node_offset->upload(std::span<const std::uint32_t>(lists.offset));
   buffers_.node_list->upload(std::span<const std::uint32_t>(lists.list));
   buffers_.node_motion->upload(std::span<const glm::vec4>(constraints.node_motion));
 
+  constraints_ = &constraints;
   pair_count_ = static_cast<std::uint32_t>(pairs);
   first_volume_ = static_cast<std::uint32_t>(first_volume);
   node_count_ = sim.node_count;
@@ -175,7 +179,8 @@ void GlContactResponse::upload(const response::FrameConstraints& constraints, bo
   buffers_.node_motion->bind(gpu::kNodeMotion);
   buffers_.frame_start->bind(gpu::kFrameStart);
   frame_start_.dispatch_covering(node_count_);
-  // The node passes read the frame starts; the next substep overwrites the positions read here.
+  // The sweeps and the stray pass read the frame starts; the next substep overwrites the
+  // positions read here.
   storage_barrier();
   frame_ready_ = true;
 }
@@ -211,7 +216,7 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   bind_storage_buffer(gpu::kNodePosition, sim.gl_positions);
   bind_storage_buffer(gpu::kNodeVelocity, sim.gl_velocities);
   buffers_.pairs->bind(gpu::kContactPair);
-  buffers_.corrections->bind(gpu::kContactCorrection);
+  buffers_.slides->bind(gpu::kContactSlides);
   buffers_.node_offset->bind(gpu::kNodeContactOffset);
   buffers_.node_list->bind(gpu::kNodeContactList);
   buffers_.node_count->bind(gpu::kNodeContactCount);
@@ -226,19 +231,21 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   buffers_.node_active_slot->bind(kNodeActiveSlotBinding);
   buffers_.touched_node->bind(kTouchedNodeBinding);
   buffers_.state->bind(kResponseStateBinding);
+  buffers_.sweep_order->bind(kSweepOrderBinding);
+  buffers_.sweep_colours->bind(kSweepColoursBinding);
   ++substep_;
-  pairs_.set_uniform("u_substep", substep_);
-  apply_.set_uniform("u_substep", substep_);
+  sweep_.set_uniform("u_substep", substep_);
+  slide_.set_uniform("u_substep", substep_);
   // The stray and residual flags start cleared (the last projection's reads have waited for
   // every pass that wrote them).
   const std::uint32_t cleared[2] = {0u, 0u};
   buffers_.state->upload(std::span<const std::uint32_t>(cleared), kStrayFlagWord);
   static_assert(kResidualFlagWord == kStrayFlagWord + 1u);
 
-  // Deviation, activity, compaction, count, then per iteration the solve and node passes
-  // (contact_constraints.h), each reading what the one before wrote; the stray pass last. With
-  // no constraints only the stray pass runs: it watches every free node's reach, as the CPU
-  // backend does.
+  // Deviation, activity, compaction, count, then the sweep's order from the host and per
+  // iteration the sweep (and after a last one the slide pass), each reading what the one before
+  // wrote; the stray pass last. With no constraints only the stray pass runs: it watches every
+  // free node's reach, as the CPU backend does.
   iterations_done_ = iterations;
   if (pair_count_ > 0) {
     // The constraint groups: the contacts, then the volume constraints (the list's last).
@@ -266,39 +273,40 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
     dispatch_args_.dispatch(1);
     command_barrier();  // the indirect dispatches read the arguments
 
-    pairs_.set_uniform("u_h", k.h);
-    pairs_.set_uniform("u_friction_static", k.friction_static);
-    pairs_.set_uniform("u_friction_dynamic", k.friction_dynamic);
-    pairs_.set_uniform("u_restitution", k.restitution);
-    pairs_.set_uniform("u_max_untangle_step", k.max_untangle_step);
-    pairs_.set_uniform("u_inverse_relaxation", k.inverse_relaxation);
-    const std::uint32_t state = buffers_.state->name();
-    // Each iteration solves the contacts, then the volume constraints on the positions the
-    // contacts left (the CPU backend's order); a group with no constraints listed is skipped.
-    // `last`: the friction's last-iteration rule applies.
+    // The sweep's colours, made on the host from the acting list (download() waits for the
+    // passes that wrote it): the CPU backend's function on the same list, so the same order.
+    const std::vector<std::uint32_t> counts =
+        buffers_.state->download(kActingContactsWord, kActingTotalWord + 1u);
+    const std::vector<std::uint32_t> acting = buffers_.acting_list->download(0, counts[1]);
+    sweep_order_.colour(constraints_->pairs, acting, counts[0], node_count_);
+    const std::vector<std::uint32_t>& colour_begin = sweep_order_.colour_begin();
+    if (!acting.empty()) {
+      buffers_.sweep_order->upload(std::span<const std::uint32_t>(sweep_order_.order()));
+      buffers_.sweep_colours->upload(std::span<const std::uint32_t>(colour_begin));
+    }
+    sweep_.set_uniform("u_colours", static_cast<std::uint32_t>(colour_begin.size() - 1u));
+    sweep_.set_uniform("u_contact_colours", sweep_order_.contact_colours());
+    sweep_.set_uniform("u_h", k.h);
+    sweep_.set_uniform("u_friction_static", k.friction_static);
+    sweep_.set_uniform("u_friction_dynamic", k.friction_dynamic);
+    sweep_.set_uniform("u_restitution", k.restitution);
+    sweep_.set_uniform("u_max_untangle_step", k.max_untangle_step);
+    // `last`: the friction's last-iteration rule applies, and the slide pass stamps after it.
     const auto iterate = [&](bool first_iteration, bool last) {
-      for (std::uint32_t group = 0; group < 2u; ++group) {
-        if (group_begin[group] == group_end[group]) continue;
-        pairs_.set_uniform("u_group", group);
-        pairs_.set_uniform("u_first_iteration", static_cast<std::uint32_t>(first_iteration));
-        pairs_.set_uniform("u_last_iteration", static_cast<std::uint32_t>(last));
-        pairs_.dispatch_indirect(state,
-                                 group == 0u ? kSolveContactsArgsWord : kSolveVolumesArgsWord);
-        storage_barrier();  // the node pass reads the corrections
-        apply_.set_uniform("u_group", group);
-        apply_.set_uniform("u_record_slide", static_cast<std::uint32_t>(last && group == 0u));
-        apply_.dispatch_indirect(state, kNodePassArgsWord);
-        // The next solve pass reads the corrected nodes and overwrites the corrections read
-        // here.
-        storage_barrier();
-      }
+      sweep_.set_uniform("u_first_iteration", static_cast<std::uint32_t>(first_iteration));
+      sweep_.set_uniform("u_last_iteration", static_cast<std::uint32_t>(last));
+      sweep_.dispatch(1);
+      storage_barrier();  // the next sweep, the slide and residual passes read the nodes
+      if (!last) return;
+      slide_.dispatch_indirect(buffers_.state->name(), kSlidePassArgsWord);
+      storage_barrier();  // the next sweep reads the stamps
     };
     for (int iteration = 0; iteration < iterations; ++iteration)
       iterate(iteration == 0, iteration + 1 == iterations);
-    // More while the solve has not converged (the residual pass's flag, read back), to
+    // More while the sweeps have not converged (the residual pass's flag, read back), to
     // kMaxIterationFactor x the iterations asked.
     while (iterations_done_ < response::kMaxIterationFactor * iterations) {
-      residual_.dispatch_indirect(state, kResidualArgsWord);
+      residual_.dispatch_indirect(buffers_.state->name(), kResidualArgsWord);
       // download() puts the barrier that makes the pass's write visible to it.
       if (buffers_.state->download(kResidualFlagWord, 1)[0] == 0u) break;
       buffers_.state->upload(std::span<const std::uint32_t>(cleared, 1), kResidualFlagWord);
@@ -312,8 +320,8 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
   // drawing from SSBO 0 read the corrected nodes.
   memory_barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
                  GL_BUFFER_UPDATE_BARRIER_BIT);
-  // The stray flag: the one wait of a projection (a new search must start before the next
-  // substep when it is set).
+  // The stray flag: a projection's second wait, after the acting list's (a new search must
+  // start before the next substep when it is set).
   return buffers_.state->download(kStrayFlagWord, 1)[0] != 0u;
 }
 

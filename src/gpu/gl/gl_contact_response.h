@@ -13,22 +13,24 @@
 // response/contact_count.comp,
 // one per node, listing its active slots over its CSR list (SSBOs 31, 32), counting them (SSBO
 // 33) and listing the touched nodes; response/contact_dispatch_args.comp, one invocation,
-// writing the indirect dispatches from those counts. Then, once per Jacobi iteration and group
-// (the contacts, then the volume constraints), response/contact_pairs.comp, one per acting
-// constraint, writing its four corner slots (SSBO 30), and response/contact_apply.comp, one per
-// touched node, gathering its active corrections in list order and writing only its own
-// position and velocity. After the iterations asked for, response/contact_residual.comp, one per
+// writing the indirect dispatches from those counts. The host then reads the acting list back
+// and colours it (response::SweepOrder, the function the CPU backend calls, so the two sweep in
+// the same order) and uploads the sweep's order. Once per iteration, response/contact_sweep.comp,
+// one work group, sweeps the colours (the contacts', then the volume constraints'), each
+// constraint applying its corrections to its nodes at once, a barrier a colour (no two
+// constraints of a colour share a node, so the invocations' order changes no bit); after a last
+// iteration's sweep, response/contact_slide.comp, one per touched node, stamps the nodes whose
+// contacts slide on. After the iterations asked for, response/contact_residual.comp, one per
 // acting constraint, flags one still violated (its flag read back): then one more iteration, to
 // kMaxIterationFactor x those asked. Last, response/contact_stray.comp, one per node, flags a
-// node beyond its reach. The solve and node passes touch only the acting constraints and their
-// nodes (on the impact scene about 2,200 of 55,000 listed constraints), as the CPU backend's do.
-// Gathers instead of scattering with atomics: GL 4.3 has no float atomics, and a fixed
-// summation order makes the result independent of the schedule and equal to the CPU's bit for
-// bit (shaders/response/contact_constraints.glsl mirrors src/core/response/contact_constraints.h).
+// node beyond its reach. The sweeps touch only the acting constraints and their nodes (on the
+// impact scene about 2,200 of 55,000 listed constraints), as the CPU backend's do
+// (shaders/response/contact_constraints.glsl mirrors src/core/response/contact_constraints.h).
 //
-// A frame's constraints are uploaded once, in begin_frame; a projection issues its dispatches
-// and reads back one uint (whether a node strayed beyond its reach, so that a new search is
-// due), and one more per iteration beyond those asked (whether the solve has converged).
+// A frame's constraints are uploaded once, in begin_frame; a projection reads back its acting
+// list (for the sweep's colours), one uint at its end (whether a node strayed beyond its reach,
+// so that a new search is due), and one more per iteration beyond those asked (whether the
+// sweeps have converged).
 
 #include <cstdint>
 #include <optional>
@@ -37,6 +39,7 @@
 #include <glm/vec4.hpp>
 
 #include "core/response/response_backend.h"
+#include "core/response/sweep_order.h"
 #include "core/sim/simulation_backend.h"
 #include "deformcd/gl/context.h"
 #include "deformcd/gl/device_info.h"
@@ -57,7 +60,7 @@ struct GlContactResponseOptions {
 // frame needs more than it holds, so a contact set of steady size allocates nothing per frame.
 struct ContactBuffers {
   std::optional<Ssbo<gpu::ContactPair>> pairs;      // SSBO 29
-  std::optional<Ssbo<glm::vec4>> corrections;       // SSBO 30: 8 per acting constraint
+  std::optional<Ssbo<std::uint32_t>> slides;        // SSBO 30: per acting constraint
   std::optional<Ssbo<std::uint32_t>> node_offset;   // SSBO 31: nodes + 1
   std::optional<Ssbo<std::uint32_t>> node_list;     // SSBO 32
   std::optional<Ssbo<std::uint32_t>> node_count;    // SSBO 33: two per node
@@ -73,6 +76,8 @@ struct ContactBuffers {
   std::optional<Ssbo<std::uint32_t>> node_active_slot;  // 42: per node list entry
   std::optional<Ssbo<std::uint32_t>> touched_node;      // 43: per node
   std::optional<Ssbo<std::uint32_t>> state;             // 44: counts, flags, dispatch args
+  std::optional<Ssbo<std::uint32_t>> sweep_order;       // 45: per constraint
+  std::optional<Ssbo<std::uint32_t>> sweep_colours;     // 46: per colour + 1 (grown as needed)
 };
 
 class GlContactResponse final : public response::ResponseBackend {
@@ -93,9 +98,9 @@ class GlContactResponse final : public response::ResponseBackend {
   // before the simulation's upload().
   void begin_frame(const response::FrameConstraints& constraints) override;
   void update_frame(const response::FrameConstraints& constraints) override;
-  // The pair, count and node passes with storage barriers between them, ending with a barrier so
-  // that the next substep, the collision shaders and renderers see the corrected nodes. Throws
-  // Error before begin_frame(), or when the simulation was uploaded again since.
+  // The activity, count, sweep and stray passes with storage barriers between them, ending with a
+  // barrier so that the next substep, the collision shaders and renderers see the corrected nodes.
+  // Throws Error before begin_frame(), or when the simulation was uploaded again since.
   [[nodiscard]] bool project(const response::ContactConstants& constants, int iterations) override;
   [[nodiscard]] int last_iterations() const override { return iterations_done_; }
 
@@ -126,8 +131,8 @@ class GlContactResponse final : public response::ResponseBackend {
   ComputeProgram compact_;
   ComputeProgram count_;
   ComputeProgram dispatch_args_;
-  ComputeProgram pairs_;
-  ComputeProgram apply_;
+  ComputeProgram sweep_;
+  ComputeProgram slide_;
   ComputeProgram residual_;
   ComputeProgram stray_;
   int iterations_done_ = 0;    // by the last project()
@@ -141,6 +146,8 @@ class GlContactResponse final : public response::ResponseBackend {
       0;  // the first volume constraint (response::first_volume_constraint)
   std::uint32_t node_count_ = 0;
   std::uint32_t frame_positions_ = 0;  // the simulation's SSBO 0 name at begin_frame
+  const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
+  response::SweepOrder sweep_order_;                         // this projection's colours
 };
 
 }  // namespace deformcd::gl

@@ -15,20 +15,21 @@ inline constexpr std::uint32_t kActingListBinding = 41;      // uint per acting 
 inline constexpr std::uint32_t kNodeActiveSlotBinding = 42;  // uint per node list entry
 inline constexpr std::uint32_t kTouchedNodeBinding = 43;     // uint per touched node
 inline constexpr std::uint32_t kResponseStateBinding = 44;   // uint[kResponseStateWords]
+// The sweep's order (response::SweepOrder, from the host): acting places colour by colour, and
+// each colour's first entry in it (one more than the colours).
+inline constexpr std::uint32_t kSweepOrderBinding = 45;    // uint per acting constraint
+inline constexpr std::uint32_t kSweepColoursBinding = 46;  // uint per colour + 1
 
 // The state buffer's size in uints, and its words (RESPONSE_*): the counts of a projection's
 // acting contacts, acting constraints and touched nodes, the stray and residual flags, and the
-// glDispatchComputeIndirect triples of the solve (contacts, volume constraints), residual and
-// node passes.
-inline constexpr std::uint32_t kResponseStateWords = 20;
+// glDispatchComputeIndirect triples of the residual and slide passes.
+inline constexpr std::uint32_t kResponseStateWords = 14;
 inline constexpr std::uint32_t kActingContactsWord = 0;
 inline constexpr std::uint32_t kActingTotalWord = 1;
 inline constexpr std::uint32_t kTouchedNodesWord = 2;
 inline constexpr std::uint32_t kStrayFlagWord = 3;
 inline constexpr std::uint32_t kResidualFlagWord = 4;
-inline constexpr std::uint32_t kSolveContactsArgsWord = 8;
-inline constexpr std::uint32_t kSolveVolumesArgsWord = 11;
-inline constexpr std::uint32_t kResidualArgsWord = 14;
-inline constexpr std::uint32_t kNodePassArgsWord = 17;
+inline constexpr std::uint32_t kResidualArgsWord = 8;
+inline constexpr std::uint32_t kSlidePassArgsWord = 11;
 
 }  // namespace deformcd::gl
