@@ -150,12 +150,12 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         std::lower_bound(acting_.begin(), acting_.end(), first_volume_) - acting_.begin());
     sweep_.colour(pairs, acting_, split, static_cast<std::uint32_t>(nodes_.node_count));
     const std::vector<std::uint32_t>& order = sweep_.order();
-    const std::vector<std::uint32_t>& colour_begin = sweep_.colour_begin();
-    // One sweep: colour by colour (the contacts', then the volume constraints'), each
-    // constraint solved on its nodes as the colours before left them and applied at once; no
-    // two constraints of a colour share a node, so the colour's order and threads change no
-    // bit. `last`: the friction's last-iteration rule applies, and the slides are stamped after
-    // the sweep (a contact later in it must read the last substep's stamps).
+    // One sweep: in the colours' order (the contacts', then the volume constraints'), each
+    // constraint solved on its nodes as the constraints before left them and applied at once;
+    // no two constraints of a colour share a node, so GL's sweep, which solves a colour's
+    // constraints at once, gives the same bits. `last`: the friction's last-iteration rule
+    // applies, and the slides are stamped after the sweep (a contact later in it must read the
+    // last substep's stamps).
     const auto solve = [&](std::uint32_t a, bool first_iteration, bool last) {
       const gpu::ContactPair& pair = acting_pairs_[a];
       const bool contact = a < split;
@@ -193,13 +193,15 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       }
       slides_[a] = slides;
     };
+    // On one thread: a colour holds 15-60 constraints on the impact scene, a microsecond or two
+    // of work, and each colour must see what the one before it wrote. Split between two threads
+    // (a parallel loop per colour, or threads taking chunks of each colour in turn with a wait
+    // at each colour, even with each thread's share of the nodes kept its own) the sweeps took
+    // 1.5 x as long as on one, the synchronisation and the nodes passed from core to core
+    // costing more than the colours' work: the GPU's work group sweeps them instead.
     const auto iterate = [&](bool first_iteration, bool last) {
-      for (std::size_t c = 0; c + 1u < colour_begin.size(); ++c) {
-        const std::uint32_t begin = colour_begin[c];
-        parallel_for(
-            colour_begin[c + 1u] - begin,
-            [&](std::size_t e) { solve(order[begin + e], first_iteration, last); }, 64);
-      }
+      for (const std::uint32_t a : order)
+        solve(a, first_iteration, last);
       if (!last) return;
       // A free node one of whose contacts slides on records the substep (in acting order: every
       // writer writes the same stamp).
