@@ -4,9 +4,10 @@
 // and velocities in place (in host memory: sim::NodeBuffers), with the same results. Only the
 // active constraints (a few percent of the window's candidates) are counted and solved: their
 // list is compacted after the activity pass in constraint order, the contacts' counts summed
-// from it, and each iteration sweeps them colour by colour (response::SweepOrder: the contacts,
-// then the volume constraints), a colour's constraints in parallel, each applying its
-// corrections to its nodes at once. The stray check after the iterations watches the reaches.
+// from it, and each iteration sweeps them in the colours' order (response::SweepOrder: the
+// contacts, then the volume constraints) on one thread (the passes around the sweeps run in
+// parallel), each applying its corrections to its nodes at once. The stray check after the
+// iterations watches the reaches.
 
 #include <memory>
 #include <vector>
