@@ -78,15 +78,16 @@ void emit_face_pair_candidates(Face fa, SweptFace sa, SweptPrimitives pa, uint i
                            vec3[4](sb.x[3u + k], sa.x[3], sa.x[4], sa.x[5]), reach);
     }
   }
-  for (uint i = 0u; i < 3u; ++i) {
-    if ((owners_a & (OWNS_EDGE0 << i)) == 0u) continue;
-    const uint i1 = (i + 1u) % 3u;
+  // The owned edges' pairs, through the owner bits.
+  for (uint ea = (owners_a / OWNS_EDGE0) & 7u; ea != 0u; ea &= ea - 1u) {
+    const uint i = uint(findLSB(ea));
+    const uint i1 = NEXT_CORNER[i];
     const float reach_a = proximity_max(sa.reach[i], sa.reach[i1]);
-    for (uint j = 0u; j < 3u; ++j) {
-      if ((owners_b & (OWNS_EDGE0 << j)) == 0u) continue;
-      const uint j1 = (j + 1u) % 3u;
-      const float reach_b = proximity_max(sb.reach[j], sb.reach[j1]);
+    for (uint eb = (owners_b / OWNS_EDGE0) & 7u; eb != 0u; eb &= eb - 1u) {
+      const uint j = uint(findLSB(eb));
       if (boxes_overlap(pa.edge_box[i], pb.edge_box[j])) {
+        const uint j1 = NEXT_CORNER[j];
+        const float reach_b = proximity_max(sb.reach[j], sb.reach[j1]);
         precise float reach = reach_a + reach_b;
         emit_if_within_reach(
             ProximityCandidate(CONTACT_EDGE_EDGE, fa.body, fb.body, 0u,

@@ -98,6 +98,9 @@ struct SweptPrimitives {
   Box edge_box[3];    // edge k (corner k to (k + 1) % 3): its corners' paths, grown by the larger
 };
 
+// kNextCorner: corner (k + 1) % 3, the other end of edge k.
+const uint NEXT_CORNER[3] = uint[3](1u, 2u, 0u);
+
 // sweep_primitives: the primitive boxes of swept face s.
 SweptPrimitives sweep_primitives(SweptFace s) {
   SweptPrimitives p;
@@ -108,7 +111,7 @@ SweptPrimitives sweep_primitives(SweptFace s) {
     p.vertex_box[k] = Box(vec4(lo[k] - s.reach[k], 0.0), vec4(hi[k] + s.reach[k], 0.0));
   }
   for (uint k = 0u; k < 3u; ++k) {
-    const uint k1 = (k + 1u) % 3u;
+    const uint k1 = NEXT_CORNER[k];
     const float r = proximity_max(s.reach[k], s.reach[k1]);
     p.edge_box[k] = Box(vec4(proximity_min(lo[k], lo[k1]) - r, 0.0),
                         vec4(proximity_max(hi[k], hi[k1]) + r, 0.0));

@@ -212,6 +212,7 @@ std::vector<collision::ProximityCandidate> CpuProximity::find(
     emit_in_chunks(
         met.size(), 512,
         [&](std::size_t i, const auto& push) {
+          if (i + kPrefetchAhead < met.size()) prefetch_face(met[i + kPrefetchAhead][1]);
           const auto [a, b] = met[i];
           collision::emit_face_pair_candidates(faces[a], swept_[a], primitives_[a], a, owners_[a],
                                                faces[b], swept_[b], primitives_[b], b, owners_[b],

@@ -86,6 +86,20 @@ class CpuProximity {
   }
   /// Sweeps the primitives of the faces wanted since the last call (sweep_primitives).
   void sweep_primitives_of_met_faces();
+  /// Asks for face `face`'s swept corners, box and primitive boxes to be brought into the
+  /// cache. The emission meets the second faces of its face pairs in their leaves' order, not
+  /// in the order of these arrays, and waited on each one's first box load (`perf annotate`:
+  /// the two hottest instructions of the emission); fetched kPrefetchAhead pairs early, a
+  /// body's search against itself took 7 % less time on the impact (bench_proximity).
+  void prefetch_face(std::uint32_t face) const {
+    const auto* swept = reinterpret_cast<const char*>(&swept_[face]);
+    const auto* primitives = reinterpret_cast<const char*>(&primitives_[face]);
+    for (std::size_t line = 0; line < sizeof(collision::SweptFace); line += 64u)
+      __builtin_prefetch(swept + line);
+    for (std::size_t line = 0; line < sizeof(collision::SweptPrimitives); line += 64u)
+      __builtin_prefetch(primitives + line);
+  }
+  static constexpr std::size_t kPrefetchAhead = 8;
 
   // primitives_state_: a face's primitives_ entry is from before its last sweep, is wanted by
   // a face pair of the search, or is swept from its swept_ entry.

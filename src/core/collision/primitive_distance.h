@@ -101,7 +101,7 @@ inline float primitive_distance(std::uint32_t kind, const glm::vec3 x[4]) {
 /// Whether a pair's primitives, at x, can come within `reach` of each other while their
 /// distance shrinks by at most `closing` (closing_speed x the period): distance - closing <=
 /// reach, compared squared in double (no square root to round differently on another backend).
-/// When the exact distance was computed, it is stored in *distance (primitive_distance's
+/// When the pair is within, its exact distance is stored in *distance (primitive_distance's
 /// value) if `distance` is not null.
 inline bool primitives_within(std::uint32_t kind, const glm::vec3 x[4], float closing, float reach,
                               float* distance = nullptr) {
@@ -125,8 +125,9 @@ inline bool primitives_within(std::uint32_t kind, const glm::vec3 x[4], float cl
   }
   const double limit = static_cast<double>(reach) + static_cast<double>(closing);
   const double distance2 = primitive_distance2(kind, x);
+  if (distance2 > limit * limit) return false;
   if (distance != nullptr) *distance = static_cast<float>(std::sqrt(distance2));
-  return !(distance2 > limit * limit);
+  return true;
 }
 
 /// The largest of a pair's per-vertex values (>= 0) on its first side (the vertex, or the first
