@@ -90,7 +90,7 @@ class CpuProximity {
   /// cache. The emission meets the second faces of its face pairs in their leaves' order, not
   /// in the order of these arrays, and waited on each one's first box load (`perf annotate`:
   /// the two hottest instructions of the emission); fetched kPrefetchAhead pairs early, a
-  /// body's search against itself took 7 % less time on the impact (bench_proximity).
+  /// body's search against itself took about 6 % less time on the impact (bench_proximity).
   void prefetch_face(std::uint32_t face) const {
     const auto* swept = reinterpret_cast<const char*>(&swept_[face]);
     const auto* primitives = reinterpret_cast<const char*>(&primitives_[face]);

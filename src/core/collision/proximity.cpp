@@ -20,7 +20,7 @@ std::vector<std::uint32_t> primitive_owners(const std::vector<gpu::Face>& faces)
     for (std::size_t f = begin; f < end; ++f) {
       for (std::uint32_t k = 0; k < 3u; ++k) {
         const std::uint32_t v = face_corner(faces[f], k);
-        const std::uint32_t w = face_corner(faces[f], (k + 1u) % 3u);
+        const std::uint32_t w = face_corner(faces[f], kNextCorner[k]);
         if (vertex_owner.emplace(v, f).second) owners[f] |= kOwnsVertex0 << k;
         if (edge_owner.emplace(std::minmax(v, w), f).second) owners[f] |= kOwnsEdge0 << k;
       }
