@@ -1,14 +1,31 @@
 #include "cpu/cpu_contact_response.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <string>
+#include <thread>
 #include <utility>
+
+#include <tbb/parallel_invoke.h>
 
 #include "cpu/parallel_for.h"
 #include "deformcd/error.h"
 
 namespace deformcd::cpu {
+
+namespace {
+
+// A projection with fewer acting constraints than this sweeps on one thread: starting the
+// second costs more than the half it would take (8 sweeps of 512 constraints: about 0.3 ms).
+constexpr std::size_t kTwoThreadsFrom = 512;
+// Empty node slots between the halves' copies: 4 x 16 bytes, a cache line.
+constexpr std::uint32_t kGapSlots = 4;
+// A thread waiting for the other's half spins this long, then yields its core.
+constexpr int kSpinsBeforeYield = 4096;
+
+}  // namespace
 
 CpuContactResponse::CpuContactResponse(sim::SimulationBackend& simulation,
                                        std::shared_ptr<Executor> executor)
@@ -28,6 +45,12 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   }
   take(constraints);
   const std::size_t nodes = nodes_.node_count;
+  if (constraints.node_motion.size() != nodes || constraints.window_start.size() != nodes) {
+    throw Error("CpuContactResponse: the constraints' node_motion (" +
+                std::to_string(constraints.node_motion.size()) + ") and window_start (" +
+                std::to_string(constraints.window_start.size()) + ") are not one per node (" +
+                std::to_string(nodes) + ")");
+  }
   frame_start_.resize(nodes);
   // The slide stamps outlive a window (a contact's slide goes on across searches): set only for
   // new nodes, to a substep no projection has.
@@ -36,6 +59,7 @@ void CpuContactResponse::begin_frame(const response::FrameConstraints& constrain
   if (guard_.size() != nodes) guard_.assign(nodes, 0u);
   start_.assign(nodes, glm::vec4(0.0f));
   counts_.assign(2u * nodes, 0u);
+  slot_.assign(nodes, 0u);
   touched_.clear();
   executor_->run([&] {
     parallel_for(nodes, [&](std::size_t i) {
@@ -139,31 +163,74 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         ++counts_[2u * n + group];
       }
     }
-    // The acting constraints' copies, in acting order (the sweeps read compact blocks: on the
-    // impact, 2,200 acting constraints of 55,000 listed), and their colours.
-    acting_pairs_.resize(acting_.size());
-    for (std::uint32_t a = 0; a < acting_.size(); ++a)
-      acting_pairs_[a] = pairs[acting_[a]];
-    impulses_.resize(3u * acting_.size());
-    slides_.resize(acting_.size());
+    // The acting constraints' colours, and the sweep's work items: each run of colours whole,
+    // or its two halves (either may run on either thread, at the same time: a constraint of one
+    // reads only nodes its half writes, so the bits are those of a sweep colour by colour, GL's).
+    // An item waits only for the items of the runs before its own.
     const auto split = static_cast<std::uint32_t>(
         std::lower_bound(acting_.begin(), acting_.end(), first_volume_) - acting_.begin());
-    sweep_.colour(pairs, acting_, split, static_cast<std::uint32_t>(nodes_.node_count));
+    sweep_.colour(pairs, acting_, split, constraints_->window_start);
     const std::vector<std::uint32_t>& order = sweep_.order();
+    const std::vector<std::uint32_t>& colour_begin = sweep_.colour_begin();
+    const std::vector<std::uint32_t>& half_begin = sweep_.half_begin();
+    items_.clear();
+    swept_.clear();
+    for (const response::SweepOrder::Run& run : sweep_.runs()) {
+      const auto stage = static_cast<std::uint32_t>(items_.size());
+      for (std::uint32_t half = 0; half < (run.halves ? 2u : 1u); ++half) {
+        const auto begin = static_cast<std::uint32_t>(swept_.size());
+        for (std::uint32_t c = run.first; c < run.end; ++c) {
+          const std::uint32_t b = run.halves && half == 1u ? half_begin[c] : colour_begin[c];
+          const std::uint32_t e = run.halves && half == 0u ? half_begin[c] : colour_begin[c + 1u];
+          swept_.insert(swept_.end(), order.begin() + b, order.begin() + e);
+        }
+        items_.push_back({begin, static_cast<std::uint32_t>(swept_.size()), stage});
+      }
+    }
+    // The constraints' copies in that order (the sweeps read compact blocks: on the impact,
+    // 2,200 acting constraints of 55,000 listed; and each half's thread writes its impulses and
+    // slides in a block of its own, not in the other's cache lines).
+    swept_pairs_.resize(acting_.size());
+    for (std::uint32_t e = 0; e < acting_.size(); ++e)
+      swept_pairs_[e] = pairs[acting_[swept_[e]]];
+    // The sweeps correct copies of their nodes' positions and velocities: the first half's
+    // nodes, a cache line's gap, the second half's. So the two halves' threads never write to
+    // one cache line (in the node arrays a fifth of the lines the impact's halves touch hold
+    // nodes of both, and the threads passing them to and fro made two threads' sweeps slower
+    // than one's); and the sweeps read a compact block.
+    std::uint32_t slots = 0;
+    for (std::uint32_t half = 0; half < 2u; ++half) {
+      if (half == 1u) slots += kGapSlots + (kGapSlots - slots % kGapSlots) % kGapSlots;
+      for (const std::uint32_t n : touched_)
+        if (sweep_.half_of(constraints_->window_start[n]) == half) slot_[n] = slots++;
+    }
+    local_x_.resize(slots);
+    local_v_.resize(slots);
+    for (const std::uint32_t n : touched_) {
+      local_x_[slot_[n]] = nodes_.host_positions[n];
+      local_v_[slot_[n]] = nodes_.host_velocities[n];
+    }
+    swept_slots_.resize(acting_.size());
+    for (std::uint32_t e = 0; e < acting_.size(); ++e)
+      for (std::uint32_t i = 0; i < 4u; ++i)
+        swept_slots_[e][i] = slot_[swept_pairs_[e].nodes[i]];
+    impulses_.resize(3u * acting_.size());
+    slides_.resize(acting_.size());
     // One sweep: in the colours' order (the contacts', then the volume constraints'), each
     // constraint solved on its nodes as the constraints before left them and applied at once;
     // no two constraints of a colour share a node, so GL's sweep, which solves a colour's
     // constraints at once, gives the same bits. `last`: the friction's last-iteration rule
     // applies, and the slides are stamped after the sweep (a contact later in it must read the
     // last substep's stamps).
-    const auto solve = [&](std::uint32_t a, bool first_iteration, bool last) {
-      const gpu::ContactPair& pair = acting_pairs_[a];
-      const bool contact = a < split;
+    const auto solve = [&](std::uint32_t e, bool first_iteration, bool last) {
+      const gpu::ContactPair& pair = swept_pairs_[e];
+      const std::array<std::uint32_t, 4>& slot = swept_slots_[e];
+      const bool contact = swept_[e] < split;
       glm::vec4 x[4], v[4];
       std::uint32_t count[4] = {0u, 0u, 0u, 0u};
       for (std::uint32_t i = 0; i < 4u; ++i) {
-        x[i] = nodes_.host_positions[pair.nodes[i]];
-        v[i] = nodes_.host_velocities[pair.nodes[i]];
+        x[i] = local_x_[slot[i]];
+        v[i] = local_v_[slot[i]];
       }
       // A volume constraint reads no count, projection start, window start or slide history
       // (solve_volume): their loads are left out, and zeros passed.
@@ -183,34 +250,58 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       }
       glm::vec4 correction[8];
       response::solve_contact(pair, x, v, count, start, window_start, k, first_iteration, last,
-                              history, &impulses_[3u * a], correction);
+                              history, &impulses_[3u * e], correction);
       std::uint8_t slides = 0u;
       for (std::uint32_t i = 0; i < 4u; ++i) {
-        response::apply_correction(
-            nodes_.host_positions[pair.nodes[i]], nodes_.host_velocities[pair.nodes[i]],
-            glm::vec3(correction[2u * i]), glm::vec3(correction[2u * i + 1u]));
+        response::apply_correction(local_x_[slot[i]], local_v_[slot[i]],
+                                   glm::vec3(correction[2u * i]),
+                                   glm::vec3(correction[2u * i + 1u]));
         if (correction[2u * i + 1u].w > 0.0f) slides |= static_cast<std::uint8_t>(1u << i);
       }
-      slides_[a] = slides;
+      slides_[e] = slides;
     };
-    // On one thread: each colour must see what the one before it wrote, and on the impact a
-    // projection's 42 colours hold 54 constraints on average but half of them 12 or fewer (a
-    // constraint is about 70 ns of work). Split between two threads (a parallel loop per
-    // colour, or threads taking chunks of each colour in turn with a wait at each colour, even
-    // with each thread's share of the nodes kept its own) the sweeps took 1.4 x as long as on
-    // one, the waits and the nodes passed from core to core (a colour's nodes are the next
-    // one's) costing more than the colours' work: the GPU's work group sweeps them instead.
-    const auto iterate = [&](bool first_iteration, bool last) {
-      for (const std::uint32_t a : order)
-        solve(a, first_iteration, last);
-      if (!last) return;
-      // A free node one of whose contacts slides on records the substep (in acting order: every
-      // writer writes the same stamp).
-      for (std::uint32_t a = 0; a < split; ++a) {
-        if (slides_[a] == 0u) continue;
+    const auto sweep_item = [&](const SweepItem& item, bool first_iteration, bool last) {
+      for (std::uint32_t e = item.begin; e < item.end; ++e)
+        solve(e, first_iteration, last);
+    };
+    // `count` sweeps, the first of them the projection's first when `starts`, the last with the
+    // friction's last-iteration rule; then the slide stamps. The threads claim the items in
+    // order, so the earliest unfinished item is always running (one thread alone runs them all
+    // in order). On two threads when there is work
+    // enough for both: a wait at each colour instead (a parallel loop per colour, or threads
+    // taking chunks of each colour in turn) made the sweeps 1.4 x as long as on one thread, on
+    // the impact a projection's 42 colours holding 54 constraints on average (half of them 12
+    // or fewer) at about 70 ns a constraint; and a parallel call per run cost more than the
+    // halves gained (the second thread woken each time).
+    const auto iterate = [&](int count, bool starts) {
+      const auto per_sweep = static_cast<std::uint32_t>(items_.size());
+      const std::uint32_t total = static_cast<std::uint32_t>(count) * per_sweep;
+      std::atomic<std::uint32_t> next{0u};
+      std::atomic<std::uint32_t> done{0u};
+      const auto work = [&] {
+        for (std::uint32_t claimed = next.fetch_add(1u); claimed < total;
+             claimed = next.fetch_add(1u)) {
+          const std::uint32_t sweep = claimed / per_sweep;
+          const SweepItem& item = items_[claimed % per_sweep];
+          const std::uint32_t after = sweep * per_sweep + item.stage;  // items done before it
+          for (int spins = 0; done.load(std::memory_order_acquire) < after; ++spins)
+            if (spins > kSpinsBeforeYield) std::this_thread::yield();
+          sweep_item(item, starts && sweep == 0u, sweep + 1u == static_cast<std::uint32_t>(count));
+          done.fetch_add(1u, std::memory_order_release);
+        }
+      };
+      if (acting_.size() >= kTwoThreadsFrom && executor_->threads() > 1) {
+        tbb::parallel_invoke(work, work);
+      } else {
+        work();
+      }
+      // A free node one of whose contacts slides on records the substep (in the sweep's order:
+      // every writer writes the same stamp). Volume constraints never slide.
+      for (std::uint32_t e = 0; e < acting_.size(); ++e) {
+        if (slides_[e] == 0u) continue;
         for (std::uint32_t i = 0; i < 4u; ++i) {
-          const std::uint32_t n = acting_pairs_[a].nodes[i];
-          if ((slides_[a] >> i & 1u) != 0u && nodes_.host_positions[n].w > 0.0f)
+          const std::uint32_t n = swept_pairs_[e].nodes[i];
+          if ((slides_[e] >> i & 1u) != 0u && nodes_.host_positions[n].w > 0.0f)
             slid_[n] = substep_;
         }
       }
@@ -220,12 +311,12 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
     // one found last time: in a projection that iterates on, a few tetrahedra (or contacts)
     // stay violated over its extra iterations, and the whole list's scan each iteration cost
     // as much as a tenth of the response on the impact.
-    std::uint32_t last_violated = 0u;  // an index into acting_ (any, at first)
-    const auto is_violated = [&](std::uint32_t a) {
-      const gpu::ContactPair& pair = acting_pairs_[a];
-      const glm::vec4 x[4] = {
-          nodes_.host_positions[pair.nodes[0]], nodes_.host_positions[pair.nodes[1]],
-          nodes_.host_positions[pair.nodes[2]], nodes_.host_positions[pair.nodes[3]]};
+    std::uint32_t last_violated = 0u;  // an index into swept_pairs_ (any, at first)
+    const auto is_violated = [&](std::uint32_t e) {
+      const gpu::ContactPair& pair = swept_pairs_[e];
+      const std::array<std::uint32_t, 4>& slot = swept_slots_[e];
+      const glm::vec4 x[4] = {local_x_[slot[0]], local_x_[slot[1]], local_x_[slot[2]],
+                              local_x_[slot[3]]};
       glm::vec3 window_start[4];
       load_window_start(pair, window_start);
       return response::contact_violated(pair, x, window_start);
@@ -246,13 +337,16 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       last_violated = found.load();
       return true;
     };
-    for (int iteration = 0; iteration < iterations; ++iteration)
-      iterate(iteration == 0, iteration + 1 == iterations);
+    if (iterations > 0) iterate(iterations, true);
     // More while the solve has not converged, to kMaxIterationFactor x the iterations asked.
     iterations_done_ = iterations;
     while (iterations_done_ < response::kMaxIterationFactor * iterations && violated()) {
-      iterate(false, true);
+      iterate(1, false);
       ++iterations_done_;
+    }
+    for (const std::uint32_t n : touched_) {
+      nodes_.host_positions[n] = local_x_[slot_[n]];
+      nodes_.host_velocities[n] = local_v_[slot_[n]];
     }
     // The strays, as GL's stray pass flags them: an untouched node is where the deviation pass
     // measured it. An unwatched node never strays (its reach is infinite).

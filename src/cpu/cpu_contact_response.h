@@ -5,10 +5,12 @@
 // active constraints (a few percent of the window's candidates) are counted and solved: their
 // list is compacted after the activity pass in constraint order, the contacts' counts summed
 // from it, and each iteration sweeps them in the colours' order (response::SweepOrder: the
-// contacts, then the volume constraints) on one thread (the passes around the sweeps run in
-// parallel), each applying its corrections to its nodes at once. The stray check after the
+// contacts, then the volume constraints; each group's two halves, which share no node, on two
+// threads, the constraints across them on one; the passes around the sweeps run in parallel),
+// each applying its corrections to its nodes at once. The stray check after the
 // iterations watches the reaches.
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -45,20 +47,32 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::shared_ptr<Executor> executor_;
   const response::FrameConstraints* constraints_ = nullptr;  // the caller's (begin_frame)
   std::vector<glm::vec4> frame_start_;  // per node: position at the frame's start, w = reach
-  // Per acting constraint acting_[a]: three of what it gave this substep (impulses_), and the
-  // corners whose contact slides in the last sweep (slides_: bit k for corner k).
+  // Per acting constraint, in the sweep's order (swept_pairs_): three of what it gave this
+  // substep (impulses_), and the corners whose contact slides in the last sweep (slides_: bit k
+  // for corner k).
   std::vector<glm::vec4> impulses_;
   std::vector<std::uint8_t> slides_;
   response::SweepOrder sweep_;  // the acting constraints' colours, this substep
+  // A sweep's work: swept_[begin, end); it may start once the sweep's first `stage` items are
+  // done.
+  struct SweepItem {
+    std::uint32_t begin, end, stage;
+  };
+  std::vector<SweepItem> items_;      // one sweep's, in order
+  std::vector<std::uint32_t> swept_;  // acting places, item by item (each half's colours)
   // Per node n: its active contacts (2 n) and volume constraints (2 n + 1) this substep (the
   // contacts' mass splitting; a node with either is touched).
   std::vector<std::uint32_t> counts_;
-  std::size_t first_volume_ = 0;                // the first volume constraint (all after it are)
-  std::vector<std::uint32_t> active_;           // per constraint: 1 when it acts this substep
-  std::vector<std::uint32_t> acting_;           // the active constraints, ascending
-  std::vector<gpu::ContactPair> acting_pairs_;  // their copies, in that order
-  std::vector<std::uint32_t> touched_;          // the nodes of active constraints, as first named
-  std::uint32_t substep_ = 0;                   // project() calls so far
+  std::size_t first_volume_ = 0;               // the first volume constraint (all after it are)
+  std::vector<std::uint32_t> active_;          // per constraint: 1 when it acts this substep
+  std::vector<std::uint32_t> acting_;          // the active constraints, ascending
+  std::vector<gpu::ContactPair> swept_pairs_;  // their copies, in the sweep's order
+  std::vector<std::array<std::uint32_t, 4>> swept_slots_;  // their nodes' slots in local_*
+  std::vector<std::uint32_t> slot_;     // per node: its slot in local_* (touched nodes only)
+  std::vector<glm::vec4> local_x_;      // the touched nodes' positions, as the sweeps correct them
+  std::vector<glm::vec4> local_v_;      // and velocities
+  std::vector<std::uint32_t> touched_;  // the nodes of active constraints, as first named
+  std::uint32_t substep_ = 0;           // project() calls so far
   std::vector<std::uint32_t> guard_;    // per node: the last projection a guarding contact named it
   std::vector<std::uint32_t> slid_;     // per node: the last substep a contact of it slid in
   std::vector<std::uint32_t> watched_;  // the nodes with a finite reach, ascending

@@ -591,6 +591,7 @@ void ContactResponse::search() {
     window_start_[i] = glm::vec3(x[i]);
     if (!std::isfinite(x[i].x + x[i].y + x[i].z)) unstable(i, "a non-finite position");
   }
+  c.window_start = window_start_;
   // Bodies that cannot move (a fixed base, a sleeping body) are still: the search leaves out
   // the pairs between two of them, whose constraints could correct nothing (every node has
   // inverse mass 0). Their sleeping islands stay whole without those links (BodySleep).

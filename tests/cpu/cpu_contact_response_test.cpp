@@ -63,6 +63,7 @@ TEST(CpuContactResponse, ALightNodeIsNotThrownOffWhereItsEdgesHeavyEndIsStopped)
     p.gap = -INFINITY;  // awake
   }
   c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // no stray
+  c.window_start = test::window_start_of(x);
 
   cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
   response.begin_frame(c);
@@ -137,6 +138,7 @@ int project_one_tetrahedron(cpu::CpuSimulation& simulation, const gpu::ContactPa
   response::FrameConstraints c;
   c.pairs = {pair};
   c.node_motion.assign(4, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  c.window_start = test::window_start_of(simulation.state().positions);
   cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
   response.begin_frame(c);
   response::ContactConstants k{};
@@ -181,6 +183,7 @@ TEST(VolumeConstraint, ACollapsedOrInvertedTetrahedronComesBackToItsFloorWithIts
   simulation.upload(test::free_nodes(x, v, std::vector<std::uint32_t>(x.size(), 0u), 1));
   const SimulationState& state = simulation.state();  // the response corrects it in place
   c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  c.window_start = test::window_start_of(x);
   ASSERT_LT(volume_of(state, c.pairs[0]), 0.0f) << "the first starts inverted";
   const auto momentum = [&](const std::vector<glm::vec4>& values, int t) {
     glm::dvec3 sum(0.0);
@@ -305,6 +308,7 @@ PushedApex push_apex(float apex, gpu::ContactPair contact, const gpu::ContactPai
   contact.gap = -INFINITY;  // awake
   c.pairs = {contact, floor};
   c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // no stray
+  c.window_start = test::window_start_of(x);
   cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(1));
   response.begin_frame(c);
   response::ContactConstants k{};

@@ -23,6 +23,15 @@
 
 namespace deformcd::test {
 
+/// Where each node starts the window (FrameConstraints::window_start): `positions`' xyz.
+inline std::vector<glm::vec3> window_start_of(const std::vector<glm::vec4>& positions) {
+  std::vector<glm::vec3> out;
+  out.reserve(positions.size());
+  for (const glm::vec4& x : positions)
+    out.emplace_back(x);
+  return out;
+}
+
 /// Each node's motion (FrameConstraints::node_motion) from its body's, `per_body`.
 inline std::vector<glm::vec4> node_motion_of_bodies(const std::vector<glm::vec4>& per_body,
                                                     const std::vector<std::uint32_t>& node_body) {
@@ -218,6 +227,7 @@ inline HandMadeContacts hand_made_contacts() {
   out.constraints.node_motion = node_motion_of_bodies(
       {glm::vec4(0.0f, 0.0f, 0.0f, 0.5f), glm::vec4(0.0f, 0.0f, 0.0f, 0.002f)},
       out.world.node_body);
+  out.constraints.window_start = window_start_of(out.world.positions);
   return out;
 }
 
@@ -283,6 +293,7 @@ inline RandomContacts edges_in_one_substep() {
     c.pairs.push_back(pair);
   }
   c.node_motion.assign(x.size(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // reach 1 m: no stray
+  c.window_start = window_start_of(x);
   return {free_nodes(std::move(x), std::move(v), std::move(body), 1), std::move(c)};
 }
 
@@ -376,6 +387,7 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
       {glm::vec4(0.5f, 0.0f, -0.25f, 0.2f), glm::vec4(0.0f, 0.0f, 0.0f, 0.01f),
        glm::vec4(-1.0f, 2.0f, 0.5f, 0.003f)},
       out.world.node_body);
+  out.constraints.window_start = window_start_of(out.world.positions);
   return out;
 }
 

@@ -226,6 +226,7 @@ TEST_F(GlContactResponseTest, InsideASimulationLoopEqualsTheCpuEverySubstep) {
       test::random_contacts(5, static_cast<std::uint32_t>(world.node_count()), 800).constraints;
   c.node_motion = test::node_motion_of_bodies(
       {glm::vec4(0.1f, 0.0f, 0.0f, 0.01f), glm::vec4(-0.1f, 0.0f, 0.0f, 0.004f)}, world.node_body);
+  c.window_start = test::window_start_of(world.positions);
   // And every tetrahedron kept at 0.97 x its rest volume: the grids' own, squeezed by the
   // contacts and gravity, so that many act.
   for (const gpu::ContactPair& v : test::volume_constraints(world, 0.97f, 0.01f))
@@ -266,6 +267,7 @@ TEST_F(GlContactResponseTest, AnEmptyFrameOnlyWatchesTheReach) {
   // Body 0 drifts with its carry and stays within its reach; body 1 does not.
   empty.node_motion = test::node_motion_of_bodies(
       {glm::vec4(0.5f, 0.0f, 0.0f, 0.02f), glm::vec4(0.0f, 0.0f, 0.0f, 0.004f)}, world.node_body);
+  empty.window_start = test::window_start_of(world.positions);
 
   GlSimulation simulation(context());
   simulation.upload(world);
@@ -333,6 +335,7 @@ TEST_F(GlContactResponseTest, ResultsDoNotDependOnTheScheduleOrOnEarlierFrames) 
   FrameConstraints few = test::random_contacts(8, 400, 10).constraints;
   FrameConstraints none;
   none.node_motion = set.constraints.node_motion;
+  none.window_start = set.constraints.window_start;
   for (const FrameConstraints* frame :
        std::initializer_list<const FrameConstraints*>{&few, &set.constraints, &none}) {
     reused.begin_frame(*frame);
@@ -370,6 +373,8 @@ TEST_F(GlContactResponseTest, RefusedConstraintsKeepThePreviousFrame) {
   bad_node.pairs[150].nodes[2] = 60;
   FrameConstraints bad_motion = test::random_contacts(9, 60, 200).constraints;
   bad_motion.node_motion.resize(2);
+  FrameConstraints bad_start = test::random_contacts(9, 60, 200).constraints;
+  bad_start.window_start.resize(59);
   std::vector<glm::vec4> results[2];
   for (int refused = 0; refused < 2; ++refused) {
     GlSimulation simulation(context());
@@ -379,6 +384,7 @@ TEST_F(GlContactResponseTest, RefusedConstraintsKeepThePreviousFrame) {
     if (refused == 1) {
       EXPECT_THROW(gl.begin_frame(bad_node), Error);
       EXPECT_THROW(gl.begin_frame(bad_motion), Error);
+      EXPECT_THROW(gl.begin_frame(bad_start), Error);
     }
     for (const ContactConstants& k : kSchedule)
       (void)gl.project(k, kIterations);
@@ -425,6 +431,10 @@ TEST(ContactUploadChecks, AcceptFittingConstraintsAndNameWhatDoesNotFit) {
   FrameConstraints short_motion = set.constraints;
   short_motion.node_motion.pop_back();
   EXPECT_NE(message(short_motion, 30).find("node_motion has 29 entries for 30 nodes"),
+            std::string::npos);
+  FrameConstraints short_start = set.constraints;
+  short_start.window_start.pop_back();
+  EXPECT_NE(message(short_start, 30).find("window_start has 29 entries for 30 nodes"),
             std::string::npos);
   FrameConstraints c = set.constraints;
   c.pairs[7].kind = 4;

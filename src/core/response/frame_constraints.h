@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "deformcd/gpu_layout.h"
@@ -21,6 +22,9 @@ struct FrameConstraints {
   /// collision surface): a free node stays within the reach of its window-start position
   /// carried along that path; the proximity search assumed no more.
   std::vector<glm::vec4> node_motion;
+  /// Per node: its position where the window starts (the host's copy, which the backends'
+  /// sweeps split in halves by: response::SweepOrder).
+  std::vector<glm::vec3> window_start;
 };
 
 /// The index of `pairs`' first volume constraint (gpu::kContactVolume), pairs.size() when

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <string>
+
+#include <glm/common.hpp>
 
 #include "deformcd/error.h"
 
@@ -9,11 +13,12 @@ namespace deformcd::response {
 
 void SweepOrder::colour(std::span<const gpu::ContactPair> pairs,
                         std::span<const std::uint32_t> acting, std::uint32_t contacts,
-                        std::uint32_t node_count) {
+                        std::span<const glm::vec3> positions) {
   if (contacts > acting.size()) {
     throw Error("SweepOrder: " + std::to_string(contacts) + " contacts of " +
                 std::to_string(acting.size()) + " acting constraints");
   }
+  const auto node_count = static_cast<std::uint32_t>(positions.size());
   // First fit never needs more colours than a constraint has neighbours plus one: at most
   // 4 x (the most constraints at one node - 1) + 1.
   per_node_.assign(node_count, 0u);
@@ -28,6 +33,11 @@ void SweepOrder::colour(std::span<const gpu::ContactPair> pairs,
         throw Error("SweepOrder: constraint " + std::to_string(p) + " names node " +
                     std::to_string(n) + " of " + std::to_string(node_count));
       }
+      const glm::vec3& x = positions[n];
+      if (!std::isfinite(x.x + x.y + x.z)) {
+        throw Error("SweepOrder: constraint " + std::to_string(p) + "'s node " + std::to_string(n) +
+                    " has a non-finite position");
+      }
       most = std::max(most, ++per_node_[n]);
     }
   }
@@ -38,32 +48,85 @@ void SweepOrder::colour(std::span<const gpu::ContactPair> pairs,
     taken_.assign(std::size_t{node_count} * words, 0u);
   }
   colour_.resize(acting.size());
+  half_.resize(acting.size());
+  runs_.clear();
   const auto size = static_cast<std::uint32_t>(acting.size());
-  contact_colours_ = colour_group(pairs, acting, 0u, contacts);
-  const std::uint32_t volume_colours = colour_group(pairs, acting, contacts, size);
-  // Counting sort by colour, stable: each colour's places in acting order.
-  const std::uint32_t colours = contact_colours_ + volume_colours;
-  colour_begin_.assign(colours + 1u, 0u);
-  for (std::uint32_t a = 0; a < size; ++a) {
-    const std::uint32_t c = a < contacts ? colour_[a] : contact_colours_ + colour_[a];
-    colour_[a] = c;
-    ++colour_begin_[c + 1u];
+  // The halves: split at the median of the acting constraints' first nodes along the longest
+  // side of their box (one split for both groups, so that a node is in one half for all).
+  axis_ = 0;
+  split_ = INFINITY;
+  if (size > 0u) {
+    glm::vec3 lo = positions[pairs[acting[0]].nodes[0]];
+    glm::vec3 hi = lo;
+    for (const std::uint32_t p : acting) {
+      lo = glm::min(lo, positions[pairs[p].nodes[0]]);
+      hi = glm::max(hi, positions[pairs[p].nodes[0]]);
+    }
+    const glm::vec3 side = hi - lo;
+    axis_ = side.x >= side.y && side.x >= side.z ? 0 : (side.y >= side.z ? 1 : 2);
+    keys_.resize(size);
+    for (std::uint32_t a = 0; a < size; ++a)
+      keys_[a] = positions[pairs[acting[a]].nodes[0]][axis_];
+    const auto middle = keys_.begin() + static_cast<std::ptrdiff_t>(size / 2u);
+    std::nth_element(keys_.begin(), middle, keys_.end());
+    split_ = *middle;
   }
-  for (std::uint32_t c = 0; c < colours; ++c)
-    colour_begin_[c + 1u] += colour_begin_[c];
+  contact_colours_ = colour_group(pairs, acting, 0u, contacts, positions, 0u);
+  const std::uint32_t colours =
+      contact_colours_ + colour_group(pairs, acting, contacts, size, positions, contact_colours_);
+  // Counting sort by colour and half, stable: each colour's first half, then its second, each
+  // in acting order (a place across the halves counts as its colour's first).
+  std::vector<std::uint32_t>& start = per_node_;  // reused: 2 colours + 1 bucket starts
+  start.assign(2u * colours + 1u, 0u);
+  const auto bucket = [&](std::uint32_t a) { return 2u * colour_[a] + (half_[a] == 1u ? 1u : 0u); };
+  for (std::uint32_t a = 0; a < size; ++a)
+    ++start[bucket(a) + 1u];
+  for (std::uint32_t b = 0; b < 2u * colours; ++b)
+    start[b + 1u] += start[b];
+  colour_begin_.resize(colours + 1u);
+  half_begin_.resize(colours);
+  for (std::uint32_t c = 0; c < colours; ++c) {
+    colour_begin_[c] = start[2u * c];
+    half_begin_[c] = start[2u * c + 1u];
+  }
+  colour_begin_[colours] = size;
   order_.resize(size);
-  per_node_.assign(colours, 0u);  // reused as each colour's cursor
-  for (std::uint32_t a = 0; a < size; ++a) {
-    const std::uint32_t c = colour_[a];
-    order_[colour_begin_[c] + per_node_[c]++] = a;
-  }
+  for (std::uint32_t a = 0; a < size; ++a)
+    order_[start[bucket(a)]++] = a;
 }
 
 std::uint32_t SweepOrder::colour_group(std::span<const gpu::ContactPair> pairs,
                                        std::span<const std::uint32_t> acting, std::uint32_t first,
-                                       std::uint32_t end) {
-  std::uint32_t colours = 0;
+                                       std::uint32_t end, std::span<const glm::vec3> positions,
+                                       std::uint32_t base) {
+  // Each constraint in the half of its nodes, or across the halves.
+  if (first == end) return 0u;
   for (std::uint32_t a = first; a < end; ++a) {
+    std::uint32_t below = 0;
+    for (const std::uint32_t n : pairs[acting[a]].nodes)
+      below += 1u - half_of(positions[n]);
+    half_[a] = below == 4u ? 0u : (below == 0u ? 1u : 2u);
+  }
+  // The halves' colours first (they share no node, so one first fit colours both), then the
+  // constraints across them.
+  places_.clear();
+  for (std::uint32_t a = first; a < end; ++a)
+    if (half_[a] != 2u) places_.push_back(a);
+  const std::uint32_t inner = first_fit(pairs, acting, places_, base);
+  places_.clear();
+  for (std::uint32_t a = first; a < end; ++a)
+    if (half_[a] == 2u) places_.push_back(a);
+  const std::uint32_t across = first_fit(pairs, acting, places_, base + inner);
+  if (inner > 0u) runs_.push_back({base, base + inner, true});
+  if (across > 0u) runs_.push_back({base + inner, base + inner + across, false});
+  return inner + across;
+}
+
+std::uint32_t SweepOrder::first_fit(std::span<const gpu::ContactPair> pairs,
+                                    std::span<const std::uint32_t> acting,
+                                    std::span<const std::uint32_t> places, std::uint32_t base) {
+  std::uint32_t colours = 0;
+  for (const std::uint32_t a : places) {
     const gpu::ContactPair& pair = pairs[acting[a]];
     std::uint32_t c = 0;
     for (std::uint32_t w = 0; w < words_; ++w) {
@@ -75,13 +138,13 @@ std::uint32_t SweepOrder::colour_group(std::span<const gpu::ContactPair> pairs,
         break;
       }
     }
-    colour_[a] = c;
+    colour_[a] = base + c;
     colours = std::max(colours, c + 1u);
     for (const std::uint32_t n : pair.nodes)
       taken_[std::size_t{n} * words_ + c / 64u] |= std::uint64_t{1} << (c % 64u);
   }
-  // Cleared for the next group and call: only the nodes this group set.
-  for (std::uint32_t a = first; a < end; ++a)
+  // Cleared for the next places and call: only the nodes these set.
+  for (const std::uint32_t a : places)
     for (const std::uint32_t n : pairs[acting[a]].nodes)
       for (std::uint32_t w = 0; w < words_; ++w)
         taken_[std::size_t{n} * words_ + w] = 0u;

@@ -44,6 +44,10 @@ std::size_t check_constraints_fit(const response::FrameConstraints& c, std::uint
     misfit("node_motion has " + std::to_string(c.node_motion.size()) + " entries for " +
            std::to_string(node_count) + " nodes");
   }
+  if (c.window_start.size() != node_count) {
+    misfit("window_start has " + std::to_string(c.window_start.size()) + " entries for " +
+           std::to_string(node_count) + " nodes");
+  }
   return first_volume;
 }
 

@@ -278,7 +278,7 @@ bool GlContactResponse::project(const response::ContactConstants& k, int iterati
     const std::vector<std::uint32_t> counts =
         buffers_.state->download(kActingContactsWord, kActingTotalWord + 1u);
     const std::vector<std::uint32_t> acting = buffers_.acting_list->download(0, counts[1]);
-    sweep_order_.colour(constraints_->pairs, acting, counts[0], node_count_);
+    sweep_order_.colour(constraints_->pairs, acting, counts[0], constraints_->window_start);
     const std::vector<std::uint32_t>& colour_begin = sweep_order_.colour_begin();
     if (!acting.empty()) {
       buffers_.sweep_order->upload(std::span<const std::uint32_t>(sweep_order_.order()));
