@@ -12,6 +12,7 @@
 
 #include "core/response/contact_constraints.h"
 #include "core/response/frame_constraints.h"
+#include "core/response/sweep_order.h"
 #include "cpu/cpu_contact_response.h"
 #include "cpu/cpu_simulation.h"
 #include "deformcd/error.h"
@@ -452,6 +453,48 @@ TEST(VolumeConstraint, OneAndEightThreadsGiveTheSameBits) {
   EXPECT_EQ(test::bitwise_differences(one.positions, eight.positions), 0u);
   EXPECT_EQ(test::bitwise_differences(one.velocities, eight.velocities), 0u);
   EXPECT_GT(test::bitwise_differences(one.positions, set.world.positions), 1000u)
+      << "the projections should move the nodes";
+}
+
+// Constraints of neighbouring nodes, most of them in the sweeps' two halves (which two threads
+// sweep at once, each through all its colours): one, two and eight threads give the same bits.
+TEST(CpuContactResponse, SweepsByHalvesGiveTheSameBitsOnOneTwoAndEightThreads) {
+  const tbb::global_control allow_eight(tbb::global_control::max_allowed_parallelism, 8);
+  const test::RandomContacts set = test::random_contacts(22, 3000, 6000, 3000, true);
+  {
+    // The split holds most of them (all listed here, as if all acted).
+    std::vector<std::uint32_t> all(set.constraints.pairs.size());
+    for (std::uint32_t p = 0; p < all.size(); ++p)
+      all[p] = p;
+    response::SweepOrder order;
+    order.colour(set.constraints.pairs, all, 6000u, set.constraints.window_start);
+    std::uint32_t in_halves = 0;
+    for (const response::SweepOrder::Run& run : order.runs())
+      if (run.halves) in_halves += order.colour_begin()[run.end] - order.colour_begin()[run.first];
+    ASSERT_GT(in_halves, 8000u);
+  }
+  std::vector<SimulationState> states;
+  for (const int threads : {1, 2, 8}) {
+    cpu::CpuSimulation simulation(threads);
+    simulation.upload(set.world);
+    cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(threads));
+    response.begin_frame(set.constraints);
+    response::ContactConstants k{};
+    k.h = 1e-3f;
+    k.friction_static = 0.5f;
+    k.friction_dynamic = 0.4f;
+    k.max_untangle_step = 1e-3f;
+    for (int s = 1; s <= 3; ++s) {
+      k.elapsed = k.h * static_cast<float>(s);
+      (void)response.project(k, 8);
+    }
+    states.push_back(simulation.state());
+  }
+  for (std::size_t r = 1; r < states.size(); ++r) {
+    EXPECT_EQ(test::bitwise_differences(states[0].positions, states[r].positions), 0u) << r;
+    EXPECT_EQ(test::bitwise_differences(states[0].velocities, states[r].velocities), 0u) << r;
+  }
+  EXPECT_GT(test::bitwise_differences(states[0].positions, set.world.positions), 1000u)
       << "the projections should move the nodes";
 }
 

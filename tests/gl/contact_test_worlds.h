@@ -326,7 +326,7 @@ inline std::vector<gpu::ContactPair> volume_constraints(const SimulationState& w
 /// their floors and step limits drawn so that most act and some are limited, a third of them
 /// thin (ContactPair::side).
 inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, std::uint32_t pairs,
-                                      std::uint32_t volumes = 0) {
+                                      std::uint32_t volumes = 0, bool local = false) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   std::uniform_int_distribution<std::uint32_t> node(0, nodes - 1);
@@ -338,12 +338,21 @@ inline RandomContacts random_contacts(std::uint32_t seed, std::uint32_t nodes, s
     v.emplace_back(2.0f * unit(rng) - 1.0f, 2.0f * unit(rng) - 1.0f, 2.0f * unit(rng) - 1.0f, 0.0f);
     body.push_back(i % 3u);
   }
+  // Local: the nodes spread 0.5 m along x and numbered along it, each constraint's four among
+  // 8 consecutive ones (a window's constraints join neighbours, which the sweeps' halves keep
+  // together).
+  if (local) {
+    for (glm::vec4& p : x)
+      p.x *= 10.0f;
+    std::sort(x.begin(), x.end(), [](const glm::vec4& a, const glm::vec4& b) { return a.x < b.x; });
+  }
   RandomContacts out{free_nodes(std::move(x), std::move(v), std::move(body), 3), {}};
   const auto four_different_nodes = [&](gpu::ContactPair& pair) {
+    const std::uint32_t base = local ? node(rng) % (nodes - 8u) : 0u;
     for (int k = 0; k < 4; ++k) {
       std::uint32_t n = 0;
       do {
-        n = node(rng);
+        n = local ? base + node(rng) % 8u : node(rng);
       } while (std::find(pair.nodes, pair.nodes + k, n) != pair.nodes + k);
       pair.nodes[k] = n;
     }

@@ -187,6 +187,11 @@ TEST_F(GlContactResponseTest, RandomDenseConstraintSetsEqualTheCpuBitForBit) {
   const test::RandomContacts large = test::random_contacts(11, 5000, 20000, 5000);
   extended +=
       expect_agreement(context(), large.world, large.constraints, "5000 nodes, 20000 constraints");
+  // Constraints of neighbouring nodes: most of them in the sweeps' two halves, which the CPU
+  // sweeps on two threads through all their colours (response::SweepOrder), GL colour by colour.
+  const test::RandomContacts local = test::random_contacts(12, 3000, 6000, 3000, true);
+  extended += expect_agreement(context(), local.world, local.constraints,
+                               "3000 nodes, 9000 constraints of neighbours");
   // Dense random contacts leave some deeper than half their thickness after the iterations
   // asked: the extra iterations (contact_violated) run, alike on both.
   EXPECT_GT(extended, 0) << "no projection ran more iterations than asked";
@@ -418,7 +423,7 @@ TEST(ContactUploadChecks, AcceptFittingConstraintsAndNameWhatDoesNotFit) {
   EXPECT_EQ(check_constraints_fit(set.constraints, 30), 20u) << "no volume constraint";
   EXPECT_EQ(check_constraints_fit(test::random_contacts(2, 30, 20, 5).constraints, 30), 20u)
       << "the volume constraints begin after the 20 contacts";
-  const auto message = [&](FrameConstraints c, std::uint32_t nodes) {
+  const auto message = [&](const FrameConstraints& c, std::uint32_t nodes) {
     try {
       check_constraints_fit(c, nodes);
     } catch (const Error& e) {
