@@ -119,34 +119,6 @@ TEST(SweepOrder, HalvesFirstFitInActingOrderThenTheConstraintsAcrossThem) {
   expect_a_valid_sweep(s, pairs, acting, 6u);
 }
 
-// A thin slab's layers far apart, its constraints (each joining both layers) along x: the box of
-// their first nodes is longest across the layers, where every constraint would be across the
-// halves; the split goes along x instead, where few are.
-TEST(SweepOrder, TheSplitsAxisLeavesTheMostConstraintsInTheHalves) {
-  std::vector<glm::vec3> x;
-  for (std::uint32_t i = 0; i < 20u; ++i) {
-    x.emplace_back(static_cast<float>(i), 0.0f, 0.0f);   // node 2 i: the lower layer
-    x.emplace_back(static_cast<float>(i), 30.0f, 0.0f);  // node 2 i + 1: the upper
-  }
-  std::vector<gpu::ContactPair> pairs;
-  std::vector<std::uint32_t> acting;
-  for (std::uint32_t i = 0; i + 1u < 20u; ++i) {
-    // The first node in either layer, so that the first nodes span 30 across and 18 along.
-    pairs.push_back(i % 2u == 0u ? pair_of(2u * i, 2u * i + 1u, 2u * i + 2u, 2u * i + 3u)
-                                 : pair_of(2u * i + 1u, 2u * i, 2u * i + 2u, 2u * i + 3u));
-    acting.push_back(i);
-  }
-  response::SweepOrder s;
-  s.colour(pairs, acting, 19u, x);
-  expect_a_valid_sweep(s, pairs, acting, 19u);
-  std::uint32_t in_halves = 0;
-  for (const response::SweepOrder::Run& run : s.runs())
-    if (run.halves) in_halves += s.colour_begin()[run.end] - s.colour_begin()[run.first];
-  EXPECT_EQ(in_halves, 18u) << "one constraint across the split along x";
-  EXPECT_EQ(s.half_of(glm::vec3(0.0f, 30.0f, 0.0f)), s.half_of(glm::vec3(0.0f, 0.0f, 0.0f)));
-  EXPECT_NE(s.half_of(glm::vec3(0.0f, 0.0f, 0.0f)), s.half_of(glm::vec3(19.0f, 0.0f, 0.0f)));
-}
-
 TEST(SweepOrder, RandomSetsAreValidAndTheSameEachTime) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);

@@ -51,35 +51,25 @@ void SweepOrder::colour(std::span<const gpu::ContactPair> pairs,
   half_.resize(acting.size());
   runs_.clear();
   const auto size = static_cast<std::uint32_t>(acting.size());
-  // The halves: split at the median of the acting constraints' first nodes along an axis (one
-  // split for both groups, so that a node is in one half for all): the axis whose halves' smaller
-  // holds the most constraints. The longest side of their box instead put a thin slab's
-  // tetrahedra all across the halves where only part of it acted (slab_drop: half the acting
-  // constraints across, the other half in one half).
+  // The halves: split at the median of the acting constraints' first nodes along the longest
+  // side of their box (one split for both groups, so that a node is in one half for all).
   axis_ = 0;
   split_ = INFINITY;
-  keys_.resize(size);
-  std::uint32_t best = 0;
-  for (int axis = 0; axis < 3 && size > 0u; ++axis) {
+  if (size > 0u) {
+    glm::vec3 lo = positions[pairs[acting[0]].nodes[0]];
+    glm::vec3 hi = lo;
+    for (const std::uint32_t p : acting) {
+      lo = glm::min(lo, positions[pairs[p].nodes[0]]);
+      hi = glm::max(hi, positions[pairs[p].nodes[0]]);
+    }
+    const glm::vec3 side = hi - lo;
+    axis_ = side.x >= side.y && side.x >= side.z ? 0 : (side.y >= side.z ? 1 : 2);
+    keys_.resize(size);
     for (std::uint32_t a = 0; a < size; ++a)
-      keys_[a] = positions[pairs[acting[a]].nodes[0]][axis];
+      keys_[a] = positions[pairs[acting[a]].nodes[0]][axis_];
     const auto middle = keys_.begin() + static_cast<std::ptrdiff_t>(size / 2u);
     std::nth_element(keys_.begin(), middle, keys_.end());
-    const float split = *middle;
-    std::uint32_t in_half[2] = {0u, 0u};
-    for (const std::uint32_t p : acting) {
-      std::uint32_t below = 0;
-      for (const std::uint32_t n : pairs[p].nodes)
-        below += positions[n][axis] < split ? 1u : 0u;
-      if (below == 4u) ++in_half[0];
-      if (below == 0u) ++in_half[1];
-    }
-    const std::uint32_t smaller = std::min(in_half[0], in_half[1]);
-    if (axis == 0 || smaller > best) {
-      best = smaller;
-      axis_ = axis;
-      split_ = split;
-    }
+    split_ = *middle;
   }
   contact_colours_ = colour_group(pairs, acting, 0u, contacts, positions, 0u);
   const std::uint32_t colours =

@@ -7,14 +7,13 @@
 // solves after them. Both response backends call this one function on the same acting list, so
 // their sweeps are the same: the colours need no GPU colouring to agree.
 //
-// The nodes are split in two halves at the median of the acting constraints' first nodes
-// (where the window started) along the axis that leaves the most constraints in the smaller
-// half. Each colour of a group's (the contacts', the volume constraints') first run of colours
-// lists the first half's constraints, then the second's, and the constraints with nodes in both
-// halves take the group's last colours. So a CPU sweep can solve the two halves of a run on two
-// threads, each through all the run's colours without waiting at each colour, and still give
-// the bits of a sweep colour after colour (the GPU's): a constraint reads only nodes its own
-// half writes.
+// The nodes are split in two halves at the median of the acting constraints' first nodes along
+// the longest side of their box (where the window started): each colour of a group's (the
+// contacts', the volume constraints') first run of colours lists the first half's
+// constraints, then the second's, and the constraints with nodes in both halves take the
+// group's last colours. So a CPU sweep can solve the two halves of a run on two threads, each
+// through all the run's colours without waiting at each colour, and still give the bits of a
+// sweep colour after colour (the GPU's): a constraint reads only nodes its own half writes.
 
 #include <cstdint>
 #include <span>
