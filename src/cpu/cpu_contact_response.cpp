@@ -265,14 +265,14 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
         solve(e, first_iteration, last);
     };
     // `count` sweeps, the first of them the projection's first when `starts`, the last with the
-    // friction's last-iteration rule; then the slide stamps. The threads claim the items in
-    // order, so the earliest unfinished item is always running (one thread alone runs them all
-    // in order). On two threads when there is work
-    // enough for both: a wait at each colour instead (a parallel loop per colour, or threads
-    // taking chunks of each colour in turn) made the sweeps 1.4 x as long as on one thread, on
-    // the impact a projection's 42 colours holding 54 constraints on average (half of them 12
-    // or fewer) at about 70 ns a constraint; and a parallel call per run cost more than the
-    // halves gained (the second thread woken each time).
+    // friction's last-iteration rule; then the slide stamps. On two threads when there is work
+    // enough for both, in one parallel call: the threads claim the items in order, so the
+    // earliest unfinished item is always running (one thread alone runs them all in order). A
+    // wait at each colour instead (a parallel loop per colour, or threads taking chunks of each
+    // colour in turn) made the sweeps 1.4 x as long as on one thread, on the impact a
+    // projection's 42 colours holding 54 constraints on average (half of them 12 or fewer) at
+    // about 70 ns a constraint; and a parallel call per run cost more than the halves gained
+    // (the second thread woken each time).
     const auto iterate = [&](int count, bool starts) {
       const auto per_sweep = static_cast<std::uint32_t>(items_.size());
       const std::uint32_t total = static_cast<std::uint32_t>(count) * per_sweep;

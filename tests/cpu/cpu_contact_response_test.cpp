@@ -426,30 +426,32 @@ TEST(VolumeConstraint, AThinTetrahedronCollapsingPastItsWatchWithinASubstepIsWat
   }
 }
 
+// `set`'s world after three projections of its constraints (8 iterations each, with friction)
+// on `threads` threads.
+SimulationState after_three_projections(const test::RandomContacts& set, int threads) {
+  cpu::CpuSimulation simulation(threads);
+  simulation.upload(set.world);
+  cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(threads));
+  response.begin_frame(set.constraints);
+  response::ContactConstants k{};
+  k.h = 1e-3f;
+  k.friction_static = 0.5f;
+  k.friction_dynamic = 0.4f;
+  k.max_untangle_step = 1e-3f;
+  for (int s = 1; s <= 3; ++s) {
+    k.elapsed = k.h * static_cast<float>(s);
+    (void)response.project(k, 8);
+  }
+  return simulation.state();
+}
+
 // The projections of contacts and volume constraints together give the same bits on one and on
 // eight threads (each constraint writes its own slots; each node sums its list in order).
 TEST(VolumeConstraint, OneAndEightThreadsGiveTheSameBits) {
   const tbb::global_control allow_eight(tbb::global_control::max_allowed_parallelism, 8);
   const test::RandomContacts set = test::random_contacts(21, 2000, 8000, 4000);
-  std::vector<std::unique_ptr<cpu::CpuSimulation>> simulations;
-  const int threads[2] = {1, 8};
-  for (int r = 0; r < 2; ++r) {
-    simulations.push_back(std::make_unique<cpu::CpuSimulation>(threads[r]));
-    simulations[r]->upload(set.world);
-    cpu::CpuContactResponse response(*simulations[r], std::make_shared<cpu::Executor>(threads[r]));
-    response.begin_frame(set.constraints);
-    response::ContactConstants k{};
-    k.h = 1e-3f;
-    k.friction_static = 0.5f;
-    k.friction_dynamic = 0.4f;
-    k.max_untangle_step = 1e-3f;
-    for (int s = 1; s <= 3; ++s) {
-      k.elapsed = k.h * static_cast<float>(s);
-      (void)response.project(k, 8);
-    }
-  }
-  const SimulationState& one = simulations[0]->state();
-  const SimulationState& eight = simulations[1]->state();
+  const SimulationState one = after_three_projections(set, 1);
+  const SimulationState eight = after_three_projections(set, 8);
   EXPECT_EQ(test::bitwise_differences(one.positions, eight.positions), 0u);
   EXPECT_EQ(test::bitwise_differences(one.velocities, eight.velocities), 0u);
   EXPECT_GT(test::bitwise_differences(one.positions, set.world.positions), 1000u)
@@ -474,22 +476,8 @@ TEST(CpuContactResponse, SweepsByHalvesGiveTheSameBitsOnOneTwoAndEightThreads) {
     ASSERT_GT(in_halves, 8000u);
   }
   std::vector<SimulationState> states;
-  for (const int threads : {1, 2, 8}) {
-    cpu::CpuSimulation simulation(threads);
-    simulation.upload(set.world);
-    cpu::CpuContactResponse response(simulation, std::make_shared<cpu::Executor>(threads));
-    response.begin_frame(set.constraints);
-    response::ContactConstants k{};
-    k.h = 1e-3f;
-    k.friction_static = 0.5f;
-    k.friction_dynamic = 0.4f;
-    k.max_untangle_step = 1e-3f;
-    for (int s = 1; s <= 3; ++s) {
-      k.elapsed = k.h * static_cast<float>(s);
-      (void)response.project(k, 8);
-    }
-    states.push_back(simulation.state());
-  }
+  for (const int threads : {1, 2, 8})
+    states.push_back(after_three_projections(set, threads));
   for (std::size_t r = 1; r < states.size(); ++r) {
     EXPECT_EQ(test::bitwise_differences(states[0].positions, states[r].positions), 0u) << r;
     EXPECT_EQ(test::bitwise_differences(states[0].velocities, states[r].velocities), 0u) << r;
