@@ -20,8 +20,8 @@ namespace {
 // A projection with fewer acting constraints than this sweeps on one thread: starting the
 // second costs more than the half it would take (8 sweeps of 512 constraints: about 0.3 ms).
 constexpr std::size_t kTwoThreadsFrom = 512;
-// Empty node slots between the halves' copies: 4 x 16 bytes, a cache line.
-constexpr std::uint32_t kGapSlots = 4;
+// Empty node slots between the halves' copies: 2 x 32 bytes, a cache line.
+constexpr std::uint32_t kGapSlots = 2;
 // A thread waiting for the other's half spins this long, then yields its core.
 constexpr int kSpinsBeforeYield = 4096;
 
@@ -150,9 +150,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
     // The count pass, summed from the compacted list: the integer counts do not depend on the
     // order, and equal the GL count pass's over each node's list. The last substep's touched
     // nodes are the only nonzero counts.
-    acting_.clear();
-    for (std::uint32_t p = 0; p < pairs.size(); ++p)
-      if (active_[p] != 0u) acting_.push_back(p);
+    parallel_select(
+        pairs.size(), [&](std::size_t p) { return active_[p] != 0u; }, acting_, block_starts_);
     for (const std::uint32_t n : touched_)
       counts_[2u * n] = counts_[2u * n + 1u] = 0u;
     touched_.clear();
@@ -204,12 +203,9 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       for (const std::uint32_t n : touched_)
         if (sweep_.half_of(constraints_->window_start[n]) == half) slot_[n] = slots++;
     }
-    local_x_.resize(slots);
-    local_v_.resize(slots);
-    for (const std::uint32_t n : touched_) {
-      local_x_[slot_[n]] = nodes_.host_positions[n];
-      local_v_[slot_[n]] = nodes_.host_velocities[n];
-    }
+    local_.resize(slots);
+    for (const std::uint32_t n : touched_)
+      local_[slot_[n]] = {nodes_.host_positions[n], nodes_.host_velocities[n]};
     swept_slots_.resize(acting_.size());
     for (std::uint32_t e = 0; e < acting_.size(); ++e)
       for (std::uint32_t i = 0; i < 4u; ++i)
@@ -229,8 +225,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       glm::vec4 x[4], v[4];
       std::uint32_t count[4] = {0u, 0u, 0u, 0u};
       for (std::uint32_t i = 0; i < 4u; ++i) {
-        x[i] = local_x_[slot[i]];
-        v[i] = local_v_[slot[i]];
+        x[i] = local_[slot[i]].x;
+        v[i] = local_[slot[i]].v;
       }
       // A volume constraint reads no count, projection start, window start or slide history
       // (solve_volume): their loads are left out, and zeros passed.
@@ -253,7 +249,7 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
                               history, &impulses_[3u * e], correction);
       std::uint8_t slides = 0u;
       for (std::uint32_t i = 0; i < 4u; ++i) {
-        response::apply_correction(local_x_[slot[i]], local_v_[slot[i]],
+        response::apply_correction(local_[slot[i]].x, local_[slot[i]].v,
                                    glm::vec3(correction[2u * i]),
                                    glm::vec3(correction[2u * i + 1u]));
         if (correction[2u * i + 1u].w > 0.0f) slides |= static_cast<std::uint8_t>(1u << i);
@@ -315,8 +311,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
     const auto is_violated = [&](std::uint32_t e) {
       const gpu::ContactPair& pair = swept_pairs_[e];
       const std::array<std::uint32_t, 4>& slot = swept_slots_[e];
-      const glm::vec4 x[4] = {local_x_[slot[0]], local_x_[slot[1]], local_x_[slot[2]],
-                              local_x_[slot[3]]};
+      const glm::vec4 x[4] = {local_[slot[0]].x, local_[slot[1]].x, local_[slot[2]].x,
+                              local_[slot[3]].x};
       glm::vec3 window_start[4];
       load_window_start(pair, window_start);
       return response::contact_violated(pair, x, window_start);
@@ -345,8 +341,8 @@ bool CpuContactResponse::project(const response::ContactConstants& k, int iterat
       ++iterations_done_;
     }
     for (const std::uint32_t n : touched_) {
-      nodes_.host_positions[n] = local_x_[slot_[n]];
-      nodes_.host_velocities[n] = local_v_[slot_[n]];
+      nodes_.host_positions[n] = local_[slot_[n]].x;
+      nodes_.host_velocities[n] = local_[slot_[n]].v;
     }
     // The strays, as GL's stray pass flags them: an untouched node is where the deviation pass
     // measured it. An unwatched node never strays (its reach is infinite).

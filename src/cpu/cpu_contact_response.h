@@ -66,11 +66,17 @@ class CpuContactResponse final : public response::ResponseBackend {
   std::size_t first_volume_ = 0;               // the first volume constraint (all after it are)
   std::vector<std::uint32_t> active_;          // per constraint: 1 when it acts this substep
   std::vector<std::uint32_t> acting_;          // the active constraints, ascending
+  std::vector<std::uint32_t> block_starts_;    // scratch of the acting list (parallel_select)
   std::vector<gpu::ContactPair> swept_pairs_;  // their copies, in the sweep's order
-  std::vector<std::array<std::uint32_t, 4>> swept_slots_;  // their nodes' slots in local_*
-  std::vector<std::uint32_t> slot_;     // per node: its slot in local_* (touched nodes only)
-  std::vector<glm::vec4> local_x_;      // the touched nodes' positions, as the sweeps correct them
-  std::vector<glm::vec4> local_v_;      // and velocities
+  std::vector<std::array<std::uint32_t, 4>> swept_slots_;  // their nodes' slots in local_
+  std::vector<std::uint32_t> slot_;  // per node: its slot in local_ (touched nodes only)
+  /// A touched node's position and velocity as the sweeps correct them: one cache line holds
+  /// both (a constraint's node costs one line, not two).
+  struct alignas(32) LocalNode {
+    glm::vec4 x;
+    glm::vec4 v;
+  };
+  std::vector<LocalNode> local_;
   std::vector<std::uint32_t> touched_;  // the nodes of active constraints, as first named
   std::uint32_t substep_ = 0;           // project() calls so far
   std::vector<std::uint32_t> guard_;    // per node: the last projection a guarding contact named it

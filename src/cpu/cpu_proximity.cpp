@@ -1,6 +1,7 @@
 #include "cpu/cpu_proximity.h"
 
 #include <algorithm>
+#include <atomic>
 #include <functional>
 
 #include "core/collision/bvh.h"
@@ -82,27 +83,33 @@ void CpuProximity::refit(collision::VertexPositions positions, collision::Vertex
     swept_[i] = collision::sweep_face(positions, motion, reach, faces[i]);
   });
   // Each leaf its face's swept box grown by the face's reach, each parent the union of its
-  // children, in reverse preorder.
+  // children, in reverse preorder; the trees (one per mesh, their nodes, faces and records
+  // their own) in parallel.
   const std::vector<gpu::BvhNode>& nodes = trees_.nodes();
   if (records_generation_ != trees_.generation()) make_records();
   boxes_.resize(nodes.size());
   leaf_of_.resize(faces.size());
-  for (const gpu::BodyBvh& tree : trees_.trees()) {
-    for (std::uint32_t i = tree.root + tree.node_count; i-- > tree.root;) {
-      const gpu::BvhNode& n = nodes[i];
-      if (n.face != gpu::kBvhInternal) {
-        boxes_[i] = swept_[n.face].box;
-        leaf_of_[n.face] = i;
-      } else {
-        const gpu::Box& l = boxes_[n.left];
-        const gpu::Box& r = boxes_[n.right];
-        boxes_[i] = {glm::min(l.min, r.min), glm::max(l.max, r.max)};
-        ChildBoxes& record = records_[record_of_[i]];
-        set_child_box(record, 0u, glm::vec3(l.min), glm::vec3(l.max));
-        set_child_box(record, 1u, glm::vec3(r.min), glm::vec3(r.max));
-      }
-    }
-  }
+  const std::vector<gpu::BodyBvh>& trees = trees_.trees();
+  parallel_for(
+      trees.size(),
+      [&](std::size_t t) {
+        const gpu::BodyBvh& tree = trees[t];
+        for (std::uint32_t i = tree.root + tree.node_count; i-- > tree.root;) {
+          const gpu::BvhNode& n = nodes[i];
+          if (n.face != gpu::kBvhInternal) {
+            boxes_[i] = swept_[n.face].box;
+            leaf_of_[n.face] = i;
+          } else {
+            const gpu::Box& l = boxes_[n.left];
+            const gpu::Box& r = boxes_[n.right];
+            boxes_[i] = {glm::min(l.min, r.min), glm::max(l.max, r.max)};
+            ChildBoxes& record = records_[record_of_[i]];
+            set_child_box(record, 0u, glm::vec3(l.min), glm::vec3(l.max));
+            set_child_box(record, 1u, glm::vec3(r.min), glm::vec3(r.max));
+          }
+        }
+      },
+      1);
   boxes_generation_ = trees_.generation();
 }
 
@@ -156,17 +163,32 @@ std::vector<std::array<std::uint32_t, 2>> CpuProximity::met_face_pairs(
       1);
   // A counting sort by bucket (the order of the mesh pairs and their first faces), then each
   // bucket by the second face's leaf: one query per first face meets its leaves in preorder.
+  // The pieces are counted and scattered in parallel (integer atomics): the order a bucket's
+  // entries land in does not matter, since the sort by leaf then orders them whole (a face has
+  // one leaf, and a face pair met twice is one value twice).
   std::vector<std::uint32_t> offset(bucket_base.back() + 1u, 0u);
-  for (const std::vector<Met>& list : met)
-    for (const Met& m : list)
-      ++offset[m.bucket + 1u];
+  parallel_for(
+      met.size(),
+      [&](std::size_t i) {
+        for (const Met& m : met[i])
+          std::atomic_ref<std::uint32_t>(offset[m.bucket + 1u])
+              .fetch_add(1u, std::memory_order_relaxed);
+      },
+      1);
   for (std::size_t b = 1; b < offset.size(); ++b)
     offset[b] += offset[b - 1u];
   std::vector<std::array<std::uint32_t, 2>> sorted(offset.back());
   std::vector<std::uint32_t> cursor(offset.begin(), offset.end() - 1);
-  for (const std::vector<Met>& list : met)
-    for (const Met& m : list)
-      sorted[cursor[m.bucket]++] = {m.face_a, m.face_b};
+  parallel_for(
+      met.size(),
+      [&](std::size_t i) {
+        for (const Met& m : met[i]) {
+          const std::uint32_t at = std::atomic_ref<std::uint32_t>(cursor[m.bucket])
+                                       .fetch_add(1u, std::memory_order_relaxed);
+          sorted[at] = {m.face_a, m.face_b};
+        }
+      },
+      1);
   parallel_for(
       offset.size() - 1u,
       [&](std::size_t b) {

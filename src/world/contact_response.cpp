@@ -180,7 +180,7 @@ ContactResponse::ContactResponse(const ResponseSettings& settings,
     mean_edge_.push_back(edge);
     smallest_edge = std::min(smallest_edge, edge);
     thickness_.push_back(settings.thickness.value_or(settings.relative_thickness * edge));
-    add_volume_constraints(b.body, body, state.objects[body].node_offset, thickness_.back());
+    add_volume_constraints(b.body, state.objects[body].node_offset, thickness_.back());
     carry_.push_back(b.carry_velocity);
     for (const glm::vec4& x : b.body.positions)
       rest_.emplace_back(x);
@@ -513,11 +513,17 @@ void ContactResponse::end_frame() {
   // unless the floor is off) stay awake while their floors restore them.
   const std::span<const glm::vec4> x = positions();
   std::vector<std::uint8_t> inverted(objects_.size(), 0u);
-  for (const VolumeFloor& v : volume_floors_) {
-    if (inverted[v.body] != 0u || sleep_->asleep(v.body)) continue;
-    const auto corner = [&](std::uint32_t k) { return glm::dvec3(glm::vec3(x[v.pair.nodes[k]])); };
-    if (!(geom::signed_volume6(corner(0), corner(1), corner(2), corner(3)) > 0.0))
-      inverted[v.body] = 1u;
+  for (std::uint32_t b = 0; b + 1u < volume_begin_.size(); ++b) {
+    if (sleep_->asleep(b)) continue;
+    for (std::uint32_t t = volume_begin_[b]; t < volume_begin_[b + 1u]; ++t) {
+      const auto corner = [&](std::uint32_t k) {
+        return glm::dvec3(glm::vec3(x[volume_floors_[t].nodes[k]]));
+      };
+      if (!(geom::signed_volume6(corner(0), corner(1), corner(2), corner(3)) > 0.0)) {
+        inverted[b] = 1u;
+        break;
+      }
+    }
   }
   apply_sleep_changes(sleep_->end_frame(x, links, inverted));
 }
@@ -548,7 +554,10 @@ void ContactResponse::search() {
   Detector& detector = *detector_;
   const std::vector<Contact>& intersections = intersections_;
   const std::uint64_t searches = counts_.searches + 1u;
-  response::FrameConstraints c;
+  // Built in the storage of the window before last (on the impact, 55,000 constraints: a new
+  // list each search cost its allocation and page faults).
+  response::FrameConstraints c = std::move(spare_constraints_);
+  c.pairs.clear();
   // The window ends with the frame at the latest, since the next begin_frame() searches anyway:
   // a search that a stray node starts mid-frame sweeps the nodes over the frame's rest, not a
   // whole frame (on the impact scene the frame's last search kept about 6,500 candidates
@@ -669,34 +678,49 @@ void ContactResponse::search() {
       frame_substeps_ = n;
     }
   }
-  constraints_ = std::move(c);
+  std::swap(constraints_, c);
+  spare_constraints_ = std::move(c);
   backend_->begin_frame(constraints_);
 }
 
-void ContactResponse::append_volume_constraints(response::FrameConstraints& c) const {
+void ContactResponse::append_volume_constraints(response::FrameConstraints& c) {
   // Last in the list (the backends solve them after the contacts): every tetrahedron of a
-  // body that can move.
-  for (const VolumeFloor& v : volume_floors_)
-    if (!immovable(v.body)) c.pairs.push_back(v.pair);
+  // body that can move, a body's as one block (on the impact, 50,000 of the list's 55,000
+  // entries, listed again at every search and widening).
+  listed_contacts_ = c.pairs.size();
+  std::size_t volumes = 0;
+  for (std::uint32_t b = 0; b + 1u < volume_begin_.size(); ++b)
+    if (!immovable(b)) volumes += volume_begin_[b + 1u] - volume_begin_[b];
+  // Room for the widenings' new contacts too: a list grown to the exact size would move
+  // whole at the next widening that adds one.
+  const std::size_t needed = c.pairs.size() + volumes;
+  if (c.pairs.capacity() < needed) c.pairs.reserve(needed + needed / 4u);
+  for (std::uint32_t b = 0; b + 1u < volume_begin_.size(); ++b) {
+    if (immovable(b)) continue;
+    c.pairs.insert(c.pairs.end(), volume_floors_.begin() + volume_begin_[b],
+                   volume_floors_.begin() + volume_begin_[b + 1u]);
+  }
 }
 
-void ContactResponse::add_volume_constraints(const Body& body, std::uint32_t index,
-                                             std::uint32_t node_offset, float thickness) {
-  if (!(settings_.volume_floor > 0.0f)) return;
-  for (std::size_t t = 0; t < body.tetrahedra.size(); ++t) {
-    VolumeFloor v;
-    v.body = index;
-    for (std::uint32_t k = 0; k < 4u; ++k)
-      v.pair.nodes[k] = node_offset + body.tetrahedra[t][k];
-    v.pair.kind = gpu::kContactVolume;
-    v.pair.thickness = settings_.volume_floor * body.tet_rest_volume[t];
-    // Thin: a push of the body's thickness may take a corner through the opposite face.
-    v.pair.side = least_rest_height(body, t) < thickness ? 1.0f : 0.0f;
-    v.pair.gap = -INFINITY;  // always awake: the activity pass looks at its volume
-    v.pair.step_limit = body.tet_rest_edge[t];
-    v.pair.converge = 1.0f;  // iterate while below half the floor (contact_violated)
-    volume_floors_.push_back(v);
+void ContactResponse::add_volume_constraints(const Body& body, std::uint32_t node_offset,
+                                             float thickness) {
+  if (volume_begin_.empty()) volume_begin_.push_back(0u);
+  if (settings_.volume_floor > 0.0f) {
+    for (std::size_t t = 0; t < body.tetrahedra.size(); ++t) {
+      gpu::ContactPair pair{};
+      for (std::uint32_t k = 0; k < 4u; ++k)
+        pair.nodes[k] = node_offset + body.tetrahedra[t][k];
+      pair.kind = gpu::kContactVolume;
+      pair.thickness = settings_.volume_floor * body.tet_rest_volume[t];
+      // Thin: a push of the body's thickness may take a corner through the opposite face.
+      pair.side = least_rest_height(body, t) < thickness ? 1.0f : 0.0f;
+      pair.gap = -INFINITY;  // always awake: the activity pass looks at its volume
+      pair.step_limit = body.tet_rest_edge[t];
+      pair.converge = 1.0f;  // iterate while below half the floor (contact_violated)
+      volume_floors_.push_back(pair);
+    }
   }
+  volume_begin_.push_back(static_cast<std::uint32_t>(volume_floors_.size()));
 }
 
 bool ContactResponse::self_pairs_hold(float h) {
@@ -865,8 +889,8 @@ void ContactResponse::widen() {
   // pairs with itself (which still hold) and the untangling constraints stand; the volume
   // constraints go to the end again, after the new pairs.
   std::vector<gpu::ContactPair>& pairs = constraints_.pairs;
+  pairs.resize(listed_contacts_);
   std::erase_if(pairs, [&](const gpu::ContactPair& p) {
-    if (p.kind == gpu::kContactVolume) return true;
     if (p.kind == gpu::kContactUntangle) return false;
     const std::uint32_t body = node_body_[p.nodes[0]];
     if (body == node_body_[p.nodes[3]] && !self_kept_.empty() && self_kept_[body] != 0u)

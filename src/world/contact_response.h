@@ -116,13 +116,13 @@ class ContactResponse {
   /// Whether every body keeping its pairs with itself still may over the next substep, of
   /// length h (SelfContact::holds), on the positions and velocities now.
   [[nodiscard]] bool self_pairs_hold(float h);
-  /// Lists a volume constraint for each tetrahedron of `body` (body `index`, its first node
-  /// node_offset, its `thickness`: the thin ones are those less high at rest), unless
-  /// volume_floor is 0.
-  void add_volume_constraints(const Body& body, std::uint32_t index, std::uint32_t node_offset,
-                              float thickness);
-  /// Appends the volume constraints of the bodies that can move to c (after every other).
-  void append_volume_constraints(response::FrameConstraints& c) const;
+  /// Lists a volume constraint for each tetrahedron of `body` (the next body: they come in
+  /// order; its first node node_offset, its `thickness`: the thin ones are those less high at
+  /// rest), unless volume_floor is 0 (an empty block).
+  void add_volume_constraints(const Body& body, std::uint32_t node_offset, float thickness);
+  /// Appends the volume constraints of the bodies that can move to c (after every other; the
+  /// entries before them are listed_contacts_).
+  void append_volume_constraints(response::FrameConstraints& c);
   /// What a proximity pair becomes (proximity_constraint).
   struct ProximityConstraint {
     gpu::ContactPair pair{};
@@ -195,15 +195,13 @@ class ContactResponse {
   std::vector<glm::vec4> positions_;        // read back from a GL simulation
   std::vector<glm::vec4> last_velocities_;  // per node, at the last search
   float max_untangle_step_ = 0.0f;
-  /// A tetrahedron's volume constraint (kContactVolume) and its body: every window lists those
-  /// of the bodies that can move.
-  struct VolumeFloor {
-    gpu::ContactPair pair{};
-    std::uint32_t body = 0;
-  };
-  std::vector<VolumeFloor> volume_floors_;
-  Detector* detector_ = nullptr;                // of the frame
-  std::vector<Contact> intersections_;          // of the frame
+  /// The tetrahedra's volume constraints (kContactVolume), body after body: every window
+  /// lists those of the bodies that can move, a body's as one block.
+  std::vector<gpu::ContactPair> volume_floors_;
+  std::vector<std::uint32_t> volume_begin_;  // per body + 1: where its volume constraints begin
+  std::size_t listed_contacts_ = 0;     // constraints_.pairs' entries before its volume constraints
+  Detector* detector_ = nullptr;        // of the frame
+  std::vector<Contact> intersections_;  // of the frame
   std::unique_ptr<TangledPrimitives> tangled_;  // of the frame's intersections
   std::unique_ptr<OverlapFinder> overlap_;      // made from the detector's meshes when needed
   std::vector<gpu::ContactPair> penetrations_;  // of the frame (find_penetrations)
@@ -212,13 +210,14 @@ class ContactResponse {
     std::uint32_t a = 0, b = 0;
     glm::vec3 direction{0.0f};
   };
-  std::vector<WayApart> ways_apart_;        // of the frame (find_penetrations)
-  response::FrameConstraints constraints_;  // of the window; the backend reads them
-  std::vector<glm::vec3> window_start_;     // per node: where the window began
-  float elapsed_ = 0.0f;                    // since the window began (the last search)
-  float frame_time_ = 0.0f;                 // since the frame began
-  int substep_ = 0;                         // substeps projected in the frame
-  int window_end_ = 0;                      // the substep the window ends after
+  std::vector<WayApart> ways_apart_;              // of the frame (find_penetrations)
+  response::FrameConstraints constraints_;        // of the window; the backend reads them
+  response::FrameConstraints spare_constraints_;  // the window's before: the next one's storage
+  std::vector<glm::vec3> window_start_;           // per node: where the window began
+  float elapsed_ = 0.0f;                          // since the window began (the last search)
+  float frame_time_ = 0.0f;                       // since the frame began
+  int substep_ = 0;                               // substeps projected in the frame
+  int window_end_ = 0;                            // the substep the window ends after
   int frame_substeps_ = 1;      // of the frame begin_frame() began (before: the scene's)
   float thinnest_ = 0.0f;       // m: the smallest body's thickness
   float smallest_edge_ = 0.0f;  // the smallest body's mean surface edge

@@ -19,10 +19,6 @@ void SweepOrder::colour(std::span<const gpu::ContactPair> pairs,
                 std::to_string(acting.size()) + " acting constraints");
   }
   const auto node_count = static_cast<std::uint32_t>(positions.size());
-  // First fit never needs more colours than a constraint has neighbours plus one: at most
-  // 4 x (the most constraints at one node - 1) + 1.
-  per_node_.assign(node_count, 0u);
-  std::uint32_t most = 1;
   for (const std::uint32_t p : acting) {
     if (p >= pairs.size()) {
       throw Error("SweepOrder: acting constraint " + std::to_string(p) + " of " +
@@ -38,9 +34,20 @@ void SweepOrder::colour(std::span<const gpu::ContactPair> pairs,
         throw Error("SweepOrder: constraint " + std::to_string(p) + "'s node " + std::to_string(n) +
                     " has a non-finite position");
       }
-      most = std::max(most, ++per_node_[n]);
     }
   }
+  // First fit never needs more colours than a constraint has neighbours plus one: at most
+  // 4 x (the most constraints at one node - 1) + 1. per_node_ is all zero between calls: only
+  // the acting constraints' nodes are counted, and cleared again (a projection's few thousand,
+  // not every node).
+  if (per_node_.size() != node_count) per_node_.assign(node_count, 0u);
+  std::uint32_t most = 1;
+  for (const std::uint32_t p : acting)
+    for (const std::uint32_t n : pairs[p].nodes)
+      most = std::max(most, ++per_node_[n]);
+  for (const std::uint32_t p : acting)
+    for (const std::uint32_t n : pairs[p].nodes)
+      per_node_[n] = 0u;
   const std::uint32_t words = (4u * most + 63u) / 64u;
   if (words != words_ || node_count != node_count_) {
     words_ = words;
@@ -76,7 +83,7 @@ void SweepOrder::colour(std::span<const gpu::ContactPair> pairs,
       contact_colours_ + colour_group(pairs, acting, contacts, size, positions, contact_colours_);
   // Counting sort by colour and half, stable: each colour's first half, then its second, each
   // in acting order (a place across the halves counts as its colour's first).
-  std::vector<std::uint32_t>& start = per_node_;  // reused: 2 colours + 1 bucket starts
+  std::vector<std::uint32_t>& start = bucket_start_;
   start.assign(2u * colours + 1u, 0u);
   const auto bucket = [&](std::uint32_t a) { return 2u * colour_[a] + (half_[a] == 1u ? 1u : 0u); };
   for (std::uint32_t a = 0; a < size; ++a)

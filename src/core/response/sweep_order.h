@@ -86,9 +86,10 @@ class SweepOrder {
   std::vector<std::uint64_t> taken_;
   std::uint32_t words_ = 0;
   std::uint32_t node_count_ = 0;
-  std::vector<std::uint32_t> per_node_;  // scratch: acting constraints a node is in
-  std::vector<std::uint32_t> places_;    // scratch: a group's places of one kind
-  std::vector<float> keys_;              // scratch: a group's split coordinates
+  std::vector<std::uint32_t> per_node_;      // scratch: acting constraints a node is in (0 between)
+  std::vector<std::uint32_t> bucket_start_;  // scratch: the counting sort's (colour, half) starts
+  std::vector<std::uint32_t> places_;        // scratch: a group's places of one kind
+  std::vector<float> keys_;                  // scratch: a group's split coordinates
 };
 
 }  // namespace deformcd::response
