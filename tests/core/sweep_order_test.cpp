@@ -119,6 +119,65 @@ TEST(SweepOrder, HalvesFirstFitInActingOrderThenTheConstraintsAcrossThem) {
   expect_a_valid_sweep(s, pairs, acting, 6u);
 }
 
+// A thin slab's layers far apart, its constraints (each joining both layers) along x: the box of
+// their first nodes is longest across the layers, where every constraint would be across the
+// halves (the smaller half empty); the split goes along x instead, where few are.
+TEST(SweepOrder, AThinSlabIsSplitAlongItNotAcrossItsLayers) {
+  std::vector<glm::vec3> x;
+  for (std::uint32_t i = 0; i < 20u; ++i) {
+    x.emplace_back(static_cast<float>(i), 0.0f, 0.0f);   // node 2 i: the lower layer
+    x.emplace_back(static_cast<float>(i), 30.0f, 0.0f);  // node 2 i + 1: the upper
+  }
+  std::vector<gpu::ContactPair> pairs;
+  std::vector<std::uint32_t> acting;
+  for (std::uint32_t i = 0; i + 1u < 20u; ++i) {
+    // The first node in either layer, so that the first nodes span 30 across and 18 along.
+    pairs.push_back(i % 2u == 0u ? pair_of(2u * i, 2u * i + 1u, 2u * i + 2u, 2u * i + 3u)
+                                 : pair_of(2u * i + 1u, 2u * i, 2u * i + 2u, 2u * i + 3u));
+    acting.push_back(i);
+  }
+  response::SweepOrder s;
+  s.colour(pairs, acting, 19u, x);
+  expect_a_valid_sweep(s, pairs, acting, 19u);
+  std::uint32_t in_halves = 0;
+  for (const response::SweepOrder::Run& run : s.runs())
+    if (run.halves) in_halves += s.colour_begin()[run.end] - s.colour_begin()[run.first];
+  EXPECT_EQ(in_halves, 18u) << "one constraint across the split along x";
+  EXPECT_EQ(s.half_of(glm::vec3(0.0f, 30.0f, 0.0f)), s.half_of(glm::vec3(0.0f, 0.0f, 0.0f)));
+  EXPECT_NE(s.half_of(glm::vec3(0.0f, 0.0f, 0.0f)), s.half_of(glm::vec3(19.0f, 0.0f, 0.0f)));
+}
+
+// The longest side (x) keeps the split while its smaller half holds a quarter of the
+// constraints, though y would hold more (the order, and so the physics, of scenes that split
+// well along it stays as it was); below a quarter, y takes it. Constraint k: first node at
+// x = k, its others up to `span` further along x, all four at y = 5 (k odd) or 0 (k even).
+TEST(SweepOrder, TheLongestSideSplitsUnlessItsSmallerHalfHoldsUnderAQuarter) {
+  for (const float span : {8.0f, 12.0f}) {
+    std::vector<glm::vec3> x;
+    std::vector<gpu::ContactPair> pairs;
+    std::vector<std::uint32_t> acting;
+    for (std::uint32_t k = 0; k < 40u; ++k) {
+      const float y = k % 2u == 1u ? 5.0f : 0.0f;
+      const auto first = static_cast<std::uint32_t>(x.size());
+      for (const float along : {0.0f, span / 3.0f, 2.0f * span / 3.0f, span})
+        x.emplace_back(static_cast<float>(k) + along, y, 0.0f);
+      pairs.push_back(pair_of(first, first + 1u, first + 2u, first + 3u));
+      acting.push_back(k);
+    }
+    response::SweepOrder s;
+    s.colour(pairs, acting, 40u, x);
+    expect_a_valid_sweep(s, pairs, acting, 40u);
+    // Split at x = 20: with span 8 the constraints from k = 12 to 19 are across (12 below, 20
+    // above: 12 >= 10); with span 12 from k = 8 (8 below: under a quarter).
+    const bool along_x =
+        s.half_of(glm::vec3(0.0f, 0.0f, 0.0f)) != s.half_of(glm::vec3(39.0f, 0.0f, 0.0f));
+    const bool along_y =
+        s.half_of(glm::vec3(0.0f, 0.0f, 0.0f)) != s.half_of(glm::vec3(0.0f, 5.0f, 0.0f));
+    EXPECT_EQ(along_x, span == 8.0f) << "span " << span;
+    EXPECT_EQ(along_y, span == 12.0f) << "span " << span;
+  }
+}
+
 TEST(SweepOrder, RandomSetsAreValidAndTheSameEachTime) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);

@@ -8,8 +8,9 @@
 // their sweeps are the same: the colours need no GPU colouring to agree.
 //
 // The nodes are split in two halves at the median of the acting constraints' first nodes along
-// the longest side of their box (where the window started): each colour of a group's (the
-// contacts', the volume constraints') first run of colours lists the first half's
+// the longest side of their box (where the window started; along the axis whose smaller half
+// holds the most constraints when that side's holds under a quarter): each colour of a group's
+// (the contacts', the volume constraints') first run of colours lists the first half's
 // constraints, then the second's, and the constraints with nodes in both halves take the
 // group's last colours. So a CPU sweep can solve the two halves of a run on two threads, each
 // through all the run's colours without waiting at each colour, and still give the bits of a
@@ -61,6 +62,14 @@ class SweepOrder {
   }
 
  private:
+  // The median of the acting constraints' first nodes' coordinate `axis`.
+  float median_split(std::span<const gpu::ContactPair> pairs, std::span<const std::uint32_t> acting,
+                     std::span<const glm::vec3> positions, int axis);
+  // How many acting constraints the smaller half holds when split at `split` along `axis`.
+  [[nodiscard]] static std::uint32_t smaller_half(std::span<const gpu::ContactPair> pairs,
+                                                  std::span<const std::uint32_t> acting,
+                                                  std::span<const glm::vec3> positions, int axis,
+                                                  float split);
   // Splits acting[first, end) into halves_ (0, 1, or 2 for across) and colours it into colour_
   // from colour `base` on; returns the colours it used after base.
   std::uint32_t colour_group(std::span<const gpu::ContactPair> pairs,
