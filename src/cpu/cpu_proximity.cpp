@@ -1,7 +1,6 @@
 #include "cpu/cpu_proximity.h"
 
 #include <algorithm>
-#include <atomic>
 #include <functional>
 
 #include "core/collision/bvh.h"
@@ -163,32 +162,20 @@ std::vector<std::array<std::uint32_t, 2>> CpuProximity::met_face_pairs(
       1);
   // A counting sort by bucket (the order of the mesh pairs and their first faces), then each
   // bucket by the second face's leaf: one query per first face meets its leaves in preorder.
-  // The pieces are counted and scattered in parallel (integer atomics): the order a bucket's
-  // entries land in does not matter, since the sort by leaf then orders them whole (a face has
-  // one leaf, and a face pair met twice is one value twice).
+  // (Counted and scattered in parallel with integer atomics, the list was the same but the
+  // atomics cost one thread more than two threads saved:
+  // docs/notes/2026-12-08-serial-host-work.md.)
   std::vector<std::uint32_t> offset(bucket_base.back() + 1u, 0u);
-  parallel_for(
-      met.size(),
-      [&](std::size_t i) {
-        for (const Met& m : met[i])
-          std::atomic_ref<std::uint32_t>(offset[m.bucket + 1u])
-              .fetch_add(1u, std::memory_order_relaxed);
-      },
-      1);
+  for (const std::vector<Met>& list : met)
+    for (const Met& m : list)
+      ++offset[m.bucket + 1u];
   for (std::size_t b = 1; b < offset.size(); ++b)
     offset[b] += offset[b - 1u];
   std::vector<std::array<std::uint32_t, 2>> sorted(offset.back());
   std::vector<std::uint32_t> cursor(offset.begin(), offset.end() - 1);
-  parallel_for(
-      met.size(),
-      [&](std::size_t i) {
-        for (const Met& m : met[i]) {
-          const std::uint32_t at = std::atomic_ref<std::uint32_t>(cursor[m.bucket])
-                                       .fetch_add(1u, std::memory_order_relaxed);
-          sorted[at] = {m.face_a, m.face_b};
-        }
-      },
-      1);
+  for (const std::vector<Met>& list : met)
+    for (const Met& m : list)
+      sorted[cursor[m.bucket]++] = {m.face_a, m.face_b};
   parallel_for(
       offset.size() - 1u,
       [&](std::size_t b) {
