@@ -129,15 +129,19 @@ std::uint32_t SweepOrder::smaller_half(std::span<const gpu::ContactPair> pairs,
                                        std::span<const std::uint32_t> acting,
                                        std::span<const glm::vec3> positions, int axis,
                                        float split) {
-  std::uint32_t in_half[2] = {0u, 0u};
-  for (const std::uint32_t p : acting) {
-    std::uint32_t below = 0;
-    for (const std::uint32_t n : pairs[p].nodes)
-      below += positions[n][axis] < split ? 1u : 0u;
-    if (below == 4u) ++in_half[0];
-    if (below == 0u) ++in_half[1];
-  }
+  std::uint32_t in_half[3] = {0u, 0u, 0u};
+  for (const std::uint32_t p : acting)
+    ++in_half[constraint_half(pairs[p], positions, axis, split)];
   return std::min(in_half[0], in_half[1]);
+}
+
+std::uint8_t SweepOrder::constraint_half(const gpu::ContactPair& pair,
+                                         std::span<const glm::vec3> positions, int axis,
+                                         float split) {
+  std::uint32_t below = 0;
+  for (const std::uint32_t n : pair.nodes)
+    below += positions[n][axis] < split ? 1u : 0u;
+  return below == 4u ? 0u : (below == 0u ? 1u : 2u);
 }
 
 std::uint32_t SweepOrder::colour_group(std::span<const gpu::ContactPair> pairs,
@@ -146,12 +150,8 @@ std::uint32_t SweepOrder::colour_group(std::span<const gpu::ContactPair> pairs,
                                        std::uint32_t base) {
   // Each constraint in the half of its nodes, or across the halves.
   if (first == end) return 0u;
-  for (std::uint32_t a = first; a < end; ++a) {
-    std::uint32_t below = 0;
-    for (const std::uint32_t n : pairs[acting[a]].nodes)
-      below += 1u - half_of(positions[n]);
-    half_[a] = below == 4u ? 0u : (below == 0u ? 1u : 2u);
-  }
+  for (std::uint32_t a = first; a < end; ++a)
+    half_[a] = constraint_half(pairs[acting[a]], positions, axis_, split_);
   // The halves' colours first (they share no node, so one first fit colours both), then the
   // constraints across them.
   places_.clear();

@@ -70,6 +70,11 @@ class SweepOrder {
                                                   std::span<const std::uint32_t> acting,
                                                   std::span<const glm::vec3> positions, int axis,
                                                   float split);
+  // A constraint's half when split at `split` along `axis` (half_of's rule for each node): 0 or
+  // 1 when all its nodes are in that half, 2 when it is across.
+  [[nodiscard]] static std::uint8_t constraint_half(const gpu::ContactPair& pair,
+                                                    std::span<const glm::vec3> positions, int axis,
+                                                    float split);
   // Splits acting[first, end) into halves_ (0, 1, or 2 for across) and colours it into colour_
   // from colour `base` on; returns the colours it used after base.
   std::uint32_t colour_group(std::span<const gpu::ContactPair> pairs,
